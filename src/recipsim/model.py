@@ -1,0 +1,225 @@
+"""Pick one submodel per slot and lay out the compiled scene: states, parameters, scales.
+
+:func:`build_model` turns a validated :class:`~recipsim.case.Case` into a
+:class:`Model`: the float and integer parameter arrays of the compiled right-hand
+side, the property callback, the plenum states, the initial state and the state
+scales used by the error control.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from .case import Case
+from .kinematics import piston_displacement
+from .refrigerant import Fluid
+from .thermo import cylinder as cyl
+from .thermo.heat_transfer import DEFAULT_COEFFICIENT, HT_ADAIR, HT_ADIABATIC, HT_ANNAND
+from .thermo.properties import HeosProperties
+
+START_ANGLE = 1.5 * math.pi  # crank angle at which every revolution starts [rad]
+
+_VALVE_CODES = {
+    "ideal": cyl.VALVES_IDEAL,
+    "quasi_static": cyl.VALVES_QUASI_STATIC,
+    "reed": cyl.VALVES_REED,
+}
+_HT_CODES = {"adiabatic": HT_ADIABATIC, "annand": HT_ANNAND, "adair": HT_ADAIR}
+_FLOW_CODES = {"real_gas": cyl.FLOW_REAL_GAS, "ideal_gas": cyl.FLOW_IDEAL_GAS}
+
+
+@dataclass
+class PlenumState:
+    """A constant boundary state [SI]."""
+
+    pressure: float
+    temperature: float
+    density: float
+    enthalpy: float
+    entropy: float
+    kappa: float
+    k0: float
+    viscosity: float
+
+
+@dataclass
+class Model:
+    """A compiled scene ready to integrate.
+
+    Attributes
+    ----------
+    par, ipar : ndarray
+        Float and integer parameters (layouts in :mod:`recipsim.thermo.cylinder`).
+    props : HeosProperties
+        Property callback passed to the compiled code.
+    y0 : ndarray
+        Initial state at :data:`START_ANGLE` (suction gas compressed isentropically
+        from bottom dead centre).
+    mode0 : ndarray
+        Initial discrete modes.
+    scale : ndarray
+        Typical magnitude of each state for the absolute tolerance.
+    period : float
+        One revolution [s].
+    """
+
+    case: Case
+    fluid: Fluid
+    par: np.ndarray
+    ipar: np.ndarray
+    props: HeosProperties
+    y0: np.ndarray
+    mode0: np.ndarray
+    scale: np.ndarray
+    period: float
+    suction: PlenumState
+    discharge: PlenumState
+    shell: PlenumState
+    n_err: int = cyl.N_ERR
+
+    def set_discharge_enthalpy(self, enthalpy: float) -> None:
+        """Move the discharge plenum (the source of back-flow) to ``enthalpy`` [J/kg]."""
+        state = _plenum(self.fluid, self.discharge.pressure, enthalpy=enthalpy)
+        self.discharge = state
+        _write_plenum(
+            self.par, state, cyl.C_PD, cyl.C_RHOD, cyl.C_HD, cyl.C_KAPPAD, cyl.C_K0D, cyl.C_TD
+        )
+
+
+def _plenum(
+    fluid: Fluid, pressure: float, temperature: float | None = None, enthalpy: float | None = None
+) -> PlenumState:
+    if temperature is not None:
+        st = fluid.state_pt(pressure, temperature)
+    else:
+        assert enthalpy is not None
+        st = fluid.state_ph(pressure, enthalpy)
+    if st["quality"] >= 0.0:
+        raise ValueError(f"plenum state at {pressure:.4g} Pa is two-phase")
+    mu = fluid.transport(pressure, st["T"])["viscosity"]
+    return PlenumState(
+        pressure=pressure,
+        temperature=st["T"],
+        density=st["rho"],
+        enthalpy=st["h"],
+        entropy=st["s"],
+        kappa=st["kappa"],
+        k0=st["k0"],
+        viscosity=mu,
+    )
+
+
+def _write_plenum(
+    par: np.ndarray, st: PlenumState, ip: int, irho: int, ih: int, ikappa: int, ik0: int, itemp: int
+) -> None:
+    par[ip] = st.pressure
+    par[irho] = st.density
+    par[ih] = st.enthalpy
+    par[ikappa] = st.kappa
+    par[ik0] = st.k0
+    par[itemp] = st.temperature
+
+
+def build_model(case: Case) -> Model:
+    """Lay out the compiled cylinder-on-rigid-crank scene for ``case``."""
+    op = case.operating_point
+    geo = case.geometry
+    opts = case.options
+    fluid = Fluid(case.refrigerant.coolprop_name)
+    suction = _plenum(fluid, op.suction_pressure, temperature=op.suction_temperature)
+    isentropic = fluid.state_ps(op.discharge_pressure, suction.entropy)
+    discharge = _plenum(fluid, op.discharge_pressure, enthalpy=isentropic["h"])
+    shell = _plenum(fluid, op.shell_pressure, temperature=op.suction_temperature)
+
+    par = np.zeros(cyl.N_PAR)
+    ipar = np.zeros(cyl.N_IPAR, dtype=np.int64)
+    omega = op.shaft_speed
+    par[cyl.C_OMEGA] = omega
+    # revolutions start a quarter turn before top dead centre, where both valves are shut
+    par[cyl.C_THETA0] = START_ANGLE
+    par[cyl.C_R] = geo.crank_radius
+    par[cyl.C_L] = geo.connecting_rod_length
+    par[cyl.C_AP] = geo.piston_area
+    par[cyl.C_VC] = geo.clearance_volume
+    par[cyl.C_BORE] = geo.bore
+    par[cyl.C_STROKE] = geo.stroke
+    par[cyl.C_PISTON_LEN] = geo.piston_length
+    par[cyl.C_LINER_LEN] = geo.liner_length
+    _write_plenum(par, suction, cyl.C_PS, cyl.C_RHOS, cyl.C_HS, cyl.C_KAPPAS, cyl.C_K0S, cyl.C_TS)
+    _write_plenum(par, discharge, cyl.C_PD, cyl.C_RHOD, cyl.C_HD, cyl.C_KAPPAD, cyl.C_K0D, cyl.C_TD)
+    par[cyl.C_PSHELL] = shell.pressure
+    par[cyl.C_RHOSHELL] = shell.density
+    par[cyl.C_HSHELL] = shell.enthalpy
+    par[cyl.C_MUSHELL] = shell.viscosity
+    par[cyl.C_RGAS] = fluid.gas_constant
+    par[cyl.C_DPLAM] = case.valves.laminar_pressure_difference
+    par[cyl.C_VSTICK] = case.valves.stick_velocity
+    par[cyl.C_LEAK_DELTA] = case.leakage.radial_clearance
+    par[cyl.C_LEAK_ECC] = case.leakage.eccentricity_ratio
+    ht_code = _HT_CODES[opts.heat_transfer]
+    coef = case.heat_transfer.coefficient
+    par[cyl.C_HT_COEF] = DEFAULT_COEFFICIENT[ht_code] if math.isnan(coef) else coef
+    par[cyl.C_TWALL] = case.heat_transfer.wall_temperature
+    mech = case.mechanism
+    par[cyl.C_MPISTON] = mech.piston_mass
+    par[cyl.C_MROD] = mech.rod_mass
+    par[cyl.C_AROD] = mech.rod_centre_of_mass_fraction
+    par[cyl.C_IROD] = mech.rod_inertia
+    par[cyl.C_BAUMGARTE] = 200.0 * omega  # pressure drift of the ideal valves decays in ~1 deg
+    for i, valve in enumerate((case.valves.suction, case.valves.discharge)):
+        base = cyl.C_VALVE0 + i * cyl.VALVE_BLOCK
+        par[base + cyl.V_PORT_D] = valve.port_diameter
+        par[base + cyl.V_CFLOW] = valve.flow_coefficient
+        par[base + cyl.V_AFORCE] = valve.force_coefficient * valve.port_area
+        par[base + cyl.V_MASS] = valve.mass
+        par[base + cyl.V_STIFF] = valve.stiffness
+        par[base + cyl.V_DAMP] = 2.0 * valve.damping_ratio * math.sqrt(valve.stiffness * valve.mass)
+        par[base + cyl.V_STOP] = valve.stop_height
+        par[base + cyl.V_REST] = valve.restitution
+        par[base + cyl.V_PRELOAD] = valve.preload
+    ipar[cyl.I_SCENE] = 0
+    ipar[cyl.I_VALVES] = _VALVE_CODES[opts.valves]
+    ipar[cyl.I_FLOW] = _FLOW_CODES[case.valves.flow_model]
+    ipar[cyl.I_HT] = ht_code
+    ipar[cyl.I_LEAK] = 0 if opts.leakage == "none" else 1
+
+    transport = opts.heat_transfer != "adiabatic" or opts.leakage != "none"
+    props = HeosProperties(
+        case.refrigerant.coolprop_name,
+        transport=transport,
+        t_min=case.refrigerant.min_temperature,
+        t_max=case.refrigerant.max_temperature,
+    )
+    # initial guess: suction gas filling the cylinder at BDC, compressed isentropically
+    y0 = np.zeros(cyl.N_STATE)
+    x_start, _, _ = piston_displacement(START_ANGLE, geo.crank_radius, geo.connecting_rod_length)
+    v_start = geo.clearance_volume + geo.piston_area * x_start
+    rho_start = suction.density * (geo.clearance_volume + geo.swept_volume) / v_start
+    start = fluid.state_rhos(rho_start, suction.entropy)
+    y0[cyl.Y_T] = start["T"]
+    y0[cyl.Y_RHO] = rho_start
+    mode0 = np.zeros(cyl.N_MODES, dtype=np.int64)
+    scale = np.ones(cyl.N_STATE)
+    scale[cyl.Y_T] = suction.temperature
+    scale[cyl.Y_RHO] = suction.density
+    for i, valve in enumerate((case.valves.suction, case.valves.discharge)):
+        w_n = math.sqrt(valve.stiffness / valve.mass)
+        scale[cyl.Y_XS + 2 * i] = valve.stop_height
+        scale[cyl.Y_VS + 2 * i] = valve.stop_height * w_n
+    return Model(
+        case=case,
+        fluid=fluid,
+        par=par,
+        ipar=ipar,
+        props=props,
+        y0=y0,
+        mode0=mode0,
+        scale=scale,
+        period=2.0 * math.pi / omega,
+        suction=suction,
+        discharge=discharge,
+        shell=shell,
+    )

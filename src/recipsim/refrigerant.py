@@ -1,0 +1,242 @@
+"""Refrigerant files and CoolProp states.
+
+A refrigerant file (``refrigerants/<name>.toml``) names the CoolProp fluid, optional
+tighter limits and the rating points of the standards (ASHRAE LBP, EN 12900, ...).
+:class:`Fluid` wraps one reused low-level ``AbstractState``; it is used when a case
+is loaded and when results are post-processed, never inside the right-hand side,
+which goes through :mod:`recipsim.thermo.properties`.
+"""
+
+from __future__ import annotations
+
+import os
+import tomllib
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import CoolProp.CoolProp as CP
+
+from .errors import CaseError
+from .schema import Field, Spec, Text, check_keys, read_table
+
+RATING_POINT_SPEC: Spec = {
+    "evaporating_temperature": Field("K", lo=100.0, hi=600.0),
+    "condensing_temperature": Field("K", None, lo=100.0, hi=600.0),
+    "discharge_pressure": Field("Pa", None, lo=0.0, open_lo=True),
+    "suction_temperature": Field("K", lo=100.0, hi=600.0),
+    "liquid_temperature": Field("K", lo=100.0, hi=600.0),
+    "description": Text(""),
+}
+
+LIMITS_SPEC: Spec = {
+    "min_temperature": Field("K", None, lo=0.0, open_lo=True),
+    "max_temperature": Field("K", None, lo=0.0, open_lo=True),
+    "max_pressure": Field("Pa", None, lo=0.0, open_lo=True),
+}
+
+
+@dataclass(frozen=True)
+class RefrigerantSpec:
+    """Contents of a refrigerant file, in SI.
+
+    Attributes
+    ----------
+    name : str
+        Name used in case files (``"R134a"``).
+    coolprop_name : str
+        CoolProp fluid name (``"R134a"``, ``"Isobutane"``).
+    min_temperature, max_temperature : float
+        Temperature range of the model [K] (the file's limits within CoolProp's).
+    max_pressure : float
+        Highest pressure of the model [Pa].
+    rating_points : dict
+        Name to a dict of SI values (``evaporating_temperature`` [K], ...).
+    path : str
+        File the spec was read from.
+    """
+
+    name: str
+    coolprop_name: str
+    description: str
+    min_temperature: float
+    max_temperature: float
+    max_pressure: float
+    critical_temperature: float
+    critical_pressure: float
+    rating_points: dict[str, dict[str, Any]] = field(default_factory=dict)
+    path: str = ""
+
+
+def refrigerant_dirs(extra: list[Path] | None = None) -> list[Path]:
+    """Directories searched for refrigerant files, in order.
+
+    ``$RECIPSIM_REFRIGERANTS``, then ``extra`` (the case's folder and its parent),
+    the working directory's ``refrigerants/`` and the repository's ``refrigerants/``.
+    """
+    dirs: list[Path] = []
+    env = os.environ.get("RECIPSIM_REFRIGERANTS")
+    if env:
+        dirs.append(Path(env))
+    for d in extra or []:
+        dirs.append(d / "refrigerants")
+    dirs.append(Path.cwd() / "refrigerants")
+    dirs.append(Path(__file__).resolve().parents[2] / "refrigerants")
+    seen: list[Path] = []
+    for d in dirs:
+        if d not in seen:
+            seen.append(d)
+    return seen
+
+
+def available_refrigerants(search: list[Path] | None = None) -> list[str]:
+    """Names of the refrigerant files that can be found."""
+    names: set[str] = set()
+    for d in refrigerant_dirs(search):
+        if d.is_dir():
+            names.update(p.stem for p in d.glob("*.toml"))
+    return sorted(names)
+
+
+def load_refrigerant(
+    name: str, case_file: str = "", key: str = "refrigerant", search: list[Path] | None = None
+) -> RefrigerantSpec:
+    """Find and read the refrigerant file for ``name``.
+
+    Raises
+    ------
+    CaseError
+        Naming ``case_file`` and ``key`` when no such refrigerant exists, or naming the
+        refrigerant file when it is invalid.
+    """
+    for d in refrigerant_dirs(search):
+        path = d / f"{name}.toml"
+        if path.is_file():
+            return read_refrigerant_file(path)
+    known = available_refrigerants(search)
+    raise CaseError(case_file, key, f"unknown refrigerant {name!r}; available: {known}")
+
+
+def read_refrigerant_file(path: Path) -> RefrigerantSpec:
+    """Read and validate one refrigerant file."""
+    file = str(path)
+    try:
+        raw = tomllib.loads(path.read_text())
+    except tomllib.TOMLDecodeError as exc:
+        raise CaseError(file, "", f"not valid TOML: {exc}") from None
+    check_keys(raw, {"name", "coolprop_name", "description", "limits", "rating_points"}, file, "")
+    top = read_table(
+        {k: v for k, v in raw.items() if k in ("name", "coolprop_name", "description")},
+        {"name": Text(), "coolprop_name": Text(), "description": Text("")},
+        file,
+        "",
+    )
+    try:
+        state = CP.AbstractState("HEOS", top["coolprop_name"])
+    except ValueError:
+        raise CaseError(
+            file, "coolprop_name", f"CoolProp does not know the fluid {top['coolprop_name']!r}"
+        ) from None
+    limits = read_table(raw.get("limits"), LIMITS_SPEC, file, "limits")
+    t_min = max(state.Tmin(), limits["min_temperature"] or 0.0)
+    t_max = min(state.Tmax(), limits["max_temperature"] or 1e9)
+    p_max = min(state.pmax(), limits["max_pressure"] or 1e12)
+    points_raw = raw.get("rating_points", {})
+    points = {
+        pname: read_table(ptable, RATING_POINT_SPEC, file, f"rating_points.{pname}")
+        for pname, ptable in points_raw.items()
+    }
+    return RefrigerantSpec(
+        name=top["name"],
+        coolprop_name=top["coolprop_name"],
+        description=top["description"],
+        min_temperature=t_min,
+        max_temperature=t_max,
+        max_pressure=p_max,
+        critical_temperature=state.T_critical(),
+        critical_pressure=state.p_critical(),
+        rating_points=points,
+        path=file,
+    )
+
+
+class Fluid:
+    """Convenience wrapper around one reused CoolProp ``AbstractState``.
+
+    Parameters
+    ----------
+    coolprop_name : str
+        CoolProp fluid name.
+    backend : str
+        CoolProp backend (``"HEOS"``).
+    """
+
+    def __init__(self, coolprop_name: str, backend: str = "HEOS") -> None:
+        self.name = coolprop_name
+        self.state = CP.AbstractState(backend, coolprop_name)
+        self.molar_mass = self.state.molar_mass()
+        self.gas_constant = self.state.gas_constant() / self.molar_mass
+        self.critical_temperature = self.state.T_critical()
+        self.critical_pressure = self.state.p_critical()
+
+    def saturation_pressure(self, temperature: float, quality: float = 1.0) -> float:
+        """Saturation pressure at ``temperature`` [K] -> [Pa]."""
+        self.state.update(CP.QT_INPUTS, quality, temperature)
+        return self.state.p()
+
+    def saturation_temperature(self, pressure: float, quality: float = 1.0) -> float:
+        """Saturation (dew for quality 1) temperature at ``pressure`` [Pa] -> [K]."""
+        self.state.update(CP.PQ_INPUTS, pressure, quality)
+        return self.state.T()
+
+    def state_pt(self, pressure: float, temperature: float) -> dict[str, float]:
+        """Single-phase state from pressure [Pa] and temperature [K]."""
+        self.state.update(CP.PT_INPUTS, pressure, temperature)
+        return self._snapshot()
+
+    def state_ph(self, pressure: float, enthalpy: float) -> dict[str, float]:
+        """State from pressure [Pa] and specific enthalpy [J/kg]."""
+        self.state.update(CP.HmassP_INPUTS, enthalpy, pressure)
+        return self._snapshot()
+
+    def state_ps(self, pressure: float, entropy: float) -> dict[str, float]:
+        """State from pressure [Pa] and specific entropy [J/(kg K)]."""
+        self.state.update(CP.PSmass_INPUTS, pressure, entropy)
+        return self._snapshot()
+
+    def state_rhos(self, density: float, entropy: float) -> dict[str, float]:
+        """State from density [kg/m3] and specific entropy [J/(kg K)]."""
+        self.state.update(CP.DmassSmass_INPUTS, density, entropy)
+        return self._snapshot()
+
+    def state_trho(self, temperature: float, density: float) -> dict[str, float]:
+        """State from temperature [K] and density [kg/m3]."""
+        self.state.update(CP.DmassT_INPUTS, density, temperature)
+        return self._snapshot()
+
+    def _snapshot(self) -> dict[str, float]:
+        s = self.state
+        phase = s.phase()
+        twophase = phase == CP.iphase_twophase
+        snap = {
+            "p": s.p(),
+            "T": s.T(),
+            "rho": s.rhomass(),
+            "h": s.hmass(),
+            "s": s.smass(),
+            "u": s.umass(),
+            "quality": s.Q() if twophase else -1.0,
+        }
+        if not twophase:
+            snap["cp"] = s.cpmass()
+            snap["cv"] = s.cvmass()
+            snap["speed_of_sound"] = s.speed_sound()
+            snap["kappa"] = snap["rho"] * snap["speed_of_sound"] ** 2 / snap["p"]
+            cp0 = s.cp0mass()
+            snap["k0"] = cp0 / (cp0 - self.gas_constant)
+        return snap
+
+    def transport(self, pressure: float, temperature: float) -> dict[str, float]:
+        """Viscosity [Pa s] and thermal conductivity [W/(m K)] of a single-phase state."""
+        self.state.update(CP.PT_INPUTS, pressure, temperature)
+        return {"viscosity": self.state.viscosity(), "conductivity": self.state.conductivity()}

@@ -1,0 +1,134 @@
+"""Per-case report: CSV tables (the contract), figures, the case as run, provenance.
+
+A report directory is built beside its destination and swapped in with renames, so a
+reader never sees a half-written report and an interrupted run leaves the previous
+one intact.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import platform
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+from typing import Any
+
+import pandas as pd
+
+from . import __version__
+from .solve.periodic import PeriodicSolution
+
+
+def provenance(solution: PeriodicSolution, argv: list[str] | None = None) -> dict[str, Any]:
+    """Versions, backend, solver settings and statistics of a run."""
+    import CoolProp
+    import numba
+    import numpy
+    import scipy
+
+    case = solution.model.case
+    return {
+        "recipsim": __version__,
+        "git_commit": _git_commit(),
+        "python": sys.version.split()[0],
+        "platform": platform.platform(),
+        "CoolProp": CoolProp.__version__,
+        "numpy": numpy.__version__,
+        "scipy": scipy.__version__,
+        "numba": numba.__version__,
+        "pandas": pd.__version__,
+        "property_backend": f"CoolProp {solution.model.props.backend}",
+        "fluid": case.refrigerant.coolprop_name,
+        "options": case.options.__dict__,
+        "solver": case.solver.__dict__,
+        "revolutions": solution.revolutions,
+        "cycle_residual": solution.residual,
+        "residual_history": solution.residual_history,
+        "rhs_evaluations": solution.nfev,
+        "steps": solution.steps,
+        "rejected_steps": solution.rejected,
+        "events": solution.events,
+        "wall_time_s": solution.wall_time,
+        "created": time.strftime("%Y-%m-%dT%H:%M:%S%z"),
+        "command": argv or sys.argv,
+    }
+
+
+def _git_commit() -> str:
+    try:
+        root = Path(__file__).resolve().parents[2]
+        out = subprocess.run(
+            ["git", "-C", str(root), "rev-parse", "HEAD"], capture_output=True, text=True, timeout=5
+        )
+        return out.stdout.strip() if out.returncode == 0 else ""
+    except (OSError, subprocess.SubprocessError):
+        return ""
+
+
+def write_report(
+    out_dir: Path,
+    summary_row: dict[str, Any],
+    cycle: pd.DataFrame,
+    case_text: str,
+    overrides: list[str],
+    meta: dict[str, Any],
+    plenum: tuple[float, float] | None = None,
+    plots: bool = True,
+) -> Path:
+    """Write one case's report into ``out_dir`` atomically.
+
+    Returns
+    -------
+    Path
+        ``out_dir``.
+    """
+    out_dir = Path(out_dir)
+    out_dir.parent.mkdir(parents=True, exist_ok=True)
+    tmp = Path(tempfile.mkdtemp(prefix=f".{out_dir.name}.", dir=out_dir.parent))
+    try:
+        pd.DataFrame([summary_row]).to_csv(tmp / "summary.csv", index=False)
+        cycle.to_csv(tmp / "cycle.csv", index=False)
+        header = "".join(f"# --set {o}\n" for o in overrides)
+        (tmp / "case.toml").write_text(
+            ("# overrides applied on top of this file:\n" + header if overrides else "") + case_text
+        )
+        (tmp / "provenance.json").write_text(json.dumps(meta, indent=2, default=str))
+        if plots:
+            from .plotting import save_cycle_figures
+
+            save_cycle_figures(cycle, tmp, plenum=plenum)
+        _swap_in(tmp, out_dir)
+    except BaseException:
+        shutil.rmtree(tmp, ignore_errors=True)
+        raise
+    return out_dir
+
+
+def _swap_in(new: Path, target: Path) -> None:
+    """Replace ``target`` by ``new`` with renames (the old one is removed after)."""
+    old = None
+    if target.exists():
+        old = target.with_name(f".{target.name}.old-{os.getpid()}-{time.time_ns()}")
+        os.replace(target, old)
+    os.replace(new, target)
+    if old is not None:
+        shutil.rmtree(old, ignore_errors=True)
+
+
+def write_csv_atomic(frame: pd.DataFrame, path: Path) -> None:
+    """Write a CSV through a temporary file and a rename."""
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", dir=path.parent)
+    os.close(fd)
+    try:
+        frame.to_csv(tmp, index=False)
+        os.replace(tmp, path)
+    except BaseException:
+        Path(tmp).unlink(missing_ok=True)
+        raise

@@ -1,0 +1,263 @@
+"""Periodic steady state by revolution-by-revolution iteration.
+
+Each revolution starts at 270 deg (both valves shut) from the end state of the previous one
+(quadratures reset). The cycle residual is the largest of: the change of the
+error-controlled states over the revolution (T and rho relative, reed lift and
+velocity relative to their scales) and the relative change of the revolution's
+suction mass, indicated work and mass-weighted discharge enthalpy from the
+previous revolution. Back-flow through the discharge valve comes from a plenum at
+the mass-weighted discharge enthalpy of the previous revolution (Bell et al.).
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+from numba import njit
+
+from ..errors import SolverError
+from ..model import Model
+from ..thermo import cylinder as cyl
+from ..thermo.cylinder import N_AUX
+from .integrator import (
+    CHATTERING,
+    N_STATS,
+    PROPERTY_FAILURE,
+    ST_NACCEPT,
+    ST_NEVENTS,
+    ST_NFEV,
+    ST_NREJECT,
+    ST_STATUS,
+    ST_T,
+    STEP_UNDERFLOW,
+    integrate,
+    scene_rhs,
+)
+
+_FAILURES = {
+    STEP_UNDERFLOW: "the step size fell below its floor",
+    PROPERTY_FAILURE: (
+        "the gas state left the property model's range (the refrigerant file's limits or the "
+        "equation of state's domain) and smaller steps did not help"
+    ),
+    CHATTERING: "more than 50 events at one instant (valve chattering)",
+}
+
+
+@dataclass
+class Revolution:
+    """One integrated revolution.
+
+    Attributes
+    ----------
+    y_start, y_end : ndarray
+        State at the start and end (quadratures of this revolution in ``y_end``).
+    times : ndarray
+        Sample times from the start of the revolution [s], sorted by crank angle.
+    samples, sample_modes : ndarray
+        State and modes at the sample times.
+    stats : ndarray
+        Integrator counters.
+    """
+
+    y_start: np.ndarray
+    y_end: np.ndarray
+    mode_start: np.ndarray
+    mode_end: np.ndarray
+    times: np.ndarray
+    samples: np.ndarray
+    sample_modes: np.ndarray
+    stats: np.ndarray
+
+
+@dataclass
+class PeriodicSolution:
+    """The converged revolution and how it was reached."""
+
+    model: Model
+    final: Revolution
+    revolutions: int
+    residual: float
+    converged: bool
+    residual_history: list[float] = field(default_factory=list)
+    nfev: int = 0
+    steps: int = 0
+    rejected: int = 0
+    events: int = 0
+    wall_time: float = 0.0
+
+
+def sample_times(model: Model, n: int) -> tuple[np.ndarray, np.ndarray]:
+    """Times within a revolution at the uniform crank angles 0, 360/n, ... deg.
+
+    Returns
+    -------
+    times : ndarray
+        Sorted in time [s].
+    order : ndarray
+        Index that sorts the samples by crank angle.
+    """
+    omega = model.par[cyl.C_OMEGA]
+    theta0 = model.par[cyl.C_THETA0]
+    angles = 2.0 * math.pi * np.arange(n) / n
+    times = np.mod(angles - theta0, 2.0 * math.pi) / omega
+    order_time = np.argsort(times, kind="stable")
+    times_sorted = times[order_time]
+    # position in the time-sorted array of each crank-angle sample
+    order = np.empty(n, dtype=np.int64)
+    order[order_time] = np.arange(n)
+    return times_sorted, order
+
+
+def integrate_revolution(
+    model: Model, y: np.ndarray, mode: np.ndarray, h: float, n_samples: int
+) -> tuple[Revolution, float]:
+    """Integrate one revolution from ``y`` (modified copy returned in the result)."""
+    s = model.case.solver
+    y_start = y.copy()
+    mode_start = mode.copy()
+    y_run = y.copy()
+    y_run[model.n_err :] = 0.0
+    mode_run = mode.copy()
+    times, _ = sample_times(model, n_samples)
+    samples = np.zeros((n_samples, y.shape[0]))
+    sample_modes = np.zeros((n_samples, mode.shape[0]), dtype=np.int64)
+    stats = np.zeros(N_STATS)
+    omega = model.par[cyl.C_OMEGA]
+    integrate(
+        0.0,
+        model.period,
+        y_run,
+        mode_run,
+        model.par,
+        model.ipar,
+        model.props,
+        model.props.buffer,
+        s.rtol,
+        s.atol,
+        model.scale,
+        model.n_err,
+        h,
+        s.max_step / omega,
+        times,
+        samples,
+        sample_modes,
+        stats,
+    )
+    status = int(stats[ST_STATUS])
+    if status != 0:
+        _raise_failure(model, status, stats[ST_T], y_run, mode_run)
+    rev = Revolution(y_start, y_run, mode_start, mode_run, times, samples, sample_modes, stats)
+    return rev, float(stats[6])
+
+
+def _raise_failure(model: Model, status: int, t: float, y: np.ndarray, mode: np.ndarray) -> None:
+    theta = math.degrees((model.par[cyl.C_THETA0] + model.par[cyl.C_OMEGA] * t) % (2 * math.pi))
+    raise SolverError(
+        f"integration failed at crank angle {theta:.3f} deg (t = {t:.6g} s into the revolution): "
+        f"{_FAILURES.get(status, 'unknown failure')}; state: T = {y[cyl.Y_T]:.6g} K, "
+        f"rho = {y[cyl.Y_RHO]:.6g} kg/m3, suction lift = {y[cyl.Y_XS]:.4g} m "
+        f"(mode {mode[0]}), discharge lift = {y[cyl.Y_XD]:.4g} m (mode {mode[1]})"
+    )
+
+
+def cycle_residual(model: Model, rev: Revolution, previous: Revolution | None) -> float:
+    """Largest relative change over one revolution (see module docstring)."""
+    n = model.n_err
+    d = np.abs(rev.y_end[:n] - rev.y_start[:n])
+    ref = model.scale[:n].copy()
+    ref[cyl.Y_T] = rev.y_start[cyl.Y_T]
+    ref[cyl.Y_RHO] = rev.y_start[cyl.Y_RHO]
+    res = float(np.max(d / ref))
+    if not np.array_equal(rev.mode_start, rev.mode_end):
+        res = max(res, 1.0)
+    if previous is None:
+        return max(res, 1.0)
+    for q in (cyl.Q_MSUC_IN, cyl.Q_WORK, cyl.Q_HDIS_OUT):
+        a, b = rev.y_end[q], previous.y_end[q]
+        res = max(res, abs(a - b) / max(abs(a), abs(b), 1e-300))
+    return res
+
+
+def solve_periodic(model: Model) -> PeriodicSolution:
+    """Iterate revolutions until the cycle residual is below the case's tolerance.
+
+    Raises
+    ------
+    SolverError
+        If a revolution fails (with crank angle and state).
+    """
+    s = model.case.solver
+    start = time.perf_counter()
+    y = model.y0.copy()
+    mode = model.mode0.copy()
+    h = model.period * 1e-4
+    previous: Revolution | None = None
+    history: list[float] = []
+    nfev = steps = rejected = events = 0
+    rev: Revolution | None = None
+    residual = math.inf
+    converged = False
+    count = 0
+    for count in range(1, s.max_revolutions + 1):
+        rev, h = integrate_revolution(model, y, mode, h, s.samples_per_revolution)
+        nfev += int(rev.stats[ST_NFEV])
+        steps += int(rev.stats[ST_NACCEPT])
+        rejected += int(rev.stats[ST_NREJECT])
+        events += int(rev.stats[ST_NEVENTS])
+        m_out = rev.y_end[cyl.Q_MDIS_OUT]
+        if m_out > 0.0:
+            model.set_discharge_enthalpy(rev.y_end[cyl.Q_HDIS_OUT] / m_out)
+        residual = cycle_residual(model, rev, previous)
+        history.append(residual)
+        y = rev.y_end.copy()
+        mode = rev.mode_end.copy()
+        previous = rev
+        if residual < s.cycle_tolerance and count >= s.min_revolutions:
+            converged = True
+            break
+    assert rev is not None
+    return PeriodicSolution(
+        model=model,
+        final=rev,
+        revolutions=count,
+        residual=residual,
+        converged=converged,
+        residual_history=history,
+        nfev=nfev,
+        steps=steps,
+        rejected=rejected,
+        events=events,
+        wall_time=time.perf_counter() - start,
+    )
+
+
+@njit(cache=True)
+def _evaluate_samples(times, samples, sample_modes, par, ipar, props, pbuf, out):
+    n = samples.shape[1]
+    dydt = np.empty(n)
+    aux = np.empty(out.shape[1])
+    for k in range(times.shape[0]):
+        mode = sample_modes[k]
+        scene_rhs(times[k], samples[k], mode, par, ipar, props, pbuf, dydt, aux)
+        for j in range(aux.shape[0]):
+            out[k, j] = aux[j]
+
+
+def sample_outputs(model: Model, rev: Revolution) -> np.ndarray:
+    """Auxiliary outputs (layout ``A_*`` of the scene) at every sample, in time order."""
+    out = np.zeros((rev.times.shape[0], N_AUX))
+    _evaluate_samples(
+        rev.times,
+        rev.samples,
+        rev.sample_modes,
+        model.par,
+        model.ipar,
+        model.props,
+        model.props.buffer,
+        out,
+    )
+    return out

@@ -1,0 +1,177 @@
+"""Property evaluation for the compiled right-hand side.
+
+The compiled integrator calls a *first-class function* ``props(T, rho) -> status``
+that fills a shared buffer (layout below) with the properties of the cylinder gas.
+For ``properties = "heos"`` that function is a C callback into one reused CoolProp
+``AbstractState`` (``DmassT`` inputs, about 1.7 us a call from compiled code); it is
+passed to the compiled code as an argument, so the compiled integrator stays in
+numba's on-disk cache.
+
+Two-phase states: CoolProp's ``cvmass()`` and ``(dp/dT)_rho`` inside the dome are the
+single-phase equation of state's values, wrong by orders of magnitude (see
+``references/thermo-notes.md`` H1). Inside the dome the callback returns the
+mixture values instead: ``(dp/dT)_rho = dp_sat/dT`` and
+``c_v = (du/dT)_v`` of the saturated mixture from saturation-curve derivatives.
+
+Status codes: 0 success; 1 the state is outside the equation of state (the trial
+step is rejected and retried with a smaller step).
+"""
+
+from __future__ import annotations
+
+import ctypes
+from typing import Any
+
+import CoolProp.CoolProp as CP
+import numba.experimental.function_type  # noqa: F401  (registers typeof for WAP objects)
+import numpy as np
+from numba import types
+
+# buffer layout
+PROP_PRESSURE = 0  # p [Pa]
+PROP_ENTHALPY = 1  # h [J/kg]
+PROP_CV = 2  # c_v [J/(kg K)] (mixture value in the dome)
+PROP_DPDT = 3  # (dp/dT)_rho [Pa/K] (dp_sat/dT in the dome)
+PROP_KAPPA = 4  # isentropic exponent rho c^2 / p [-] (1 in the dome, see docs)
+PROP_K0 = 5  # ideal-gas c_p0/c_v0 [-]
+PROP_VISCOSITY = 6  # [Pa s] (only with transport)
+PROP_CONDUCTIVITY = 7  # [W/(m K)] (only with transport)
+PROP_CP = 8  # [J/(kg K)] (only with transport)
+PROP_QUALITY = 9  # vapour quality, -1 for single phase
+PROP_DPDRHO = 10  # (dp/drho)_T [Pa m3/kg]
+N_PROPS = 12
+
+STATUS_OK = 0
+STATUS_DOMAIN = 1
+
+PROPS_SIGNATURE = types.int32(types.float64, types.float64)
+
+
+class HeosProperties(types.WrapperAddressProtocol):
+    """CoolProp HEOS properties of one fluid as a compiled-callable function.
+
+    Parameters
+    ----------
+    coolprop_name : str
+        CoolProp fluid name.
+    transport : bool
+        Also evaluate viscosity, conductivity and c_p (needed by heat transfer and
+        leakage); skipped otherwise because it costs as much as the update itself.
+    t_min, t_max : float
+        Temperature range accepted [K]; outside it the call returns ``STATUS_DOMAIN``.
+
+    Attributes
+    ----------
+    buffer : numpy.ndarray
+        The array the callback fills; pass it to the compiled code with the object.
+    """
+
+    def __init__(
+        self, coolprop_name: str, transport: bool, t_min: float, t_max: float, backend: str = "HEOS"
+    ) -> None:
+        self.coolprop_name = coolprop_name
+        self.backend = backend
+        self.state = CP.AbstractState(backend, coolprop_name)
+        self.sat = CP.AbstractState(backend, coolprop_name)
+        self.buffer = np.zeros(N_PROPS)
+        self.calls = 0
+        self.failures = 0
+        r_gas = self.state.gas_constant() / self.state.molar_mass()
+        t_crit = self.state.T_critical()
+        state, sat, buf = self.state, self.sat, self.buffer
+        update, dmasst = state.update, CP.DmassT_INPUTS
+        i_p, i_t, i_d = CP.iP, CP.iT, CP.iDmass
+        twophase = CP.iphase_twophase
+
+        def callback(temperature: float, density: float) -> int:
+            if not (t_min <= temperature <= t_max) or not (density > 0.0):
+                return STATUS_DOMAIN
+            try:
+                update(dmasst, density, temperature)
+                p = state.p()
+                if temperature < t_crit and state.phase() == twophase:
+                    _fill_two_phase(sat, temperature, density, p, state.hmass(), state.Q(), buf)
+                else:
+                    buf[PROP_PRESSURE] = p
+                    buf[PROP_ENTHALPY] = state.hmass()
+                    cv = state.cvmass()
+                    dpdt = state.first_partial_deriv(i_p, i_t, i_d)
+                    buf[PROP_CV] = cv
+                    buf[PROP_DPDT] = dpdt
+                    c = state.speed_sound()
+                    buf[PROP_KAPPA] = density * c * c / p
+                    cp0 = state.cp0mass()
+                    buf[PROP_K0] = cp0 / (cp0 - r_gas)
+                    buf[PROP_QUALITY] = -1.0
+                    # (dp/drho)_T = c^2 - T (dp/dT)^2 / (rho^2 c_v)
+                    buf[PROP_DPDRHO] = c * c - temperature * dpdt * dpdt / (density**2 * cv)
+                    if transport:
+                        buf[PROP_VISCOSITY] = state.viscosity()
+                        buf[PROP_CONDUCTIVITY] = state.conductivity()
+                        buf[PROP_CP] = state.cpmass()
+            except Exception:
+                return STATUS_DOMAIN
+            return STATUS_OK
+
+        self._python_callback = callback
+        self._cfunc = ctypes.CFUNCTYPE(ctypes.c_int32, ctypes.c_double, ctypes.c_double)(callback)
+
+    def __wrapper_address__(self) -> int:
+        addr = ctypes.cast(self._cfunc, ctypes.c_void_p).value
+        assert addr is not None
+        return addr
+
+    def signature(self) -> Any:
+        return PROPS_SIGNATURE
+
+    def __call__(self, temperature: float, density: float) -> int:
+        """Evaluate from Python (fills :attr:`buffer`)."""
+        return int(self._python_callback(temperature, density))
+
+
+def _fill_two_phase(
+    sat: CP.AbstractState,
+    temperature: float,
+    density: float,
+    p: float,
+    h: float,
+    q: float,
+    buf: np.ndarray,
+) -> None:
+    """Mixture properties inside the saturation dome at (T, rho).
+
+    ``c_v = (du/dT)_v`` of the mixture, from u = u_l + x (u_v - u_l) and
+    x = (v - v_l)/(v_v - v_l) with the derivatives of u_l, u_v, v_l, v_v along the
+    saturation curve; ``(dp/dT)_rho = dp_sat/dT`` (Clapeyron).
+    """
+    sat.update(CP.QT_INPUTS, 0.0, temperature)
+    rho_l = sat.rhomass()
+    u_l = sat.umass()
+    du_l = sat.first_saturation_deriv(CP.iUmass, CP.iT)
+    drho_l = sat.first_saturation_deriv(CP.iDmass, CP.iT)
+    sat.update(CP.QT_INPUTS, 1.0, temperature)
+    rho_v = sat.rhomass()
+    u_v = sat.umass()
+    du_v = sat.first_saturation_deriv(CP.iUmass, CP.iT)
+    drho_v = sat.first_saturation_deriv(CP.iDmass, CP.iT)
+    dpsat = sat.first_saturation_deriv(CP.iP, CP.iT)
+    mu_v, k_v, cp_v = sat.viscosity(), sat.conductivity(), sat.cpmass()
+    v, v_l, v_v = 1.0 / density, 1.0 / rho_l, 1.0 / rho_v
+    dv_l = -drho_l / rho_l**2
+    dv_v = -drho_v / rho_v**2
+    x = (v - v_l) / (v_v - v_l)
+    dx = (-dv_l * (v_v - v_l) - (v - v_l) * (dv_v - dv_l)) / (v_v - v_l) ** 2
+    cv = du_l + x * (du_v - du_l) + (u_v - u_l) * dx
+    buf[PROP_PRESSURE] = p
+    buf[PROP_ENTHALPY] = h
+    buf[PROP_CV] = cv
+    buf[PROP_DPDT] = dpsat
+    buf[PROP_KAPPA] = 1.0
+    buf[PROP_K0] = 1.0
+    buf[PROP_QUALITY] = q
+    # at constant T inside the dome the pressure does not depend on density
+    buf[PROP_DPDRHO] = 0.0
+    # transport of the mixture approximated by the saturated vapour's
+    buf[PROP_VISCOSITY] = mu_v
+    buf[PROP_CONDUCTIVITY] = k_v
+    buf[PROP_CP] = cp_v
