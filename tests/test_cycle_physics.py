@@ -51,10 +51,14 @@ FULL = [
 ]
 
 
-@pytest.mark.parametrize("valves", ["reed", "quasi_static"])
-def test_mass_and_energy_close_over_a_converged_revolution(valves):
+@pytest.mark.parametrize(
+    "valves,heat", [("reed", "annand"), ("quasi_static", "annand"), ("reed", "adair")]
+)
+def test_mass_and_energy_close_over_a_converged_revolution(valves, heat):
     """Issue tolerances: mass 0.1 %, energy 0.5 %, torque x speed = indicated power 0.5 %."""
-    sol = solve_case(REFERENCE, FULL + [f"options.valves={valves}"])
+    sol = solve_case(
+        REFERENCE, FULL + [f"options.valves={valves}", f"options.heat_transfer={heat}"]
+    )
     assert sol.converged
     y = sol.final.y_end
     m_in = y[cyl.Q_MSUC_IN] - y[cyl.Q_MSUC_OUT]
@@ -100,3 +104,31 @@ def test_adiabatic_reed_cycle_is_plausible():
     assert y[cyl.Q_WORK] / m > ideal[cyl.Q_WORK] / m_i
     assert sol.converged and sol.revolutions < 20
     assert math.isfinite(y[cyl.Q_HDIS_OUT])
+
+
+def test_two_phase_states_in_the_cylinder_are_handled():
+    """R600a (a dry fluid) 0.3 K above its dew point condenses slightly on compression.
+
+    The mixture c_v and dp_sat/dT keep the balances closed through the dome; the
+    isentropic closed form still holds (the cycle is reversible), so the ideal-valve
+    cycle must reproduce it although part of it runs inside the dome.
+    """
+    r600a = REFERENCE.parent / "r600a_lbp.toml"
+    # the c_v jump at the dew line is not located as an event yet: it leaves cycle-to-cycle
+    # noise of about 3e-6 at rtol 1e-8, hence a 1e-5 cycle tolerance here
+    over = IDEAL + ["operating_point.suction_temperature=250.15", "solver.cycle_tolerance=1e-5"]
+    sol = solve_case(r600a, over)
+    from recipsim.solve.periodic import sample_outputs
+
+    quality = sample_outputs(sol.model, sol.final)[:, cyl.A_QUALITY]
+    assert (quality > 0.99).sum() > 10  # really inside the dome for a while
+    assert sol.converged
+    model, y = sol.model, sol.final.y_end
+    geo, s = model.case.geometry, model.suction
+    out = model.fluid.state_ps(model.case.operating_point.discharge_pressure, s.entropy)
+    assert 0.0 < out["quality"] < 1.0  # the isentropic discharge state is wet
+    m_closed = (
+        s.density * (geo.swept_volume + geo.clearance_volume) - out["rho"] * geo.clearance_volume
+    )
+    assert y[cyl.Q_MSUC_IN] - y[cyl.Q_MSUC_OUT] == pytest.approx(m_closed, rel=1e-4)
+    assert y[cyl.Q_WORK] == pytest.approx(m_closed * (out["h"] - s.enthalpy), rel=1e-4)

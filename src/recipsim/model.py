@@ -98,16 +98,21 @@ def _plenum(
         assert enthalpy is not None
         st = fluid.state_ph(pressure, enthalpy)
     if st["quality"] >= 0.0:
-        raise ValueError(f"plenum state at {pressure:.4g} Pa is two-phase")
-    mu = fluid.transport(pressure, st["T"])["viscosity"]
+        # a wet plenum (adiabatic compression of a dry fluid from near saturation ends in
+        # the dome): same conventions as the property callback inside the dome
+        vapour = fluid.saturated_vapour(st["T"])
+        kappa, k0, mu = 1.0, vapour["k0"], vapour["viscosity"]
+    else:
+        kappa, k0 = st["kappa"], st["k0"]
+        mu = fluid.transport(pressure, st["T"])["viscosity"]
     return PlenumState(
         pressure=pressure,
         temperature=st["T"],
         density=st["rho"],
         enthalpy=st["h"],
         entropy=st["s"],
-        kappa=st["kappa"],
-        k0=st["k0"],
+        kappa=kappa,
+        k0=k0,
         viscosity=mu,
     )
 

@@ -236,6 +236,18 @@ class Fluid:
             snap["k0"] = cp0 / (cp0 - self.gas_constant)
         return snap
 
+    def saturated_vapour(self, temperature: float) -> dict[str, float]:
+        """Saturated vapour at ``temperature`` [K]: properties and viscosity [Pa s]."""
+        self.state.update(CP.QT_INPUTS, 1.0, temperature)
+        cp0 = self.state.cp0mass()
+        return {
+            "p": self.state.p(),
+            "rho": self.state.rhomass(),
+            "h": self.state.hmass(),
+            "k0": cp0 / (cp0 - self.gas_constant),
+            "viscosity": self.state.viscosity(),
+        }
+
     def transport(self, pressure: float, temperature: float) -> dict[str, float]:
         """Viscosity [Pa s] and thermal conductivity [W/(m K)] of a single-phase state."""
         self.state.update(CP.PT_INPUTS, pressure, temperature)
