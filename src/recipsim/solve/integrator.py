@@ -80,34 +80,14 @@ def scene_rhs(t, y, mode, par, ipar, props, pbuf, dydt, aux) -> int:
 
 @njit(cache=True)
 def _dp_step(
-    t,
-    h,
-    y,
-    k1,
-    mode,
-    par,
-    ipar,
-    props,
-    pbuf,
-    rtol,
-    atol,
-    scale,
-    n_err,
-    k2,
-    k3,
-    k4,
-    k5,
-    k6,
-    k7,
-    ytmp,
-    ynew,
-    aux,
+    t, h, y, mode, par, ipar, props, pbuf, rtol, atol, scale, n_err, stages, ytmp, ynew, aux
 ):
-    """One Dormand-Prince step from (t, y) with first stage ``k1``.
+    """One Dormand-Prince step from (t, y); ``k[0]`` holds f(t, y) on entry.
 
-    Returns ``(status, error_norm)``; ``ynew`` and ``k7 = f(t + h, ynew)`` on success.
+    Returns ``(status, error_norm)``; on success ``ynew`` and ``k[6] = f(t + h, ynew)``.
     """
     n = y.shape[0]
+    k1, k2, k3, k4, k5, k6, k7 = k[0], k[1], k[2], k[3], k[4], k[5], k[6]
     for i in range(n):
         ytmp[i] = y[i] + h * _A21 * k1[i]
     st = scene_rhs(t + _C2 * h, ytmp, mode, par, ipar, props, pbuf, k2, aux)
@@ -211,16 +191,13 @@ def integrate(
         Output counters (see ``ST_*``).
     """
     n = y.shape[0]
-    k1 = np.empty(n)
-    k2 = np.empty(n)
-    k3 = np.empty(n)
-    k4 = np.empty(n)
-    k5 = np.empty(n)
-    k6 = np.empty(n)
-    k7 = np.empty(n)
+    stages = np.empty((7, n))  # Dormand-Prince stages: f(t, y) first, f(t + h, y_new) last
+    k1 = stages[0]
+    k7 = stages[6]
     ytmp = np.empty(n)
     ynew = np.empty(n)
     yint = np.empty(n)
+    ystep = np.empty(n)
     ftmp = np.empty(n)
     aux = np.empty(N_AUX)
     g_old = np.empty(N_EVENTS)
@@ -258,28 +235,7 @@ def integrate(
             h = t1 - t
             last = True
         st, err = _dp_step(
-            t,
-            h,
-            y,
-            k1,
-            mode,
-            par,
-            ipar,
-            props,
-            pbuf,
-            rtol,
-            atol,
-            scale,
-            n_err,
-            k2,
-            k3,
-            k4,
-            k5,
-            k6,
-            k7,
-            ytmp,
-            ynew,
-            aux,
+            t, h, y, mode, par, ipar, props, pbuf, rtol, atol, scale, n_err, stages, ytmp, ynew, aux
         )
         nfev += 6
         property_failed = st != 0
@@ -360,12 +316,12 @@ def integrate(
             # re-take the step exactly to the event: the states and quadratures then see a
             # smooth right-hand side (no interpolation across the kink at the event)
             h_event = t_event - t
+            _hermite(t, h, y, k1, ynew, k7, t_event, yint)  # fallback if the re-step fails
             if h_event > 0.0:
                 st, err = _dp_step(
                     t,
                     h_event,
                     y,
-                    k1,
                     mode,
                     par,
                     ipar,
@@ -375,21 +331,17 @@ def integrate(
                     atol,
                     scale,
                     n_err,
-                    k2,
-                    k3,
-                    k4,
-                    k5,
-                    k6,
-                    k7,
+                    stages,
                     ytmp,
-                    yint,
+                    ystep,
                     aux,
                 )
                 nfev += 6
-                if st != 0:
-                    _hermite(t, h, y, k1, ynew, k7, t_event, yint)
-                for i in range(n):
-                    y[i] = yint[i]
+                if st == 0:
+                    for i in range(n):
+                        yint[i] = ystep[i]
+            for i in range(n):
+                y[i] = yint[i]
             scene_rhs(t_event, y, mode, par, ipar, props, pbuf, ftmp, aux)
             cylinder_event_action(k_event, y, mode, par, ipar, aux)
             n_ev += 1
