@@ -82,12 +82,20 @@ def scene_rhs(t, y, mode, par, ipar, props, pbuf, dydt, aux) -> int:
 def _dp_step(
     t, h, y, mode, par, ipar, props, pbuf, rtol, atol, scale, n_err, stages, ytmp, ynew, aux
 ):
-    """One Dormand-Prince step from (t, y); ``k[0]`` holds f(t, y) on entry.
+    """One Dormand-Prince step from (t, y); ``stages[0]`` holds f(t, y) on entry.
 
-    Returns ``(status, error_norm)``; on success ``ynew`` and ``k[6] = f(t + h, ynew)``.
+    Returns ``(status, error_norm)``; on success ``ynew`` and ``stages[6] = f(t + h, ynew)``.
     """
     n = y.shape[0]
-    k1, k2, k3, k4, k5, k6, k7 = k[0], k[1], k[2], k[3], k[4], k[5], k[6]
+    k1, k2, k3, k4, k5, k6, k7 = (
+        stages[0],
+        stages[1],
+        stages[2],
+        stages[3],
+        stages[4],
+        stages[5],
+        stages[6],
+    )
     for i in range(n):
         ytmp[i] = y[i] + h * _A21 * k1[i]
     st = scene_rhs(t + _C2 * h, ytmp, mode, par, ipar, props, pbuf, k2, aux)
