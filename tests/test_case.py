@@ -103,3 +103,15 @@ def test_extends_merges_tables():
     assert case.name == "r32_ac"
     assert case.valves.suction.reed_thickness == pytest.approx(0.25e-3)
     assert case.valves.suction.port_diameter == pytest.approx(5.9e-3)  # inherited
+
+
+def test_reference_case_carries_the_reference_mechanism():
+    """One source of mechanism data: the case tables equal the library's reference spec."""
+    from recipsim.mechanics import reference_mechanism
+
+    case = load_case(REFERENCE)
+    assert case.mechanism == reference_mechanism()
+    # the leakage length and the default liner come from the piston
+    assert case.geometry.liner_length == pytest.approx(
+        case.geometry.stroke + 0.020 + case.geometry.clearance_volume / case.geometry.piston_area
+    )

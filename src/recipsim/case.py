@@ -14,11 +14,12 @@ from __future__ import annotations
 import copy
 import math
 import tomllib
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any
 
 from .errors import CaseError
+from .mechanics.spec import MechanismSpec, mechanism_from_dict
 from .refrigerant import Fluid, RefrigerantSpec, load_refrigerant
 from .schema import REQUIRED, Choice, Field, Spec, Text, check_keys, read_table
 
@@ -51,7 +52,6 @@ GEOMETRY_SPEC: Spec = {
     "connecting_rod_length": Field("m", lo=1e-3, hi=2.0),
     "clearance_ratio": Field("dimensionless", None, lo=0.0, hi=1.0, open_lo=True),
     "clearance_volume": Field("m^3", None, lo=0.0, open_lo=True),
-    "piston_length": Field("m", 0.02, lo=1e-3, hi=1.0),
     "liner_length": Field("m", None, lo=1e-3, hi=1.0, doc="head to open end of the bore"),
 }
 
@@ -107,13 +107,6 @@ SOLVER_SPEC: Spec = {
     "max_step": Field(
         "rad", math.radians(2.0), lo=1e-7, hi=math.pi, doc="largest crank-angle step"
     ),
-}
-
-MECHANISM_RIGID_SPEC: Spec = {
-    "piston_mass": Field("kg", 0.035, lo=0.0, hi=100.0),
-    "rod_mass": Field("kg", 0.030, lo=0.0, hi=100.0),
-    "rod_centre_of_mass_fraction": Field("dimensionless", 0.35, lo=0.0, hi=1.0),
-    "rod_inertia": Field("kg*m^2", 4e-6, lo=0.0, hi=100.0),
 }
 
 TOP_KEYS = {
@@ -179,8 +172,7 @@ class Geometry:
     stroke: float
     connecting_rod_length: float
     clearance_volume: float
-    piston_length: float
-    liner_length: float
+    liner_length: float  # head to the open end of the bore [m]
 
     @property
     def crank_radius(self) -> float:
@@ -269,16 +261,6 @@ class SolverSettings:
 
 
 @dataclass(frozen=True)
-class RigidMechanism:
-    """Masses the rigid crank needs for its torque."""
-
-    piston_mass: float
-    rod_mass: float
-    rod_centre_of_mass_fraction: float
-    rod_inertia: float
-
-
-@dataclass(frozen=True)
 class Case:
     """A validated case, everything in SI."""
 
@@ -293,7 +275,7 @@ class Case:
     leakage: Leakage
     heat_transfer: HeatTransfer
     solver: SolverSettings
-    mechanism: RigidMechanism
+    mechanism: MechanismSpec
     raw: dict[str, Any] = field(default_factory=dict, repr=False, compare=False)
     source_text: str = field(default="", repr=False, compare=False)
 
@@ -442,11 +424,14 @@ def case_from_dict(raw: dict[str, Any], file: str, source_text: str = "") -> Cas
     )
     if solver.min_revolutions > solver.max_revolutions:
         raise CaseError(file, "solver.min_revolutions", "must not exceed solver.max_revolutions")
-    mech_raw = raw.get("mechanism", {})
-    if not isinstance(mech_raw, dict):
-        raise CaseError(file, "mechanism", "expected a table")
-    rigid = {k: v for k, v in mech_raw.items() if not isinstance(v, dict)}
-    mechanism = RigidMechanism(**read_table(rigid, MECHANISM_RIGID_SPEC, file, "mechanism"))
+    mechanism = mechanism_from_dict(raw, file, bore=geometry.bore)
+    if geometry.liner_length is None:
+        geometry = replace(
+            geometry,
+            liner_length=geometry.stroke
+            + mechanism.piston.length
+            + geometry.clearance_volume / geometry.piston_area,
+        )
     _check_supported(options, file)
     return Case(
         name=top["name"],
@@ -630,16 +615,12 @@ def _geometry(raw: dict[str, Any] | None, file: str) -> Geometry:
             "geometry.connecting_rod_length",
             f"must exceed the crank radius {0.5 * g['stroke']:.4g} m",
         )
-    liner = g["liner_length"]
-    if liner is None:
-        liner = g["stroke"] + g["piston_length"] + vc / area
     return Geometry(
         bore=g["bore"],
         stroke=g["stroke"],
         connecting_rod_length=g["connecting_rod_length"],
         clearance_volume=vc,
-        piston_length=g["piston_length"],
-        liner_length=liner,
+        liner_length=g["liner_length"],  # None: set from the piston length by the caller
     )
 
 

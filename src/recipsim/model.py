@@ -151,7 +151,7 @@ def build_model(case: Case) -> Model:
     par[cyl.C_VC] = geo.clearance_volume
     par[cyl.C_BORE] = geo.bore
     par[cyl.C_STROKE] = geo.stroke
-    par[cyl.C_PISTON_LEN] = geo.piston_length
+    par[cyl.C_PISTON_LEN] = case.mechanism.piston.length
     par[cyl.C_LINER_LEN] = geo.liner_length
     _write_plenum(par, suction, cyl.C_PS, cyl.C_RHOS, cyl.C_HS, cyl.C_KAPPAS, cyl.C_K0S, cyl.C_TS)
     _write_plenum(par, discharge, cyl.C_PD, cyl.C_RHOD, cyl.C_HD, cyl.C_KAPPAD, cyl.C_K0D, cyl.C_TD)
@@ -169,10 +169,10 @@ def build_model(case: Case) -> Model:
     par[cyl.C_HT_COEF] = DEFAULT_COEFFICIENT[ht_code] if math.isnan(coef) else coef
     par[cyl.C_TWALL] = case.heat_transfer.wall_temperature
     mech = case.mechanism
-    par[cyl.C_MPISTON] = mech.piston_mass
-    par[cyl.C_MROD] = mech.rod_mass
-    par[cyl.C_AROD] = mech.rod_centre_of_mass_fraction
-    par[cyl.C_IROD] = mech.rod_inertia
+    par[cyl.C_MPISTON] = mech.piston.mass
+    par[cyl.C_MROD] = mech.connecting_rod.mass
+    par[cyl.C_AROD] = mech.connecting_rod.centre_of_mass_fraction
+    par[cyl.C_IROD] = mech.connecting_rod.inertia
     par[cyl.C_BAUMGARTE] = 200.0 * omega  # pressure drift of the ideal valves decays in ~1 deg
     for i, valve in enumerate((case.valves.suction, case.valves.discharge)):
         base = cyl.C_VALVE0 + i * cyl.VALVE_BLOCK
