@@ -246,33 +246,22 @@ def simulate_mechanism(
         # scipy's automatic first step can be far too long here (a rejected blow-up)
         first_step = 1e-5 * period
         target = theta_start + TWO_PI
-        if drive == "constant_speed":
-            t_end = t0 + period
-            sol = solve_ivp(
-                fun,
-                (t0, t_end),
-                y,
-                method=method,
-                rtol=rtol,
-                atol=atol,
-                dense_output=True,
-                first_step=first_step,
-            )
-        else:
-            t_end = t0 + 3.0 * period
-            sol = solve_ivp(
-                fun,
-                (t0, t_end),
-                y,
-                method=method,
-                rtol=rtol,
-                atol=atol,
-                dense_output=True,
-                events=crank_event,
-                first_step=first_step,
-            )
-            if sol.status != 1:
-                raise RuntimeError("the crank did not complete a revolution in 3 periods")
+        # at constant speed a revolution is one period; a driven crank ends on the event
+        constant = drive == "constant_speed"
+        t_end = t0 + (period if constant else 3.0 * period)
+        sol = solve_ivp(
+            fun,
+            (t0, t_end),
+            y,
+            method=method,
+            rtol=rtol,
+            atol=atol,
+            dense_output=True,
+            events=None if constant else crank_event,
+            first_step=first_step,
+        )
+        if not constant and sol.status != 1:
+            raise RuntimeError("the crank did not complete a revolution in 3 periods")
         if not sol.success:
             raise RuntimeError(f"integration failed: {sol.message}")
         nfev += sol.nfev
