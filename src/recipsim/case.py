@@ -21,7 +21,7 @@ from typing import Any
 from .errors import CaseError
 from .mechanics.spec import MechanismSpec, mechanism_from_dict
 from .refrigerant import Fluid, RefrigerantSpec, load_refrigerant
-from .schema import REQUIRED, Choice, Field, Spec, Text, check_keys, read_table
+from .schema import Choice, Field, Spec, Text, check_keys, read_table
 
 OPTION_SPEC: Spec = {
     "pressure": Choice(("cylinder", "tabulated"), "cylinder", "pressure source"),
@@ -655,4 +655,4 @@ _IDEAL_PLACEHOLDER = {
     "stop_height": 1.5e-3,
 }
 
-__all__ = ["Case", "load_case", "apply_overrides", "parse_override", "REQUIRED"]
+__all__ = ["Case", "load_case", "apply_overrides", "parse_override"]
