@@ -47,7 +47,9 @@ FULL = [
     "options.leakage=piston_gap",
     "leakage.eccentricity_ratio=0.5",
     "solver.rtol=1e-7",
-    "solver.cycle_tolerance=1e-6",
+    # the quasi-static check valve's kink at dp = 0 is not an event: its revolution-to-
+    # revolution noise floor is ~5e-6 at rtol 1e-7, far below the closure tolerances
+    "solver.cycle_tolerance=1e-5",
 ]
 
 

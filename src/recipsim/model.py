@@ -16,6 +16,7 @@ import numpy as np
 from .case import Case
 from .kinematics import piston_displacement
 from .refrigerant import Fluid
+from .solve import scenes
 from .thermo import cylinder as cyl
 from .thermo.heat_transfer import DEFAULT_COEFFICIENT, HT_ADAIR, HT_ADIABATIC, HT_ANNAND
 from .thermo.properties import HeosProperties
@@ -140,7 +141,7 @@ def build_model(case: Case) -> Model:
     shell = _plenum(fluid, op.shell_pressure, temperature=op.suction_temperature)
 
     par = np.zeros(cyl.N_PAR)
-    ipar = np.zeros(cyl.N_IPAR, dtype=np.int64)
+    ipar = np.zeros(scenes.N_IPAR, dtype=np.int64)
     omega = op.shaft_speed
     par[cyl.C_OMEGA] = omega
     # revolutions start a quarter turn before top dead centre, where both valves are shut

@@ -2,7 +2,8 @@
 
 One call integrates a scene from ``t0`` to ``t1`` without returning to Python:
 
-- error control on the first ``n_err`` states (the others are quadratures),
+- error control on the first ``n_err`` states except those of zero scale (the others
+  are quadratures),
   with per-state absolute tolerances ``atol * scale``;
 - a trial step whose stages leave the equation of state's domain (property status
   != 0) is rejected and retried with a smaller step, never a crash;
@@ -25,13 +26,7 @@ import math
 import numpy as np
 from numba import njit
 
-from ..thermo.cylinder import (
-    N_AUX,
-    N_EVENTS,
-    cylinder_event_action,
-    cylinder_event_values,
-    cylinder_rhs,
-)
+from .scenes import N_AUX, N_EVENTS, scene_event_action, scene_event_values, scene_rhs
 
 ST_STATUS = 0
 ST_NFEV = 1
@@ -70,12 +65,6 @@ _E1, _E3, _E4, _E5, _E6, _E7 = (
     22.0 / 525.0,
     -1.0 / 40.0,
 )
-
-
-@njit(cache=True)
-def scene_rhs(t, y, mode, par, ipar, props, pbuf, dydt, aux) -> int:
-    """Dispatch to the right-hand side of the scene in ``ipar[0]``."""
-    return cylinder_rhs(t, y, mode, par, ipar, props, pbuf, dydt, aux)
 
 
 @njit(cache=True)
@@ -129,11 +118,15 @@ def _dp_step(
     if st != 0:
         return st, math.inf
     err = 0.0
+    m = 0
     for i in range(n_err):
+        if scale[i] == 0.0:  # a quadrature inside the controlled range
+            continue
         e = h * (_E1 * k1[i] + _E3 * k3[i] + _E4 * k4[i] + _E5 * k5[i] + _E6 * k6[i] + _E7 * k7[i])
         sc = atol * scale[i] + rtol * max(abs(y[i]), abs(ynew[i]))
         err += (e / sc) ** 2
-    return 0, math.sqrt(err / n_err)
+        m += 1
+    return 0, math.sqrt(err / max(m, 1))
 
 
 @njit(cache=True)
@@ -207,7 +200,7 @@ def integrate(
     yint = np.empty(n)
     ystep = np.empty(n)
     ftmp = np.empty(n)
-    aux = np.empty(N_AUX)
+    aux = np.zeros(N_AUX)
     g_old = np.empty(N_EVENTS)
     g_new = np.empty(N_EVENTS)
     g_int = np.empty(N_EVENTS)
@@ -229,7 +222,7 @@ def integrate(
         stats[ST_STATUS] = PROPERTY_FAILURE
         stats[ST_T] = t
         return
-    cylinder_event_values(y, mode, par, ipar, aux, g_old)
+    scene_event_values(y, mode, par, ipar, aux, g_old)
     events_here = 0
     t_last_event = -1e300
     result = DONE
@@ -260,7 +253,7 @@ def integrate(
             continue
 
         # accepted: look for events on [t, t + h]
-        cylinder_event_values(ynew, mode, par, ipar, aux, g_new)
+        scene_event_values(ynew, mode, par, ipar, aux, g_new)
         k_event = -1
         t_event = t + h
         for k in range(N_EVENTS):
@@ -281,7 +274,7 @@ def integrate(
                         _hermite(t, h, y, k1, ynew, k7, tm, yint)
                         st2 = scene_rhs(tm, yint, mode, par, ipar, props, pbuf, ftmp, aux)
                         nfev += 1
-                    cylinder_event_values(yint, mode, par, ipar, aux, g_int)
+                    scene_event_values(yint, mode, par, ipar, aux, g_int)
                     gm = g_int[k]
                     if gm > 0.0:
                         tb, gb = tm, gm
@@ -351,7 +344,7 @@ def integrate(
             for i in range(n):
                 y[i] = yint[i]
             scene_rhs(t_event, y, mode, par, ipar, props, pbuf, ftmp, aux)
-            cylinder_event_action(k_event, y, mode, par, ipar, aux)
+            terminal = scene_event_action(k_event, y, mode, par, ipar, aux)
             n_ev += 1
             if t_event - t_last_event < 1e-12 * max(1.0, abs(t_event)):
                 events_here += 1
@@ -369,8 +362,8 @@ def integrate(
                 result = PROPERTY_FAILURE
                 break
             # a new mode's events fire only on a fresh crossing from <= 0 to > 0
-            cylinder_event_values(y, mode, par, ipar, aux, g_old)
-            if t >= t1:
+            scene_event_values(y, mode, par, ipar, aux, g_old)
+            if t >= t1 or terminal:
                 break
             continue
         if err > 0.0:

@@ -21,7 +21,6 @@ from numba import njit
 from ..errors import SolverError
 from ..model import Model
 from ..thermo import cylinder as cyl
-from ..thermo.cylinder import N_AUX
 from .integrator import (
     CHATTERING,
     N_STATS,
@@ -36,6 +35,7 @@ from .integrator import (
     integrate,
     scene_rhs,
 )
+from .scenes import N_AUX
 
 _FAILURES = {
     STEP_UNDERFLOW: "the step size fell below its floor",

@@ -180,16 +180,60 @@ def _valve_force(dp_open: float, par, base: int) -> float:
 
 @njit(cache=True)
 def cylinder_rhs(t, y, mode, par, ipar, props, pbuf, dydt, aux) -> int:
-    """Time derivatives of the cylinder scene; fills ``aux`` with the outputs.
+    """Time derivatives of the cylinder on the rigid crank at constant speed.
 
-    Returns the property status (0 when the state is inside the equation of state).
+    Fills ``aux`` with the outputs; returns the property status (0 when the state is
+    inside the equation of state).
     """
     omega = par[C_OMEGA]
     theta = par[C_THETA0] + omega * t
     x, dxdth, _ = piston_displacement(theta, par[C_R], par[C_L])
+    status = cylinder_gas_rhs(
+        theta, omega, x, dxdth * omega, par[C_LEAK_ECC], y, mode, par, ipar, props, pbuf, dydt, aux
+    )
+    if status != STATUS_OK:
+        return status
+    torque_gas = aux[A_FORCE_GAS] * dxdth
+    torque_inertia = inertia_torque(
+        theta, omega, par[C_R], par[C_L], par[C_MPISTON], par[C_MROD], par[C_AROD], par[C_IROD]
+    )
+    torque_shaft = torque_inertia - torque_gas
+    dydt[Q_SHAFT] = torque_shaft * omega
+    aux[A_TORQUE_GAS] = torque_gas
+    aux[A_TORQUE_INERTIA] = torque_inertia
+    aux[A_TORQUE_SHAFT] = torque_shaft
+    return STATUS_OK
+
+
+@njit(cache=True)
+def cylinder_gas_rhs(
+    theta, omega, x, xdot, leak_ecc, y, mode, par, ipar, props, pbuf, dydt, aux
+) -> int:
+    """Gas, valve and leakage derivatives for a given piston motion.
+
+    The piston motion comes from the caller (rigid slider-crank or the flexible
+    mechanism's piston), so the cylinder never needs to know which crank drives it.
+
+    Parameters
+    ----------
+    theta, omega : float
+        Crank angle [rad] and speed [rad/s] (heat-transfer correlations).
+    x, xdot : float
+        Crown displacement from top dead centre [m] and its rate [m/s].
+    leak_ecc : float
+        Eccentricity ratio of the piston in the bore for the gap leakage [-].
+    y, dydt, aux : ndarray
+        Cylinder states, their derivatives and outputs (this module's layouts); the
+        shaft quadrature and the torque outputs are left to the caller.
+
+    Returns
+    -------
+    int
+        Property status.
+    """
     ap = par[C_AP]
     volume = par[C_VC] + ap * x
-    dvdt = ap * dxdth * omega
+    dvdt = ap * xdot
     temp = y[Y_T]
     rho = y[Y_RHO]
     status = props(temp, rho)
@@ -266,8 +310,8 @@ def cylinder_rhs(t, y, mode, par, ipar, props, pbuf, dydt, aux) -> int:
             par[C_BORE],
             par[C_LEAK_DELTA],
             length,
-            -dxdth * omega,
-            par[C_LEAK_ECC],
+            -xdot,
+            leak_ecc,
         )
     h_leak = h if mdot_leak >= 0.0 else par[C_HSHELL]
 
@@ -364,12 +408,7 @@ def cylinder_rhs(t, y, mode, par, ipar, props, pbuf, dydt, aux) -> int:
     dydt[Q_HLEAK_IN] = max(-mdot_leak, 0.0) * par[C_HSHELL]
     dydt[Q_HEAT] = qdot
     dydt[Q_WORK] = -p * dvdt
-    torque_gas = (p - par[C_PSHELL]) * ap * dxdth
-    torque_inertia = inertia_torque(
-        theta, omega, par[C_R], par[C_L], par[C_MPISTON], par[C_MROD], par[C_AROD], par[C_IROD]
-    )
-    torque_shaft = torque_inertia - torque_gas
-    dydt[Q_SHAFT] = torque_shaft * omega
+    dydt[Q_SHAFT] = 0.0
 
     aux[A_THETA] = theta
     aux[A_VOLUME] = volume
@@ -390,11 +429,11 @@ def cylinder_rhs(t, y, mode, par, ipar, props, pbuf, dydt, aux) -> int:
     aux[A_VEL_S] = y[Y_VS]
     aux[A_VEL_D] = y[Y_VD]
     aux[A_FORCE_GAS] = (p - par[C_PSHELL]) * ap
-    aux[A_TORQUE_GAS] = torque_gas
-    aux[A_TORQUE_INERTIA] = torque_inertia
-    aux[A_TORQUE_SHAFT] = torque_shaft
+    aux[A_TORQUE_GAS] = 0.0
+    aux[A_TORQUE_INERTIA] = 0.0
+    aux[A_TORQUE_SHAFT] = 0.0
     aux[A_DISPLACEMENT] = x
-    aux[A_PISTON_VELOCITY] = dxdth * omega
+    aux[A_PISTON_VELOCITY] = xdot
     aux[A_FORCE_REED_S] = f_s
     aux[A_FORCE_REED_D] = f_d
     aux[A_STATUS] = 0.0
