@@ -20,6 +20,7 @@ from typing import Any
 
 from .errors import CaseError
 from .mechanics.spec import MechanismSpec, mechanism_from_dict
+from .mechanics.tabulated import PressureCurve, read_pressure_curve
 from .refrigerant import Fluid, RefrigerantSpec, load_refrigerant
 from .schema import Choice, Field, Spec, Text, check_keys, read_table
 
@@ -276,6 +277,7 @@ class Case:
     heat_transfer: HeatTransfer
     solver: SolverSettings
     mechanism: MechanismSpec
+    pressure_curve: PressureCurve | None = None
     raw: dict[str, Any] = field(default_factory=dict, repr=False, compare=False)
     source_text: str = field(default="", repr=False, compare=False)
 
@@ -433,6 +435,7 @@ def case_from_dict(raw: dict[str, Any], file: str, source_text: str = "") -> Cas
             + geometry.clearance_volume / geometry.piston_area,
         )
     _check_supported(options, file)
+    curve = _pressure_curve(raw.get("pressure_curve"), options, file)
     return Case(
         name=top["name"],
         description=top["description"],
@@ -446,27 +449,50 @@ def case_from_dict(raw: dict[str, Any], file: str, source_text: str = "") -> Cas
         heat_transfer=heat,
         solver=solver,
         mechanism=mechanism,
+        pressure_curve=curve,
         raw=raw,
         source_text=source_text,
     )
 
 
 def _check_supported(options: Options, file: str) -> None:
-    """Refuse option combinations this version cannot simulate yet, before integrating."""
-    if options.pressure != "cylinder":
+    """Refuse option combinations this version cannot simulate, before integrating."""
+    if options.mechanics == "pinned" and options.drive != "constant_speed":
         raise CaseError(
             file,
-            "options.pressure",
-            "'tabulated' needs the flexible-mechanism scene, which this version does not run "
-            "yet; allowed here: 'cylinder'",
+            "options.drive",
+            f"{options.drive!r} needs a crank whose speed can vary; the pinned mechanism turns "
+            "at constant speed by definition: use options.drive = 'constant_speed' or "
+            "options.mechanics = 'flexible'",
         )
-    if options.mechanics != "pinned" or options.drive != "constant_speed":
+    if options.drive == "induction_motor":
         raise CaseError(
             file,
-            "options.mechanics",
-            "this version runs the rigid crank only: options.mechanics = 'pinned' with "
-            "options.drive = 'constant_speed'",
+            "options.drive",
+            "'induction_motor' is not available yet; allowed: 'constant_speed', 'torque_profile'",
         )
+
+
+PRESSURE_CURVE_SPEC: Spec = {
+    "file": Text(None, "CSV with 'crank_angle [deg]' (from TDC) and 'cylinder_pressure [Pa]'"),
+}
+
+
+def _pressure_curve(
+    raw: dict[str, Any] | None, options: Options, file: str
+) -> PressureCurve | None:
+    """The tabulated p(theta) curve: a CSV named relative to the case file."""
+    table = read_table(raw, PRESSURE_CURVE_SPEC, file, "pressure_curve")
+    if options.pressure != "tabulated":
+        return None
+    if table["file"] is None:
+        raise CaseError(
+            file,
+            "pressure_curve.file",
+            "required with options.pressure = 'tabulated': a CSV beside the case with columns "
+            "'crank_angle [deg]' (0 at top dead centre) and 'cylinder_pressure [Pa]'",
+        )
+    return read_pressure_curve(Path(file).resolve().parent / table["file"])
 
 
 def _operating_point(

@@ -9,12 +9,18 @@ scales used by the error control.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
 from .case import Case
 from .kinematics import piston_displacement
+from .mechanics import layout as mlay
+from .mechanics.flexible import initial_state, state_scales
+from .mechanics.parameters import mechanism_parameters
+from .mechanics.simulate import pinned_torque_profile
+from .mechanics.spec import CrankGeometry
+from .mechanics.tabulated import tabulated_pressure
 from .refrigerant import Fluid
 from .solve import scenes
 from .thermo import cylinder as cyl
@@ -80,6 +86,26 @@ class Model:
     discharge: PlenumState
     shell: PlenumState
     n_err: int = cyl.N_ERR
+    scene: int = scenes.SCENE_CYLINDER
+    #: indices of the quadrature states (reset at the start of every revolution)
+    quadratures: np.ndarray = field(default_factory=lambda: np.arange(cyl.N_ERR, cyl.N_STATE))
+    #: the crank speed is free (a revolution ends on the crank-angle event)
+    free_speed: bool = False
+
+    @property
+    def has_gas(self) -> bool:
+        """Whether the scene integrates the cylinder gas (else the pressure is tabulated)."""
+        return self.scene != scenes.SCENE_MECHANISM
+
+    @property
+    def mechanism_offset(self) -> int:
+        """Index of the first mechanism state (flexible scenes)."""
+        return scenes.mechanism_state_offset(self.scene)
+
+    @property
+    def mechanism_par(self) -> np.ndarray:
+        """The mechanism block of ``par`` (layout :mod:`recipsim.mechanics.layout`)."""
+        return self.par[scenes.P_MECH : scenes.P_MECH + mlay.N_PAR]
 
     def set_discharge_enthalpy(self, enthalpy: float) -> None:
         """Move the discharge plenum (the source of back-flow) to ``enthalpy`` [J/kg]."""
@@ -129,7 +155,7 @@ def _write_plenum(
     par[itemp] = st.temperature
 
 
-def build_model(case: Case) -> Model:
+def _cylinder_model(case: Case) -> Model:
     """Lay out the compiled cylinder-on-rigid-crank scene for ``case``."""
     op = case.operating_point
     geo = case.geometry
@@ -140,7 +166,7 @@ def build_model(case: Case) -> Model:
     discharge = _plenum(fluid, op.discharge_pressure, enthalpy=isentropic["h"])
     shell = _plenum(fluid, op.shell_pressure, temperature=op.suction_temperature)
 
-    par = np.zeros(cyl.N_PAR)
+    par = np.zeros(scenes.P_TABLES)
     ipar = np.zeros(scenes.N_IPAR, dtype=np.int64)
     omega = op.shaft_speed
     par[cyl.C_OMEGA] = omega
@@ -228,4 +254,120 @@ def build_model(case: Case) -> Model:
         suction=suction,
         discharge=discharge,
         shell=shell,
+    )
+
+
+def crank_geometry(case: Case) -> CrankGeometry:
+    """The slider-crank geometry of ``case`` for the mechanism library."""
+    geo = case.geometry
+    return CrankGeometry(
+        bore=geo.bore, crank_radius=geo.crank_radius, rod_length=geo.connecting_rod_length
+    )
+
+
+def build_model(case: Case) -> Model:
+    """Lay out the compiled scene that ``case`` asks for.
+
+    ============  ===========  =====================================================
+    pressure      mechanics    scene
+    ============  ===========  =====================================================
+    cylinder      pinned       cylinder on the rigid crank (bearing loads afterwards
+                               by inverse dynamics)
+    cylinder      flexible     coupled: cylinder + flexible crank train
+    tabulated     pinned       no integration: inverse dynamics of the table
+                               (:mod:`recipsim.mechanics.pinned`); the model holds
+                               the table and the mechanism parameters
+    tabulated     flexible     flexible crank train under the table
+    ============  ===========  =====================================================
+    """
+    model = _cylinder_model(case)
+    opts = case.options
+    if opts.mechanics == "pinned" and opts.pressure == "cylinder":
+        return model
+    op = case.operating_point
+    omega = op.shaft_speed
+    mpar = mechanism_parameters(
+        case.mechanism,
+        crank_geometry(case),
+        shell_pressure=op.shell_pressure,
+        speed=omega,
+        drive=opts.drive,
+    )
+    if opts.pressure == "tabulated":
+        assert case.pressure_curve is not None
+        p_angles, p_values = case.pressure_curve.crank_angle, case.pressure_curve.pressure
+        scene = scenes.SCENE_MECHANISM
+    else:
+        p_angles, p_values = np.zeros(1), np.zeros(1)
+        scene = scenes.SCENE_COUPLED
+    if opts.drive == "torque_profile":
+        d_angles, d_torques = _drive_table(case, model, p_angles, p_values)
+    else:
+        d_angles, d_torques = np.zeros(1), np.zeros(1)
+
+    par = np.concatenate([model.par[: scenes.P_TABLES], p_angles, p_values, d_angles, d_torques])
+    par[scenes.P_MECH : scenes.P_MECH + mlay.N_PAR] = mpar
+    par[scenes.P_LEAK_CLEARANCE] = case.leakage.radial_clearance
+    ipar = model.ipar.copy()
+    ipar[cyl.I_SCENE] = scene
+    ipar[scenes.I_PTAB] = scenes.P_TABLES
+    ipar[scenes.I_PTAB_N] = p_angles.size
+    ipar[scenes.I_DTAB] = scenes.P_TABLES + 2 * p_angles.size
+    ipar[scenes.I_DTAB_N] = d_angles.size
+    free = opts.drive != "constant_speed"
+    ipar[scenes.I_STOP_ON_ANGLE] = 1 if free else 0
+
+    m0 = scenes.mechanism_state_offset(scene)
+    n = scenes.state_size(scene)
+    y0 = np.zeros(n)
+    scale = np.zeros(n)  # zero scale: a quadrature, outside error control
+    if scene == scenes.SCENE_COUPLED:
+        y0[: cyl.N_STATE] = model.y0
+        scale[: cyl.N_ERR] = model.scale[: cyl.N_ERR]
+        model.props(model.y0[cyl.Y_T], model.y0[cyl.Y_RHO])
+        p_start = float(model.props.buffer[0])
+        quads = np.concatenate([np.arange(cyl.N_ERR, cyl.N_STATE), _mech_quads(m0)])
+    else:
+        p_start = tabulated_pressure(START_ANGLE, p_angles, p_values)
+        quads = _mech_quads(m0)
+    y0[m0 : m0 + mlay.N_STATE] = initial_state(mpar, START_ANGLE, omega, p_start)
+    scale[m0 : m0 + mlay.N_STATE] = state_scales(mpar)
+    model.par = par
+    model.ipar = ipar
+    model.y0 = y0
+    model.scale = scale
+    model.n_err = n
+    model.scene = scene
+    model.quadratures = quads
+    model.free_speed = free
+    return model
+
+
+def _mech_quads(m0: int) -> np.ndarray:
+    start = m0 + mlay.N_STATE
+    return np.arange(start, start + scenes.N_MECH_QUAD)
+
+
+def _drive_table(
+    case: Case, model: Model, p_angles: np.ndarray, p_values: np.ndarray
+) -> tuple[np.ndarray, np.ndarray]:
+    """Torque of the pinned mechanism at constant speed under the same pressure (the
+    paper's ``torque_profile`` drive); for the coupled scene the pressure is that of
+    the cylinder on the rigid crank, solved here first."""
+    op = case.operating_point
+    if case.options.pressure == "cylinder":
+        from .solve.periodic import sample_outputs, solve_periodic
+
+        rigid = solve_periodic(model)
+        out = sample_outputs(model, rigid.final)
+        theta = np.mod(out[:, cyl.A_THETA], 2.0 * math.pi)
+        order = np.argsort(theta)
+        p_angles, p_values = theta[order], out[order, cyl.A_PRESSURE]
+    return pinned_torque_profile(
+        case.mechanism,
+        crank_geometry(case),
+        p_angles,
+        p_values,
+        op.shell_pressure,
+        op.shaft_speed,
     )

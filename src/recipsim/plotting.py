@@ -107,9 +107,17 @@ def save_cycle_figures(
         "p_V.png": plot_pv(cycle),
         "p_V_loglog.png": plot_pv(cycle, log=True),
         "p_theta.png": plot_pressure(cycle, plenum=plenum),
-        "valves.png": plot_valves(cycle),
         "torque.png": plot_torque(cycle),
     }
+    if "suction_valve_lift [m]" in cycle:  # the gas is simulated (not a tabulated pressure)
+        figures["valves.png"] = plot_valves(cycle)
+    if "bearing_force_primary [N]" in cycle:
+        from .mechanics_plots import has_orbits, plot_bearing_loads, plot_orbits
+
+        label = "flexible" if has_orbits(cycle) else "pinned"
+        figures["bearing_loads.png"] = plot_bearing_loads({label: cycle})
+        if label == "flexible":
+            figures["orbits.png"] = plot_orbits({label: cycle})
     for name, fig in figures.items():
         fig.savefig(directory / name, dpi=110)
         plt.close(fig)

@@ -8,7 +8,6 @@ one intact.
 from __future__ import annotations
 
 import json
-import os
 import platform
 import shutil
 import subprocess
@@ -21,17 +20,18 @@ from typing import Any
 import pandas as pd
 
 from . import __version__
+from .atomic import swap_in
+from .case import Case
 from .solve.periodic import PeriodicSolution
 
 
-def provenance(solution: PeriodicSolution, argv: list[str] | None = None) -> dict[str, Any]:
-    """Versions, backend, solver settings and statistics of a run."""
+def case_provenance(case: Case, argv: list[str] | None = None) -> dict[str, Any]:
+    """Versions, options and solver settings of a run of ``case``."""
     import CoolProp
     import numba
     import numpy
     import scipy
 
-    case = solution.model.case
     return {
         "recipsim": __version__,
         "git_commit": _git_commit(),
@@ -42,21 +42,31 @@ def provenance(solution: PeriodicSolution, argv: list[str] | None = None) -> dic
         "scipy": scipy.__version__,
         "numba": numba.__version__,
         "pandas": pd.__version__,
-        "property_backend": f"CoolProp {solution.model.props.backend}",
+        "property_backend": f"CoolProp {case.options.properties.upper()}",
         "fluid": case.refrigerant.coolprop_name,
         "options": case.options.__dict__,
         "solver": case.solver.__dict__,
-        "revolutions": solution.revolutions,
-        "cycle_residual": solution.residual,
-        "residual_history": solution.residual_history,
-        "rhs_evaluations": solution.nfev,
-        "steps": solution.steps,
-        "rejected_steps": solution.rejected,
-        "events": solution.events,
-        "wall_time_s": solution.wall_time,
         "created": time.strftime("%Y-%m-%dT%H:%M:%S%z"),
         "command": argv or sys.argv,
     }
+
+
+def provenance(solution: PeriodicSolution, argv: list[str] | None = None) -> dict[str, Any]:
+    """:func:`case_provenance` plus the solver statistics of a run."""
+    meta = case_provenance(solution.model.case, argv)
+    meta.update(
+        {
+            "revolutions": solution.revolutions,
+            "cycle_residual": solution.residual,
+            "residual_history": solution.residual_history,
+            "rhs_evaluations": solution.nfev,
+            "steps": solution.steps,
+            "rejected_steps": solution.rejected,
+            "events": solution.events,
+            "wall_time_s": solution.wall_time,
+        }
+    )
+    return meta
 
 
 def _git_commit() -> str:
@@ -102,19 +112,8 @@ def write_report(
             from .plotting import save_cycle_figures
 
             save_cycle_figures(cycle, tmp, plenum=plenum)
-        _swap_in(tmp, out_dir)
+        swap_in(tmp, out_dir)
     except BaseException:
         shutil.rmtree(tmp, ignore_errors=True)
         raise
     return out_dir
-
-
-def _swap_in(new: Path, target: Path) -> None:
-    """Replace ``target`` by ``new`` with renames (the old one is removed after)."""
-    old = None
-    if target.exists():
-        old = target.with_name(f".{target.name}.old-{os.getpid()}-{time.time_ns()}")
-        os.replace(target, old)
-    os.replace(new, target)
-    if old is not None:
-        shutil.rmtree(old, ignore_errors=True)

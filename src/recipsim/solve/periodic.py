@@ -1,11 +1,14 @@
-"""Periodic steady state by revolution-by-revolution iteration.
+"""Periodic steady state by revolution-by-revolution iteration, for every scene.
 
 Each revolution starts at 270 deg (both valves shut) from the end state of the previous one
 (quadratures reset). The cycle residual is the largest of: the change of the
 error-controlled states over the revolution (T and rho relative, reed lift and
-velocity relative to their scales) and the relative change of the revolution's
-suction mass, indicated work and mass-weighted discharge enthalpy from the
-previous revolution. Back-flow through the discharge valve comes from a plenum at
+velocity relative to their scales, mechanism states relative to their largest value
+over the revolution) and the relative change of the revolution's suction mass,
+indicated work, mass-weighted discharge enthalpy and drive work from the
+previous revolution. Undamped flexible bearings never settle this way (their free
+vibration does not decay); such runs end at ``max_revolutions`` unconverged.
+Back-flow through the discharge valve comes from a plenum at
 the mass-weighted discharge enthalpy of the previous revolution (Bell et al.).
 """
 
@@ -19,8 +22,10 @@ import numpy as np
 from numba import njit
 
 from ..errors import SolverError
+from ..mechanics import layout as mlay
 from ..model import Model
 from ..thermo import cylinder as cyl
+from . import scenes
 from .integrator import (
     CHATTERING,
     N_STATS,
@@ -29,6 +34,7 @@ from .integrator import (
     ST_NEVENTS,
     ST_NFEV,
     ST_NREJECT,
+    ST_NSAMPLES,
     ST_STATUS,
     ST_T,
     STEP_UNDERFLOW,
@@ -71,6 +77,7 @@ class Revolution:
     samples: np.ndarray
     sample_modes: np.ndarray
     stats: np.ndarray
+    duration: float = 0.0
 
 
 @dataclass
@@ -115,21 +122,34 @@ def sample_times(model: Model, n: int) -> tuple[np.ndarray, np.ndarray]:
 def integrate_revolution(
     model: Model, y: np.ndarray, mode: np.ndarray, h: float, n_samples: int
 ) -> tuple[Revolution, float]:
-    """Integrate one revolution from ``y`` (modified copy returned in the result)."""
+    """Integrate one revolution from ``y`` (modified copy returned in the result).
+
+    With a free crank speed the revolution ends on the crank-angle event at the start
+    angle plus 2 pi (at most three nominal periods); samples are then taken at equal
+    time steps of the nominal period and :func:`recipsim.results.cycle_table`
+    resamples them at equal crank angles.
+    """
     s = model.case.solver
     y_start = y.copy()
     mode_start = mode.copy()
     y_run = y.copy()
-    y_run[model.n_err :] = 0.0
+    y_run[model.quadratures] = 0.0
     mode_run = mode.copy()
-    times, _ = sample_times(model, n_samples)
+    t_end = model.period
+    if model.free_speed:
+        theta = y_run[model.mechanism_offset + mlay.Y_CRANK_ANGLE]
+        model.par[scenes.P_THETA_END] = theta + 2.0 * math.pi
+        t_end = 3.0 * model.period
+        times = model.period * np.arange(n_samples) / n_samples
+    else:
+        times, _ = sample_times(model, n_samples)
     samples = np.zeros((n_samples, y.shape[0]))
     sample_modes = np.zeros((n_samples, mode.shape[0]), dtype=np.int64)
     stats = np.zeros(N_STATS)
     omega = model.par[cyl.C_OMEGA]
     integrate(
         0.0,
-        model.period,
+        t_end,
         y_run,
         mode_run,
         model.par,
@@ -150,33 +170,71 @@ def integrate_revolution(
     status = int(stats[ST_STATUS])
     if status != 0:
         _raise_failure(model, status, stats[ST_T], y_run, mode_run)
+    if model.free_speed:
+        n_done = int(stats[ST_NSAMPLES])
+        if stats[ST_T] >= t_end:
+            raise SolverError(
+                "the crank did not complete a revolution in three nominal periods "
+                f"(crank speed at the end {y_run[model.mechanism_offset + mlay.Y_CRANK_SPEED]:.4g}"
+                " rad/s): the drive torque cannot keep the mechanism turning"
+            )
+        times, samples, sample_modes = times[:n_done], samples[:n_done], sample_modes[:n_done]
+    if model.scene != scenes.SCENE_CYLINDER:
+        # the model is 2 pi-periodic in the crank angle: keep the state near the start angle
+        y_run[model.mechanism_offset + mlay.Y_CRANK_ANGLE] -= 2.0 * math.pi
     rev = Revolution(y_start, y_run, mode_start, mode_run, times, samples, sample_modes, stats)
+    rev.duration = float(stats[ST_T])
     return rev, float(stats[6])
 
 
 def _raise_failure(model: Model, status: int, t: float, y: np.ndarray, mode: np.ndarray) -> None:
-    theta = math.degrees((model.par[cyl.C_THETA0] + model.par[cyl.C_OMEGA] * t) % (2 * math.pi))
+    if model.scene == scenes.SCENE_CYLINDER:
+        theta_rad = model.par[cyl.C_THETA0] + model.par[cyl.C_OMEGA] * t
+    else:
+        theta_rad = y[model.mechanism_offset + mlay.Y_CRANK_ANGLE]
+    theta = math.degrees(theta_rad % (2 * math.pi))
+    parts = []
+    if model.has_gas:
+        parts.append(
+            f"T = {y[cyl.Y_T]:.6g} K, rho = {y[cyl.Y_RHO]:.6g} kg/m3, suction lift = "
+            f"{y[cyl.Y_XS]:.4g} m (mode {mode[0]}), discharge lift = {y[cyl.Y_XD]:.4g} m "
+            f"(mode {mode[1]})"
+        )
+    if model.scene != scenes.SCENE_CYLINDER:
+        m0 = model.mechanism_offset
+        parts.append(
+            f"crank speed = {y[m0 + mlay.Y_CRANK_SPEED]:.6g} rad/s, rotor at "
+            f"({y[m0 + mlay.Y_ROTOR_X]:.4g}, {y[m0 + mlay.Y_ROTOR_Y]:.4g}) m, piston lateral "
+            f"{y[m0 + mlay.Y_PISTON_Y]:.4g} m"
+        )
     raise SolverError(
         f"integration failed at crank angle {theta:.3f} deg (t = {t:.6g} s into the revolution): "
-        f"{_FAILURES.get(status, 'unknown failure')}; state: T = {y[cyl.Y_T]:.6g} K, "
-        f"rho = {y[cyl.Y_RHO]:.6g} kg/m3, suction lift = {y[cyl.Y_XS]:.4g} m "
-        f"(mode {mode[0]}), discharge lift = {y[cyl.Y_XD]:.4g} m (mode {mode[1]})"
+        f"{_FAILURES.get(status, 'unknown failure')}; state: " + "; ".join(parts)
     )
 
 
 def cycle_residual(model: Model, rev: Revolution, previous: Revolution | None) -> float:
     """Largest relative change over one revolution (see module docstring)."""
-    n = model.n_err
-    d = np.abs(rev.y_end[:n] - rev.y_start[:n])
-    ref = model.scale[:n].copy()
-    ref[cyl.Y_T] = rev.y_start[cyl.Y_T]
-    ref[cyl.Y_RHO] = rev.y_start[cyl.Y_RHO]
-    res = float(np.max(d / ref))
+    controlled = model.scale[: model.n_err] > 0.0
+    d = np.abs(rev.y_end[: model.n_err] - rev.y_start[: model.n_err])
+    ref = model.scale[: model.n_err].copy()
+    if model.has_gas:
+        ref[cyl.Y_T] = rev.y_start[cyl.Y_T]
+        ref[cyl.Y_RHO] = rev.y_start[cyl.Y_RHO]
+    if model.scene != scenes.SCENE_CYLINDER:
+        m0 = model.mechanism_offset
+        # mechanism states relative to their size over the revolution (at least their scale)
+        size = np.abs(rev.samples[:, m0 : m0 + mlay.N_STATE]).max(axis=0)
+        ref[m0 : m0 + mlay.N_STATE] = np.maximum(size, ref[m0 : m0 + mlay.N_STATE])
+    res = float(np.max(d[controlled] / ref[controlled]))
     if not np.array_equal(rev.mode_start, rev.mode_end):
         res = max(res, 1.0)
     if previous is None:
         return max(res, 1.0)
-    for q in (cyl.Q_MSUC_IN, cyl.Q_WORK, cyl.Q_HDIS_OUT):
+    checks = [cyl.Q_MSUC_IN, cyl.Q_WORK, cyl.Q_HDIS_OUT] if model.has_gas else []
+    if model.scene != scenes.SCENE_CYLINDER:
+        checks.append(model.mechanism_offset + mlay.N_STATE + scenes.MQ_DRIVE)
+    for q in checks:
         a, b = rev.y_end[q], previous.y_end[q]
         res = max(res, abs(a - b) / max(abs(a), abs(b), 1e-300))
     return res
@@ -209,7 +267,7 @@ def solve_periodic(model: Model) -> PeriodicSolution:
         rejected += int(rev.stats[ST_NREJECT])
         events += int(rev.stats[ST_NEVENTS])
         m_out = rev.y_end[cyl.Q_MDIS_OUT]
-        if m_out > 0.0:
+        if model.has_gas and m_out > 0.0:
             model.set_discharge_enthalpy(rev.y_end[cyl.Q_HDIS_OUT] / m_out)
         residual = cycle_residual(model, rev, previous)
         history.append(residual)
