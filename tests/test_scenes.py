@@ -21,7 +21,7 @@ from helpers import CASES, REFERENCE, solve_case
 from recipsim.bearing_results import mechanism_summary
 from recipsim.case import load_case
 from recipsim.mechanics import BEARING_NAMES, pinned_loads, simulate_mechanism
-from recipsim.model import crank_geometry
+from recipsim.model import case_mechanism_parameters, crank_geometry
 from recipsim.results import cycle_table, pinned_tabulated_cycle, summary
 
 PAPER = CASES / "paper_tabulated.toml"
@@ -93,13 +93,10 @@ def test_pinned_torque_equals_the_rigid_cylinder_torque():
     """Inverse dynamics of all bodies vs the cylinder model's slider-crank torque."""
     cycle = cycle_table(solve_case(REFERENCE))
     from recipsim.bearing_results import pinned_columns
-    from recipsim.mechanics.parameters import mechanism_parameters
 
     case = load_case(REFERENCE)
     op = case.operating_point
-    par = mechanism_parameters(
-        case.mechanism, crank_geometry(case), shell_pressure=op.shell_pressure, speed=op.shaft_speed
-    )
+    par = case_mechanism_parameters(case)
     theta = np.radians(cycle["crank_angle [deg]"].to_numpy())
     _, torque = pinned_columns(
         theta, cycle["cylinder_pressure [Pa]"].to_numpy(), op.shaft_speed, par

@@ -18,9 +18,9 @@ import pandas as pd
 from .mechanics import layout as lay
 from .mechanics.pinned import N_PIN_OUT, PIN_DRIVE_TORQUE, pinned_reactions_array
 
-#: Displacement components reported per bearing: journal bearings move in X and Y,
-#: the piston bearings (axis X) laterally in Y only.
-_DISPLACEMENT_AXES = {name: "xy" for name in lay.BEARING_NAMES}
+#: Displacement components reported for every bearing (normal to the Z journal axis;
+#: the piston bearings, axis X, report X as 0).
+_DISPLACEMENT_AXES = "xy"
 
 
 def bearing_columns(forces: np.ndarray, displacements: np.ndarray) -> dict[str, np.ndarray]:
@@ -30,7 +30,7 @@ def bearing_columns(forces: np.ndarray, displacements: np.ndarray) -> dict[str, 
         for k, ax in enumerate("xyz"):
             cols[f"bearing_force_{name}_{ax} [N]"] = forces[:, i, k]
         cols[f"bearing_force_{name} [N]"] = np.linalg.norm(forces[:, i], axis=1)
-        for ax in _DISPLACEMENT_AXES[name]:
+        for ax in _DISPLACEMENT_AXES:
             cols[f"bearing_displacement_{name}_{ax} [m]"] = displacements[:, i, "xyz".index(ax)]
     return cols
 
@@ -84,7 +84,7 @@ def mechanism_summary(cycle: pd.DataFrame) -> dict[str, Any]:
     for name in lay.BEARING_NAMES:
         r2 = sum(
             cycle[f"bearing_displacement_{name}_{ax} [m]"].to_numpy() ** 2
-            for ax in _DISPLACEMENT_AXES[name]
+            for ax in _DISPLACEMENT_AXES
         )
         row[f"orbit_radius_max_{name} [m]"] = float(np.sqrt(np.max(r2)))
     speed = cycle["crank_speed [rad/s]"].to_numpy()

@@ -265,6 +265,19 @@ def crank_geometry(case: Case) -> CrankGeometry:
     )
 
 
+def case_mechanism_parameters(case: Case) -> np.ndarray:
+    """Mechanism parameter array (:mod:`recipsim.mechanics.layout`) of ``case``: its
+    mechanism, crank geometry, shell pressure, shaft speed and drive."""
+    op = case.operating_point
+    return mechanism_parameters(
+        case.mechanism,
+        crank_geometry(case),
+        shell_pressure=op.shell_pressure,
+        speed=op.shaft_speed,
+        drive=case.options.drive,
+    )
+
+
 def build_model(case: Case) -> Model:
     """Lay out the compiled scene that ``case`` asks for.
 
@@ -286,13 +299,7 @@ def build_model(case: Case) -> Model:
         return model
     op = case.operating_point
     omega = op.shaft_speed
-    mpar = mechanism_parameters(
-        case.mechanism,
-        crank_geometry(case),
-        shell_pressure=op.shell_pressure,
-        speed=omega,
-        drive=opts.drive,
-    )
+    mpar = case_mechanism_parameters(case)
     if opts.pressure == "tabulated":
         assert case.pressure_curve is not None
         p_angles, p_values = case.pressure_curve.crank_angle, case.pressure_curve.pressure

@@ -30,9 +30,8 @@ from .bearing_results import flexible_columns, mechanism_summary, pinned_columns
 from .case import Case
 from .kinematics import piston_displacement
 from .mechanics import layout as mlay
-from .mechanics.parameters import mechanism_parameters
 from .mechanics.tabulated import tabulated_pressure
-from .model import crank_geometry
+from .model import case_mechanism_parameters
 from .solve import scenes
 from .solve.periodic import PeriodicSolution, sample_outputs
 from .thermo import cylinder as cyl
@@ -127,12 +126,7 @@ def cycle_table(solution: PeriodicSolution) -> pd.DataFrame:
         data["discharge_valve_state [-]"] = modes[:, 1].astype(np.int64)
     omega = model.case.operating_point.shaft_speed
     if model.scene == scenes.SCENE_CYLINDER:
-        par = mechanism_parameters(
-            model.case.mechanism,
-            crank_geometry(model.case),
-            shell_pressure=model.case.operating_point.shell_pressure,
-            speed=omega,
-        )
+        par = case_mechanism_parameters(model.case)
         mech, _ = pinned_columns(grid, data["cylinder_pressure [Pa]"], omega, par)
     else:
         mech = flexible_columns(values[:, scenes.A_MECH :])
@@ -156,10 +150,7 @@ def pinned_tabulated_cycle(case: Case) -> pd.DataFrame:
     grid = _uniform_angles(case.solver.samples_per_revolution)
     curve = case.pressure_curve
     p = np.array([tabulated_pressure(t, curve.crank_angle, curve.pressure) for t in grid])
-    par = mechanism_parameters(
-        case.mechanism, crank_geometry(case), shell_pressure=op.shell_pressure, speed=omega
-    )
-    mech, torque = pinned_columns(grid, p, omega, par)
+    mech, torque = pinned_columns(grid, p, omega, case_mechanism_parameters(case))
     kin = np.array(
         [piston_displacement(t, geo.crank_radius, geo.connecting_rod_length)[:2] for t in grid]
     )
