@@ -337,14 +337,8 @@ def load_case(path: str | Path, overrides: list[str] | None = None) -> Case:
     """
     path = Path(path)
     file = str(path)
-    if not path.is_file():
-        raise CaseError(file, "", "no such case file")
-    text = path.read_text()
-    try:
-        raw = tomllib.loads(text)
-    except tomllib.TOMLDecodeError as exc:
-        raise CaseError(file, "", f"not valid TOML: {exc}") from None
-    raw = _resolve_extends(raw, path, [path.resolve()])
+    raw, text = read_toml(path, "case")
+    raw = resolve_extends(raw, path, [path.resolve()])
     raw = apply_overrides(raw, overrides or [], file)
     return case_from_dict(raw, file, text)
 
@@ -359,7 +353,25 @@ def _deep_merge(base: dict[str, Any], child: dict[str, Any]) -> dict[str, Any]:
     return out
 
 
-def _resolve_extends(raw: dict[str, Any], path: Path, chain: list[Path]) -> dict[str, Any]:
+def read_toml(path: Path, kind: str) -> tuple[dict[str, Any], str]:
+    """Parse the TOML file ``path``; returns its data and its text.
+
+    Raises
+    ------
+    CaseError
+        If the file does not exist ("no such <kind> file") or is not valid TOML.
+    """
+    file = str(path)
+    if not path.is_file():
+        raise CaseError(file, "", f"no such {kind} file")
+    text = path.read_text()
+    try:
+        return tomllib.loads(text), text
+    except tomllib.TOMLDecodeError as exc:
+        raise CaseError(file, "", f"not valid TOML: {exc}") from None
+
+
+def resolve_extends(raw: dict[str, Any], path: Path, chain: list[Path]) -> dict[str, Any]:
     """Merge the case named by ``extends`` (relative to this file) under this one.
 
     ``name`` and ``description`` are not inherited: a case's name defaults to its
@@ -375,11 +387,8 @@ def _resolve_extends(raw: dict[str, Any], path: Path, chain: list[Path]) -> dict
         raise CaseError(str(path), "extends", f"circular extends through {parent}")
     if not parent.is_file():
         raise CaseError(str(path), "extends", f"no such case file: {parent}")
-    try:
-        base = tomllib.loads(parent.read_text())
-    except tomllib.TOMLDecodeError as exc:
-        raise CaseError(str(parent), "", f"not valid TOML: {exc}") from None
-    base = _resolve_extends(base, parent, chain + [parent])
+    base, _ = read_toml(parent, "case")
+    base = resolve_extends(base, parent, chain + [parent])
     base.pop("name", None)
     base.pop("description", None)
     return _deep_merge(base, raw)

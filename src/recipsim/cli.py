@@ -1,5 +1,6 @@
 """Command line: ``recipsim run CASE... [--out DIR] [--set KEY=VALUE ...]``,
-``recipsim paper CASE [--out DIR]`` (see :mod:`recipsim.paper_command`).
+``recipsim sweep SWEEP [--jobs N] [--scheduler ADDRESS] [--out DIR]`` (see
+:mod:`recipsim.sweep.command`).
 
 Exit status: 0 success; 1 a simulation failed (message names crank angle and state);
 2 invalid input (message names file, key and what is allowed), no traceback.
@@ -12,8 +13,9 @@ import sys
 from pathlib import Path
 from typing import Any
 
-from .errors import CaseError, RecipsimError, SolverError
+from .cli_options import add_common_options, exit_status
 from .paper_command import add_paper_parser, run_paper_command
+from .sweep.command import add_sweep_parser, run_sweep_command
 
 
 def _parser() -> argparse.ArgumentParser:
@@ -24,22 +26,9 @@ def _parser() -> argparse.ArgumentParser:
     sub = parser.add_subparsers(dest="command", required=True)
     run = sub.add_parser("run", help="simulate cases and write a report per case")
     run.add_argument("cases", nargs="+", type=Path, help="case files (TOML)")
-    run.add_argument(
-        "--out",
-        type=Path,
-        default=Path("reports"),
-        help="parent directory of the reports (default: reports/)",
-    )
-    run.add_argument(
-        "--set",
-        dest="overrides",
-        action="append",
-        default=[],
-        metavar="KEY=VALUE",
-        help="override a case value, KEY a dotted path (e.g. solver.rtol=1e-9)",
-    )
-    run.add_argument("--no-plots", action="store_true", help="write the CSV files only")
+    add_common_options(run, Path("reports"), "parent directory of the reports (default: reports/)")
     run.add_argument("--quiet", action="store_true", help="print nothing but errors")
+    add_sweep_parser(sub)
     add_paper_parser(sub)
     return parser
 
@@ -49,73 +38,43 @@ def run_case(
 ) -> dict[str, Any]:
     """Load, simulate and report one case; returns its summary row."""
     from .case import load_case
-    from .model import build_model
-    from .report import case_provenance, provenance, write_report
-    from .results import cycle_table, pinned_tabulated_cycle, summary
-    from .solve.periodic import solve_periodic
+    from .simulate import simulate_case, write_case_report
 
-    case = load_case(path, overrides)
-    solution = None
-    if case.options.pressure == "tabulated" and case.options.mechanics == "pinned":
-        cycle = pinned_tabulated_cycle(case)  # inverse dynamics only, nothing to integrate
-        meta = case_provenance(case, argv)
-    else:
-        solution = solve_periodic(build_model(case))
-        cycle = cycle_table(solution)
-        meta = provenance(solution, argv)
-    row = summary(solution, cycle, case)
-    op = case.operating_point
-    write_report(
-        out / case.name,
-        row,
-        cycle,
-        case.source_text,
-        overrides,
-        meta,
-        plenum=(op.suction_pressure, op.discharge_pressure),
-        plots=plots,
-    )
-    return row
+    run = simulate_case(load_case(path, overrides), argv)
+    write_case_report(run, out / run.case.name, overrides, plots)
+    return run.row
+
+
+def _run_command(args: argparse.Namespace, argv: list[str] | None) -> int:
+    """``recipsim run``: every case is attempted; the status is the worst of them."""
+    status = 0
+    for path in args.cases:
+
+        def one(path: Path = path) -> int:
+            row = run_case(
+                path,
+                args.overrides,
+                args.out,
+                not args.no_plots,
+                argv if argv is not None else sys.argv,
+            )
+            if not args.quiet:
+                _print_summary(row, args.out / row["case"])
+            return 0
+
+        status = max(status, exit_status(one, str(path)))
+    return status
 
 
 def main(argv: list[str] | None = None) -> int:
     """Entry point of the ``recipsim`` command."""
     args = _parser().parse_args(argv)
     if args.command == "run":
-        status = 0
-        for path in args.cases:
-            try:
-                row = run_case(
-                    path,
-                    args.overrides,
-                    args.out,
-                    not args.no_plots,
-                    argv if argv is not None else sys.argv,
-                )
-            except CaseError as exc:
-                print(f"recipsim: invalid input: {exc}", file=sys.stderr)
-                status = max(status, 2)
-                continue
-            except SolverError as exc:
-                print(f"recipsim: {path}: {exc}", file=sys.stderr)
-                status = max(status, 1)
-                continue
-            except RecipsimError as exc:
-                print(f"recipsim: {path}: {exc}", file=sys.stderr)
-                status = max(status, 1)
-                continue
-            if not args.quiet:
-                _print_summary(row, args.out / row["case"])
-        return status
+        return _run_command(args, argv)
+    if args.command == "sweep":
+        return run_sweep_command(args, argv)
     if args.command == "paper":
-        try:
-            return run_paper_command(args)
-        except CaseError as exc:
-            print(f"recipsim: invalid input: {exc}", file=sys.stderr)
-            return 2
-        except RecipsimError as exc:
-            print(f"recipsim: {args.case}: {exc}", file=sys.stderr)
-            return 1
+        return exit_status(lambda: run_paper_command(args), str(args.case))
     return 2
 
 

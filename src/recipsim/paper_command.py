@@ -18,6 +18,8 @@ from typing import Any
 
 import numpy as np
 
+from .cli_options import add_common_options
+
 
 def add_paper_parser(sub: Any) -> None:
     """Register the ``paper`` subcommand."""
@@ -26,17 +28,13 @@ def add_paper_parser(sub: Any) -> None:
         help="the paper's study: pinned vs flexible bearing loads (table1.csv, figures)",
     )
     p.add_argument("case", type=Path, help="case file (TOML), e.g. cases/paper_tabulated.toml")
-    p.add_argument(
-        "--out", type=Path, default=None, help="output directory (default reports/paper/<case>)"
-    )
-    p.add_argument("--set", dest="overrides", action="append", default=[], metavar="KEY=VALUE")
+    add_common_options(p, None, "output directory (default reports/paper/<case>)")
     p.add_argument(
         "--undamped-revolutions",
         type=int,
         default=8,
         help="revolutions of the undamped runs, which never settle (default 8)",
     )
-    p.add_argument("--no-plots", action="store_true")
 
 
 def run_paper_command(args: argparse.Namespace) -> int:

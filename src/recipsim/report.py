@@ -34,7 +34,7 @@ def case_provenance(case: Case, argv: list[str] | None = None) -> dict[str, Any]
 
     return {
         "recipsim": __version__,
-        "git_commit": _git_commit(),
+        "git_commit": git_commit(),
         "python": sys.version.split()[0],
         "platform": platform.platform(),
         "CoolProp": CoolProp.__version__,
@@ -69,7 +69,7 @@ def provenance(solution: PeriodicSolution, argv: list[str] | None = None) -> dic
     return meta
 
 
-def _git_commit() -> str:
+def git_commit() -> str:
     try:
         root = Path(__file__).resolve().parents[2]
         out = subprocess.run(

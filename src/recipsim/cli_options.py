@@ -1,0 +1,53 @@
+"""Options shared by several ``recipsim`` subcommands (one definition, one help text)."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from collections.abc import Callable
+from pathlib import Path
+
+
+def add_common_options(
+    parser: argparse.ArgumentParser, out_default: Path | None, out_help: str
+) -> None:
+    """Add ``--out DIR``, ``--set KEY=VALUE`` (repeatable) and ``--no-plots`` to ``parser``.
+
+    Parameters
+    ----------
+    parser : argparse.ArgumentParser
+        The subcommand's parser.
+    out_default : Path or None
+        Default of ``--out``; None lets the command choose from its input.
+    out_help : str
+        What ``--out`` names for this command.
+    """
+    parser.add_argument("--out", type=Path, default=out_default, help=out_help)
+    parser.add_argument(
+        "--set",
+        dest="overrides",
+        action="append",
+        default=[],
+        metavar="KEY=VALUE",
+        help="override a case value, KEY a dotted path (e.g. solver.rtol=1e-9); repeatable",
+    )
+    parser.add_argument("--no-plots", action="store_true", help="write the tables only")
+
+
+def exit_status(action: Callable[[], int], label: str = "") -> int:
+    """Run ``action`` and turn recipsim's errors into a message and an exit status.
+
+    Returns ``action()``'s status, 2 for invalid input (:class:`CaseError`) or 1 for any
+    other :class:`RecipsimError` (a solver failure names the crank angle and state).
+    ``label`` (e.g. the case file) prefixes the message of a failure.
+    """
+    from .errors import CaseError, RecipsimError
+
+    try:
+        return action()
+    except CaseError as exc:
+        print(f"recipsim: invalid input: {exc}", file=sys.stderr)
+        return 2
+    except RecipsimError as exc:
+        print(f"recipsim: {label}{': ' if label else ''}{exc}", file=sys.stderr)
+        return 1

@@ -1,0 +1,99 @@
+"""Map plots on synthetic summary tables: lines per group, bearing loads when present."""
+
+from __future__ import annotations
+
+import numpy as np
+import pandas as pd
+
+from recipsim.sweep.plots import (
+    bearing_columns,
+    group_columns,
+    plot_map,
+    save_map_plots,
+    x_column,
+)
+
+AXES = ["refrigerant", "condensing_temperature [K]", "evaporating_temperature [K]"]
+BEARINGS = ("primary", "secondary", "eccentric", "pin", "piston_top", "piston_skirt")
+
+
+def synthetic(bearings: bool) -> pd.DataFrame:
+    rows = []
+    for refrigerant, scale in (("R134a", 1.0), ("R600a", 0.6)):
+        for condensing in (318.15, 328.15):
+            for evaporating in (238.15, 243.15, 248.15):
+                capacity = scale * 10.0 * (evaporating - 200.0) - (condensing - 300.0)
+                row = {
+                    "point": len(rows),
+                    "refrigerant": refrigerant,
+                    "condensing_temperature [K]": condensing,
+                    "evaporating_temperature [K]": evaporating,
+                    "status": "ok",
+                    "cooling_capacity [W]": capacity,
+                    "shaft_power [W]": capacity / 2.0,
+                    "COP [-]": 2.0,
+                    "volumetric_efficiency [-]": 0.8,
+                    "isentropic_efficiency [-]": 0.7,
+                }
+                if bearings:
+                    for i, name in enumerate(BEARINGS):
+                        row[f"bearing_max_{name} [N]"] = 100.0 * (i + 1) + capacity
+                rows.append(row)
+    table = pd.DataFrame(rows)
+    table.loc[3, "status"] = "failed"
+    table.loc[3, "cooling_capacity [W]"] = np.nan
+    return table
+
+
+def test_lines_per_refrigerant_and_condensing_temperature():
+    table = synthetic(bearings=False)
+    ok = table[table["status"] == "ok"]
+    x = x_column(ok, AXES)
+    assert x == "evaporating_temperature [K]"
+    groups = group_columns(ok, AXES, x)
+    assert groups == ["refrigerant", "condensing_temperature [K]"]
+    fig = plot_map(ok, "cooling_capacity [W]", x, groups)
+    lines = fig.axes[0].get_lines()
+    assert len(lines) == 4
+    labels = [line.get_label() for line in lines]
+    assert labels == [
+        "R134a, condensing 45 °C",
+        "R134a, condensing 55 °C",
+        "R600a, condensing 45 °C",
+        "R600a, condensing 55 °C",
+    ]
+    # x in degrees Celsius, sorted; the failed point is not drawn
+    np.testing.assert_allclose(lines[0].get_xdata(), [-35.0, -30.0, -25.0])
+    assert len(lines[1].get_xdata()) == 2
+    # colour per refrigerant, line style per condensing temperature
+    assert lines[0].get_color() == lines[1].get_color() != lines[2].get_color()
+    assert lines[0].get_linestyle() != lines[1].get_linestyle()
+    assert lines[0].get_linestyle() == lines[2].get_linestyle()
+
+
+def test_bearing_load_plot_only_with_bearing_columns(tmp_path):
+    plain = save_map_plots(synthetic(bearings=False), AXES, tmp_path / "plain")
+    assert sorted(p.name for p in plain) == [
+        "map_COP.png",
+        "map_cooling_capacity.png",
+        "map_isentropic_efficiency.png",
+        "map_shaft_power.png",
+        "map_volumetric_efficiency.png",
+    ]
+    table = synthetic(bearings=True)
+    assert bearing_columns(table) == [f"bearing_max_{n} [N]" for n in BEARINGS]
+    flexible = save_map_plots(table, AXES, tmp_path / "flexible")
+    bearing = tmp_path / "flexible" / "map_bearing_loads.png"
+    assert bearing in flexible and bearing.stat().st_size > 20_000
+    assert not list((tmp_path / "flexible").glob(".*"))  # no temporary files left
+    # columns without a value (a rigid-crank sweep that does not fill them) are skipped
+    empty = synthetic(bearings=False)
+    empty["bearing_max_primary [N]"] = np.nan
+    assert bearing_columns(empty) == []
+
+
+def test_no_plots_without_a_converged_point(tmp_path):
+    table = synthetic(bearings=False)
+    table["status"] = "invalid"
+    assert save_map_plots(table, AXES, tmp_path) == []
+    assert not list(tmp_path.iterdir())
