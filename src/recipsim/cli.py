@@ -14,8 +14,11 @@ from pathlib import Path
 from typing import Any
 
 from .cli_options import add_common_options, exit_status
-from .paper_command import add_paper_parser, run_paper_command
-from .sweep.command import add_sweep_parser, run_sweep_command
+from .paper_command import add_paper_parser
+from .sweep.command import add_sweep_parser
+
+# Each registers its subparser and sets ``handler(args, argv) -> exit status`` on it.
+_SUBCOMMANDS = (add_sweep_parser, add_paper_parser)
 
 
 def _parser() -> argparse.ArgumentParser:
@@ -28,8 +31,9 @@ def _parser() -> argparse.ArgumentParser:
     run.add_argument("cases", nargs="+", type=Path, help="case files (TOML)")
     add_common_options(run, Path("reports"), "parent directory of the reports (default: reports/)")
     run.add_argument("--quiet", action="store_true", help="print nothing but errors")
-    add_sweep_parser(sub)
-    add_paper_parser(sub)
+    run.set_defaults(handler=_run_command)
+    for register in _SUBCOMMANDS:
+        register(sub)
     return parser
 
 
@@ -69,13 +73,8 @@ def _run_command(args: argparse.Namespace, argv: list[str] | None) -> int:
 def main(argv: list[str] | None = None) -> int:
     """Entry point of the ``recipsim`` command."""
     args = _parser().parse_args(argv)
-    if args.command == "run":
-        return _run_command(args, argv)
-    if args.command == "sweep":
-        return run_sweep_command(args, argv)
-    if args.command == "paper":
-        return exit_status(lambda: run_paper_command(args), str(args.case))
-    return 2
+    status: int = args.handler(args, argv)
+    return status
 
 
 def _print_summary(row: dict[str, Any], where: Path) -> None:

@@ -18,7 +18,7 @@ from typing import Any
 
 import numpy as np
 
-from .cli_options import add_common_options
+from .cli_options import add_common_options, exit_status
 
 
 def add_paper_parser(sub: Any) -> None:
@@ -29,6 +29,9 @@ def add_paper_parser(sub: Any) -> None:
     )
     p.add_argument("case", type=Path, help="case file (TOML), e.g. cases/paper_tabulated.toml")
     add_common_options(p, None, "output directory (default reports/paper/<case>)")
+    p.set_defaults(
+        handler=lambda args, argv: exit_status(lambda: run_paper_command(args), str(args.case))
+    )
     p.add_argument(
         "--undamped-revolutions",
         type=int,

@@ -75,6 +75,7 @@ def add_sweep_parser(sub: Any) -> argparse.ArgumentParser:
     )
     for flag, help_text in _SWITCHES:
         parser.add_argument(flag, action="store_true", help=help_text)
+    parser.set_defaults(handler=run_sweep_command)
     return parser
 
 
