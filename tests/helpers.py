@@ -11,15 +11,26 @@ REFERENCE = CASES / "reference_r134a_lbp.toml"
 ALL_CASES = sorted(CASES.glob("*.toml"))
 
 
-def _pressure_source(path: Path) -> str:
+def _options(path: Path) -> dict:
+    """The [options] of a case file, following ``extends``."""
     with path.open("rb") as fh:
-        return tomllib.load(fh).get("options", {}).get("pressure", "cylinder")
+        raw = tomllib.load(fh)
+    parent = raw.get("extends")
+    base = _options(path.parent / parent) if parent else {}
+    return {**base, **raw.get("options", {})}
 
 
-#: The shipped cases whose pressure comes from the CoolProp cylinder.
-SHIPPED = [p for p in ALL_CASES if _pressure_source(p) == "cylinder"]
+def _scene(path: Path) -> tuple[str, str]:
+    opts = _options(path)
+    return opts.get("pressure", "cylinder"), opts.get("mechanics", "pinned")
+
+
+#: The shipped cases of the CoolProp cylinder on the rigid crank.
+SHIPPED = [p for p in ALL_CASES if _scene(p) == ("cylinder", "pinned")]
+#: The shipped coupled cases (cylinder + flexible crank train).
+COUPLED = [p for p in ALL_CASES if _scene(p) == ("cylinder", "flexible")]
 #: The shipped cases driven by a tabulated pressure curve.
-TABULATED = [p for p in ALL_CASES if _pressure_source(p) == "tabulated"]
+TABULATED = [p for p in ALL_CASES if _scene(p)[0] == "tabulated"]
 
 
 def solve_case(path: Path, overrides: list[str] | None = None):

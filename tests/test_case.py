@@ -5,7 +5,7 @@ from pathlib import Path
 
 import pytest
 
-from helpers import REFERENCE, SHIPPED
+from helpers import ALL_CASES, REFERENCE
 from recipsim.case import load_case, parse_override
 from recipsim.cli import main
 from recipsim.errors import CaseError
@@ -27,7 +27,7 @@ def test_reference_case_in_si():
     assert case.valves.suction.stiffness == pytest.approx(309.8 * (0.153 / 0.1532) ** 3, rel=1e-3)
 
 
-@pytest.mark.parametrize("path", SHIPPED, ids=[p.stem for p in SHIPPED])
+@pytest.mark.parametrize("path", ALL_CASES, ids=[p.stem for p in ALL_CASES])
 def test_every_shipped_case_loads(path):
     case = load_case(path)
     assert case.operating_point.discharge_pressure > case.operating_point.suction_pressure

@@ -65,3 +65,31 @@ def test_outside_domain_is_a_status_not_an_exception():
     assert props(100.0, 5.0) == STATUS_DOMAIN
     assert props(300.0, -1.0) == STATUS_DOMAIN
     assert props(300.0, np.nan) == STATUS_DOMAIN
+
+
+def test_ctrl_c_inside_the_property_callback_stops_the_solve():
+    """A SIGINT lands while the compiled integrator is in the CoolProp callback (where
+    nearly all Python bytecode of a solve runs); ctypes would swallow it and return a
+    stale buffer as success. It must surface as KeyboardInterrupt, promptly."""
+    import os
+    import signal
+    import threading
+    import time
+
+    from helpers import REFERENCE
+    from recipsim.case import load_case
+    from recipsim.model import build_model
+    from recipsim.solve.periodic import solve_periodic
+
+    endless = ["solver.min_revolutions=1000", "solver.max_revolutions=1000"]
+    model = build_model(load_case(REFERENCE, endless))
+    timer = threading.Timer(0.3, lambda: os.kill(os.getpid(), signal.SIGINT))
+    start = time.perf_counter()
+    timer.start()
+    with pytest.raises(KeyboardInterrupt):
+        solve_periodic(model)
+    timer.cancel()
+    # 1000 revolutions take seconds; stopping shortly after the signal means it was seen
+    assert time.perf_counter() - start < 0.3 + 2.0
+    # the callback is re-armed: solving works normally afterwards
+    assert solve_periodic(build_model(load_case(REFERENCE))).converged

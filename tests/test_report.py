@@ -95,6 +95,7 @@ def test_columns_carry_units_and_are_documented(report):
         "valves",
         "heat_transfer",
         "leakage",
+        "periodic_method",
     }
     for col in list(summary.columns) + list(cycle.columns):
         assert col in documented, f"column {col!r} is not documented in reports/README.md"

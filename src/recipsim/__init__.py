@@ -5,4 +5,55 @@ by step, with a compiled integrator. See the README for the two commands a
 newcomer needs and ``docs`` in the repository for the physics.
 """
 
+from __future__ import annotations
+
+import hashlib
+import os
+import sys
+from pathlib import Path
+
 __version__ = "0.1.0"
+
+#: Modules holding compiled code or the layout constants compiled code reads.
+_COMPILED_SOURCES = ("kinematics.py", "motor.py", "mechanics", "thermo", "solve")
+
+
+def _compiled_sources_digest() -> str:
+    root = Path(__file__).parent
+    digest = hashlib.blake2b(digest_size=8)
+    for entry in _COMPILED_SOURCES:
+        path = root / entry
+        files = sorted(path.rglob("*.py")) if path.is_dir() else [path]
+        for file in files:
+            digest.update(file.relative_to(root).as_posix().encode())
+            digest.update(file.read_bytes())
+    return digest.hexdigest()
+
+
+def _isolate_numba_cache() -> None:
+    """Key numba's on-disk cache by the content of recipsim's compiled sources.
+
+    numba invalidates a cached function only when *its own* file changes, not when a
+    constant it reads from another module does (e.g. a parameter-layout index in
+    ``mechanics/layout.py``): a stale cache would then silently read the wrong slots.
+    A cache directory per source digest rules that out. Honours ``NUMBA_CACHE_DIR``
+    (used as the parent); default ``~/.cache/recipsim/numba`` (or
+    ``$XDG_CACHE_HOME/recipsim/numba``).
+    """
+    if os.environ.get("NUMBA_DISABLE_JIT") == "1":
+        return
+    base = os.environ.get("NUMBA_CACHE_DIR")
+    if base is not None and Path(base).name.startswith("recipsim-"):
+        base = str(Path(base).parent)  # set by a parent recipsim process
+    if base is None:
+        xdg = os.environ.get("XDG_CACHE_HOME") or str(Path.home() / ".cache")
+        base = str(Path(xdg) / "recipsim" / "numba")
+    path = str(Path(base) / f"recipsim-{_compiled_sources_digest()}")
+    numba = sys.modules.get("numba")
+    if numba is not None:
+        numba.config.CACHE_DIR = path  # numba already read its environment
+    else:
+        os.environ["NUMBA_CACHE_DIR"] = path
+
+
+_isolate_numba_cache()

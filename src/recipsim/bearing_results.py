@@ -88,7 +88,8 @@ def mechanism_summary(cycle: pd.DataFrame) -> dict[str, Any]:
         )
         row[f"orbit_radius_max_{name} [m]"] = float(np.sqrt(np.max(r2)))
     speed = cycle["crank_speed [rad/s]"].to_numpy()
-    mean = float(np.mean(speed))
+    # time mean (revolutions per second): the harmonic mean over uniform crank angles
+    mean = float(1.0 / np.mean(1.0 / speed))
     row["mean_crank_speed [rpm]"] = mean * 60.0 / (2.0 * math.pi)
     row["crank_speed_ripple [-]"] = float((speed.max() - speed.min()) / mean)
     return row

@@ -21,12 +21,13 @@ from typing import Any
 from .errors import CaseError
 from .mechanics.spec import MechanismSpec, mechanism_from_dict
 from .mechanics.tabulated import PressureCurve, read_pressure_curve
+from .motor import MotorSpec, motor_from_table
 from .refrigerant import Fluid, RefrigerantSpec, load_refrigerant
 from .schema import Choice, Field, Spec, Text, check_keys, read_table
 
 OPTION_SPEC: Spec = {
     "pressure": Choice(("cylinder", "tabulated"), "cylinder", "pressure source"),
-    "properties": Choice(("heos",), "heos", "property backend"),
+    "properties": Choice(("heos", "table"), "heos", "property backend"),
     "valves": Choice(("ideal", "quasi_static", "reed"), "reed", "valve model"),
     "heat_transfer": Choice(("adiabatic", "annand", "adair"), "adiabatic", "in-cylinder heat"),
     "leakage": Choice(("none", "piston_gap"), "none", "piston-cylinder leakage"),
@@ -108,6 +109,7 @@ SOLVER_SPEC: Spec = {
     "max_step": Field(
         "rad", math.radians(2.0), lo=1e-7, hi=math.pi, doc="largest crank-angle step"
     ),
+    "periodic": Choice(("auto", "revolutions", "shooting"), "auto", "periodic steady-state solver"),
 }
 
 TOP_KEYS = {
@@ -259,6 +261,8 @@ class SolverSettings:
     min_revolutions: int
     samples_per_revolution: int
     max_step: float  # crank angle [rad]
+    #: periodic steady-state solver: "revolutions", "shooting" or "auto"
+    periodic: str = "auto"
 
 
 @dataclass(frozen=True)
@@ -278,6 +282,7 @@ class Case:
     solver: SolverSettings
     mechanism: MechanismSpec
     pressure_curve: PressureCurve | None = None
+    motor: MotorSpec | None = None
     raw: dict[str, Any] = field(default_factory=dict, repr=False, compare=False)
     source_text: str = field(default="", repr=False, compare=False)
 
@@ -432,6 +437,7 @@ def case_from_dict(raw: dict[str, Any], file: str, source_text: str = "") -> Cas
         min_revolutions=int(sv["min_revolutions"]),
         samples_per_revolution=int(sv["samples_per_revolution"]),
         max_step=sv["max_step"],
+        periodic=sv["periodic"],
     )
     if solver.min_revolutions > solver.max_revolutions:
         raise CaseError(file, "solver.min_revolutions", "must not exceed solver.max_revolutions")
@@ -445,6 +451,7 @@ def case_from_dict(raw: dict[str, Any], file: str, source_text: str = "") -> Cas
         )
     _check_supported(options, file)
     curve = _pressure_curve(raw.get("pressure_curve"), options, file)
+    motor = _motor(raw.get("motor"), options, file)
     return Case(
         name=top["name"],
         description=top["description"],
@@ -459,6 +466,7 @@ def case_from_dict(raw: dict[str, Any], file: str, source_text: str = "") -> Cas
         solver=solver,
         mechanism=mechanism,
         pressure_curve=curve,
+        motor=motor,
         raw=raw,
         source_text=source_text,
     )
@@ -474,12 +482,22 @@ def _check_supported(options: Options, file: str) -> None:
             "at constant speed by definition: use options.drive = 'constant_speed' or "
             "options.mechanics = 'flexible'",
         )
-    if options.drive == "induction_motor":
-        raise CaseError(
-            file,
-            "options.drive",
-            "'induction_motor' is not available yet; allowed: 'constant_speed', 'torque_profile'",
-        )
+
+
+def _motor(raw: dict[str, Any] | None, options: Options, file: str) -> MotorSpec | None:
+    """The ``[motor]`` table: required by the induction motor drive, validated whenever
+    present (a study may switch the drive with ``--set``)."""
+    if raw is None:
+        if options.drive == "induction_motor":
+            raise CaseError(
+                file,
+                "motor",
+                "options.drive = 'induction_motor' needs a [motor] table: rated_speed, "
+                "rated_torque, breakdown_torque (line_frequency, poles, "
+                "backward_field_ratio optional)",
+            )
+        return None
+    return motor_from_table(raw, file)
 
 
 PRESSURE_CURVE_SPEC: Spec = {

@@ -14,11 +14,16 @@ from pathlib import Path
 from typing import Any
 
 from .cli_options import add_common_options, exit_status
+from .compare_command import add_compare_parser
 from .paper_command import add_paper_parser
 from .sweep.command import add_sweep_parser
 
 # Each registers its subparser and sets ``handler(args, argv) -> exit status`` on it.
-_SUBCOMMANDS = (add_sweep_parser, add_paper_parser)
+_SUBCOMMANDS = (
+    add_sweep_parser,
+    add_paper_parser,
+    add_compare_parser,
+)
 
 
 def _parser() -> argparse.ArgumentParser:

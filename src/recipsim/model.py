@@ -26,6 +26,7 @@ from .solve import scenes
 from .thermo import cylinder as cyl
 from .thermo.heat_transfer import DEFAULT_COEFFICIENT, HT_ADAIR, HT_ADIABATIC, HT_ANNAND
 from .thermo.properties import HeosProperties
+from .thermo.property_table import load_property_table
 
 START_ANGLE = 1.5 * math.pi  # crank angle at which every revolution starts [rad]
 
@@ -219,12 +220,23 @@ def _cylinder_model(case: Case) -> Model:
     ipar[cyl.I_LEAK] = 0 if opts.leakage == "none" else 1
 
     transport = opts.heat_transfer != "adiabatic" or opts.leakage != "none"
-    props = HeosProperties(
-        case.refrigerant.coolprop_name,
-        transport=transport,
-        t_min=case.refrigerant.min_temperature,
-        t_max=case.refrigerant.max_temperature,
+    ref = case.refrigerant
+    # properties = "table": the compiled code interpolates a cached table that follows the
+    # outputs in the callback's buffer, and calls HEOS only where the table has no data
+    table = (
+        load_property_table(ref.coolprop_name, ref.min_temperature, ref.max_temperature)
+        if opts.properties == "table"
+        else None
     )
+    props = HeosProperties(
+        ref.coolprop_name,
+        transport=transport,
+        t_min=ref.min_temperature,
+        t_max=ref.max_temperature,
+        tail=None if table is None else table.buffer_tail(transport),
+    )
+    props.table = table
+    ipar[cyl.I_PROPS] = cyl.PROPS_HEOS if table is None else cyl.PROPS_TABLE
     # initial guess: suction gas filling the cylinder at BDC, compressed isentropically
     y0 = np.zeros(cyl.N_STATE)
     x_start, _, _ = piston_displacement(START_ANGLE, geo.crank_radius, geo.connecting_rod_length)
@@ -275,6 +287,7 @@ def case_mechanism_parameters(case: Case) -> np.ndarray:
         shell_pressure=op.shell_pressure,
         speed=op.shaft_speed,
         drive=case.options.drive,
+        motor=case.motor,
     )
 
 

@@ -4,6 +4,9 @@ Runs, for the mechanism, geometry, operating point and pressure curve of a case,
 the pinned and the flexible crank train under (a) inertia only, (b) the gas load,
 (c) the gas load with the case's bearing damping, and writes ``table1.csv`` (the
 layout of the paper's Table 1) with the figures (:mod:`recipsim.paper_study`).
+The undamped flexible runs (a), (b) are their periodic response at constant speed,
+found by shooting (``--undamped-start periodic``, the default), or a transient of
+``--undamped-revolutions`` from the unloaded (or quasi-static) pose.
 
 The pressure curve is the case's table (``options.pressure = "tabulated"``) or, for a
 cylinder case, the cylinder pressure of its rigid-crank run.
@@ -33,10 +36,20 @@ def add_paper_parser(sub: Any) -> None:
         handler=lambda args, argv: exit_status(lambda: run_paper_command(args), str(args.case))
     )
     p.add_argument(
+        "--undamped-start",
+        choices=("periodic", "unloaded", "quasi_static"),
+        default=None,
+        help=(
+            "undamped runs: their periodic response at constant speed, by shooting "
+            "(default), or a transient from the unloaded or quasi-static pose (default "
+            "unloaded when --undamped-revolutions is given)"
+        ),
+    )
+    p.add_argument(
         "--undamped-revolutions",
         type=int,
-        default=8,
-        help="revolutions of the undamped runs, which never settle (default 8)",
+        default=None,
+        help="revolutions of an undamped transient, the last one reported (default 8)",
     )
 
 
@@ -67,6 +80,7 @@ def run_paper_command(args: argparse.Namespace) -> int:
         source = "the cylinder pressure of the case on the rigid crank"
     out = args.out or Path("reports") / "paper" / case.name
     drive = case.options.drive if case.options.mechanics == "flexible" else "torque_profile"
+    start = args.undamped_start or ("periodic" if args.undamped_revolutions is None else "unloaded")
     study = run_paper_study(
         case.mechanism,
         crank_geometry(case),
@@ -75,12 +89,13 @@ def run_paper_command(args: argparse.Namespace) -> int:
         op.shaft_speed,
         out,
         drive=drive,
-        undamped_revolutions=args.undamped_revolutions,
-        undamped_start="unloaded",
+        undamped_revolutions=8 if args.undamped_revolutions is None else args.undamped_revolutions,
+        undamped_start=start,
         plots=not args.no_plots,
     )
     rpm = op.shaft_speed * 60.0 / (2.0 * math.pi)
     print(f"{case.name}: paper study at {rpm:.0f} rpm, drive {drive}, pressure from {source}")
+    print(f"undamped runs: {study.settings['undamped_runs']}")
     rms = [c for c in study.table1.columns if c == "bearing" or c.endswith("_rms [N]")]
     print("RMS bearing loads [N] (the layout of the paper's Table 1):")
     print(study.table1[rms].round(1).to_string(index=False))

@@ -7,19 +7,31 @@ three loads. This module runs the same study for any mechanism and pressure curv
 ==============  ================================  =====================================
 configuration   cylinder pressure                 flexible run
 ==============  ================================  =====================================
-``inertia``     shell pressure at every angle     no damping, fixed revolutions
-``gas``         the pressure curve                no damping, fixed revolutions
+``inertia``     shell pressure at every angle     no damping (see below)
+``gas``         the pressure curve                no damping (see below)
 ``gas_damped``  the pressure curve                the spec's damping, run to periodic
 ==============  ================================  =====================================
 
 The pinned mechanism is solved algebraically at constant speed (the ``gas_damped``
-configuration reuses the ``gas`` pinned run). Undamped flexible runs never settle to a
-periodic state (nothing dissipates the free vibration), so they are a transient from
-the quasi-static pose, as in a time-marching run of the paper: ``undamped_revolutions``
-revolutions from the quasi-static pinned pose at TDC (or, with
-``undamped_start="unloaded"``, from the pinned pose with undeflected bearings), the last
-one reported. With the default ``drive="torque_profile"`` the crank is driven by the
-pinned driving torque of the same load (the paper's procedure) and its speed is free.
+configuration reuses the ``gas`` pinned run). With the default ``drive="torque_profile"``
+the damped crank is driven by the pinned driving torque of the same load (the paper's
+procedure) and its speed is free.
+
+Undamped flexible runs never settle by running revolutions (nothing dissipates the
+free vibration, Floquet multipliers of modulus 1). With the default
+``undamped_start="periodic"`` they are the periodic forced response, found by shooting
+(:func:`recipsim.solve.shooting.newton_fixed_point` on the one-revolution map,
+integrated with ``method`` at a tenth of ``rtol``: undamped revolutions are noisier
+in the step sequence) at constant crank speed: under the angle-only
+torque profile an undamped crank has no periodic state to find (its speed drifts by
+the energy the torque does not balance, and the response of the undamped
+high-frequency modes is too sensitive to that speed for either solver to settle). The
+reported revolution is integrated once more from the periodic state and its
+periodicity is tested like the damped run's. ``undamped_start="quasi_static"`` or
+``"unloaded"`` instead report a transient as a time-marching run of the paper would:
+``undamped_revolutions`` revolutions under the study's drive from the quasi-static
+pinned pose at TDC, or from the pinned pose with undeflected bearings, the last one
+reported.
 
 :func:`run_paper_study` returns a :class:`PaperStudy` and writes into ``out_dir``
 atomically (built in a temporary directory beside it, then swapped in):
@@ -49,6 +61,7 @@ from typing import Any
 
 import numpy as np
 import pandas as pd
+from scipy.integrate import solve_ivp
 
 from . import __version__
 from .atomic import swap_in
@@ -66,11 +79,21 @@ from .mechanics import (
     tabulated_pressure,
     with_damping,
 )
+from .mechanics import layout as lay
+from .mechanics.flexible import flexible_rhs_tabulated, state_scales
+from .solve.shooting import newton_fixed_point
 
 #: Load configurations, in the paper's order.
 CONFIGURATIONS = ("inertia", "gas", "gas_damped")
-#: Starting poses of the undamped runs.
-UNDAMPED_STARTS = ("quasi_static", "unloaded")
+#: How the undamped runs are made: their periodic response (shooting), or a transient
+#: of fixed revolutions from the quasi-static or the unloaded pose.
+UNDAMPED_STARTS = ("periodic", "quasi_static", "unloaded")
+#: Finite-difference step of the undamped shooting, relative to each state's size.
+_FD_STEP = 0.2
+#: The undamped shooting integrates at this times the study's ``rtol``: an undamped
+#: revolution's end state jumps with the step sequence by ~1e-3 of the vibration
+#: amplitude at rtol 1e-6 under LSODA (the periodicity tolerance), ~1e-4 at 1e-7.
+_PERIODIC_RTOL_FACTOR = 0.1
 #: Runs, as ``<config>_<model>`` (``gas_damped`` reuses the ``gas`` pinned run).
 RUNS = ("inertia_pinned", "inertia_flexible", "gas_pinned", "gas_flexible", "gas_damped_flexible")
 _PINNED_OF = {"inertia": "inertia_pinned", "gas": "gas_pinned", "gas_damped": "gas_pinned"}
@@ -95,13 +118,15 @@ class RunRecord:
     model : str
         ``"pinned"`` or ``"flexible"``.
     mode : str
-        ``"algebraic"`` (pinned), ``"fixed_revolutions"`` (undamped flexible) or
+        ``"algebraic"`` (pinned), ``"shooting"`` (undamped flexible, periodic
+        response), ``"fixed_revolutions"`` (undamped flexible transient) or
         ``"until_periodic"`` (damped flexible).
     revolutions : int
-        Revolutions integrated (0 for pinned).
+        Revolutions integrated (0 for pinned; with shooting every revolution, the
+        Jacobian's included).
     converged : bool or None
-        Periodicity test passed (damped runs); True for pinned (exactly periodic);
-        None for fixed-revolution runs (not tested).
+        Periodicity test passed (damped and shooting runs); True for pinned (exactly
+        periodic); None for fixed-revolution runs (not tested).
     cycle_change : float or None
         Largest state change over the last revolution relative to its scale [-]
         (flexible runs).
@@ -266,6 +291,193 @@ def _table1(pinned: dict[str, PinnedLoads], flexible: dict[str, MechanismResult]
     return table[table1_columns()]
 
 
+# -------------------------------------------------------------------- undamped periodic
+
+
+def undamped_periodic_response(
+    spec: MechanismSpec,
+    geometry: CrankGeometry,
+    pressure_angles: np.ndarray,
+    pressures: np.ndarray,
+    shell_pressure: float,
+    omega: float,
+    *,
+    rtol: float = 1e-6,
+    method: str = "LSODA",
+    samples_per_revolution: int = 360,
+    periodic_tolerance: float = 1e-3,
+    max_revolutions: int = 60,
+) -> MechanismResult:
+    """Periodic response of the flexible mechanism at constant speed, by shooting.
+
+    See :func:`_undamped_periodic` (which also returns the Jacobian, for reuse).
+    """
+    return _undamped_periodic(
+        spec,
+        geometry,
+        pressure_angles,
+        pressures,
+        shell_pressure,
+        omega,
+        rtol=rtol,
+        method=method,
+        samples_per_revolution=samples_per_revolution,
+        periodic_tolerance=periodic_tolerance,
+        max_revolutions=max_revolutions,
+    )[0]
+
+
+def _undamped_periodic(
+    spec: MechanismSpec,
+    geometry: CrankGeometry,
+    pressure_angles: np.ndarray,
+    pressures: np.ndarray,
+    shell_pressure: float,
+    omega: float,
+    *,
+    rtol: float,
+    method: str,
+    samples_per_revolution: int,
+    periodic_tolerance: float,
+    max_revolutions: int,
+    jacobian: tuple[np.ndarray, np.ndarray] | None = None,
+) -> tuple[MechanismResult, tuple[np.ndarray, np.ndarray] | None]:
+    """Periodic response of the flexible mechanism at constant speed, by shooting.
+
+    Newton (:func:`recipsim.solve.shooting.newton_fixed_point`) on the map from the
+    state at TDC to the state one revolution later (``solve_ivp`` with ``method`` at
+    ``rtol``, absolute tolerances ``rtol`` times :func:`state_scales`), over every state
+    but the crank angle and speed (prescribed), from the quasi-static pose; finite
+    differences of a fifth of each state's size over the revolution (the map is nearly
+    linear in the deflections). It works whatever the damping, undamped included,
+    unless a forcing harmonic sits exactly on a natural frequency. The reported
+    revolution is integrated once more from the periodic state by
+    :func:`recipsim.mechanics.simulate_mechanism`, whose periodicity test (the largest
+    state change over it relative to the state's size, below ``periodic_tolerance``)
+    decides ``converged``.
+
+    Parameters
+    ----------
+    spec : MechanismSpec
+        The mechanism (its bearings' damping as given; zero for the paper's study).
+    geometry : CrankGeometry
+    pressure_angles, pressures : numpy.ndarray
+        Periodic cylinder pressure table [rad], [Pa].
+    shell_pressure : float
+        [Pa].
+    omega : float
+        Crank speed [rad/s].
+    rtol : float
+        Relative tolerance of the integration [-].
+    method : str
+        ``solve_ivp`` method.
+    samples_per_revolution : int
+        Samples of the reported revolution.
+    periodic_tolerance : float
+        Periodicity tolerance [-]; Newton aims at half of it.
+    max_revolutions : int
+        Revolutions the shooting may integrate (a Jacobian costs 20).
+
+    jacobian : (numpy.ndarray, numpy.ndarray), optional
+        Scaled Jacobian and its scales from a run of the same mechanism and speed:
+        at constant speed the pressure table only adds a forcing, so the map's linear
+        part is the same for every load and the Jacobian carries over.
+
+    Returns
+    -------
+    MechanismResult
+        The periodic revolution; ``revolutions`` and ``nfev`` count the shooting's too.
+    (numpy.ndarray, numpy.ndarray) or None
+        The Jacobian and its scales, for the next load.
+
+    Raises
+    ------
+    RuntimeError
+        If the reported revolution fails to integrate.
+    """
+    pa = np.ascontiguousarray(pressure_angles, dtype=float)
+    pp = np.ascontiguousarray(pressures, dtype=float)
+    par = mechanism_parameters(
+        spec, geometry, shell_pressure=shell_pressure, speed=omega, drive="constant_speed"
+    )
+    scales = state_scales(par)
+    period = 2.0 * math.pi / omega
+    no_drive = np.zeros(1)
+    dydt = np.zeros(lay.N_STATE)
+    aux = np.zeros(lay.N_AUX)
+
+    def fun(t: float, state: np.ndarray) -> np.ndarray:
+        flexible_rhs_tabulated(t, state, dydt, aux, par, pa, pp, no_drive, no_drive)
+        return dydt.copy()
+
+    y0 = initial_state(par, 0.0, omega, tabulated_pressure(0.0, pa, pp))
+    fixed = (lay.Y_CRANK_ANGLE, lay.Y_CRANK_SPEED)
+    idx = np.array([i for i in range(lay.N_STATE) if i not in fixed])
+    nfev = 0
+
+    def one_revolution(z: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        nonlocal nfev
+        y = y0.copy()
+        y[idx] = z
+        sol = solve_ivp(
+            fun,
+            (0.0, period),
+            y,
+            method=method,
+            rtol=rtol,
+            atol=rtol * scales,
+            dense_output=True,
+            first_step=1e-5 * period,
+        )
+        if not sol.success:
+            raise RuntimeError(f"integration failed: {sol.message}")
+        nfev += sol.nfev
+        return sol.y[idx, -1].copy(), sol.sol(np.linspace(0.0, period, 64))
+
+    def change(z: np.ndarray, g: np.ndarray, samples: np.ndarray) -> float:
+        # simulate_mechanism's periodicity measure
+        size = np.maximum(np.abs(samples).max(axis=1), scales)[idx]
+        return float(np.max(np.abs(g - z) / size))
+
+    z = y0[idx]
+    g, samples = one_revolution(z)
+    ref = np.maximum(np.abs(samples).max(axis=1), scales)[idx] if jacobian is None else jacobian[1]
+    result = newton_fixed_point(
+        one_revolution,
+        z,
+        (g, samples),
+        ref,
+        np.full(idx.size, _FD_STEP),
+        lambda zz, gg, smp: change(zz, gg, smp) < 0.5 * periodic_tolerance,
+        max(max_revolutions - 1, 0),
+        jacobian=None if jacobian is None else jacobian[0],
+        failures=(RuntimeError,),
+    )
+    start = y0.copy()
+    start[idx] = result.z
+    final = simulate_mechanism(
+        spec,
+        geometry,
+        pa,
+        pp,
+        shell_pressure,
+        omega,
+        drive="constant_speed",
+        revolutions=1,
+        rtol=rtol,
+        method=method,
+        samples_per_revolution=samples_per_revolution,
+        y0=start,
+    )
+    periodic = replace(
+        final,
+        revolutions=2 + result.evaluations,
+        converged=bool(final.cycle_change < periodic_tolerance),
+        nfev=final.nfev + nfev,
+    )
+    return periodic, None if result.jacobian is None else (result.jacobian, ref)
+
+
 # ------------------------------------------------------------------------------- study
 
 
@@ -283,7 +495,7 @@ def run_paper_study(
     undamped_revolutions: int = 8,
     samples_per_revolution: int = 360,
     plots: bool = True,
-    undamped_start: str = "quasi_static",
+    undamped_start: str = "periodic",
     periodic_tolerance: float = 1e-3,
     max_revolutions: int = 30,
 ) -> PaperStudy:
@@ -313,21 +525,23 @@ def run_paper_study(
     method : str
         ``solve_ivp`` method.
     undamped_revolutions : int
-        Revolutions of the undamped runs (a transient from the quasi-static pose, as in
-        a time-marching run of the paper); the last one is reported.
+        Revolutions of the undamped transients (``undamped_start`` other than
+        ``"periodic"``); the last one is reported.
     samples_per_revolution : int
         Samples of every reported revolution (equal crank-angle steps from TDC).
     plots : bool
         Write the figures.
-    undamped_start : {"quasi_static", "unloaded"}
-        Initial state of the undamped runs at TDC: bearings deflected by the pinned
-        loads (``quasi_static``, the default of
-        :func:`recipsim.mechanics.simulate_mechanism`), or undeflected (``unloaded``),
+    undamped_start : {"periodic", "quasi_static", "unloaded"}
+        The undamped runs: their periodic response at constant speed, by shooting
+        (``periodic``); or a transient of ``undamped_revolutions`` from TDC with the
+        bearings deflected by the pinned loads (``quasi_static``, the default of
+        :func:`recipsim.mechanics.simulate_mechanism`) or undeflected (``unloaded``),
         which starts a much larger free vibration.
     periodic_tolerance : float
-        Periodicity tolerance of the damped run [-].
+        Periodicity tolerance of the damped and the shooting runs [-].
     max_revolutions : int
-        Revolution limit of the damped run.
+        Revolution limit of the damped run; of a shooting run, twice this (its
+        Jacobian costs one revolution per state).
 
     Returns
     -------
@@ -381,31 +595,52 @@ def run_paper_study(
         timings[name] = time.perf_counter() - t0
         runs[name] = RunRecord(name, load, "pinned", "algebraic", 0, True, None, 0, timings[name])
 
+    jacobian: tuple[np.ndarray, np.ndarray] | None = None
     for config in CONFIGURATIONS:
         name = f"{config}_flexible"
         pressures = loads["inertia" if config == "inertia" else "gas"]
         damped = config == "gas_damped"
-        options: dict[str, Any] = {}
-        if not damped and undamped_start == "unloaded":
-            par = mechanism_parameters(undamped, geometry, shell_pressure=shell_pressure)
-            options["y0"] = initial_state(par, 0.0, omega, static_deflection=False)
         t0 = time.perf_counter()
-        result_f = simulate_mechanism(
-            spec if damped else undamped,
-            geometry,
-            angles,
-            pressures,
-            shell_pressure,
-            omega,
-            drive=drive,
-            revolutions=None if damped else undamped_revolutions,
-            rtol=rtol,
-            method=method,
-            samples_per_revolution=samples_per_revolution,
-            periodic_tolerance=periodic_tolerance,
-            max_revolutions=max_revolutions,
-            **options,
-        )
+        converged: bool | None
+        if not damped and undamped_start == "periodic":
+            result_f, jacobian = _undamped_periodic(
+                undamped,
+                geometry,
+                angles,
+                pressures,
+                shell_pressure,
+                omega,
+                rtol=_PERIODIC_RTOL_FACTOR * rtol,
+                method=method,
+                samples_per_revolution=samples_per_revolution,
+                periodic_tolerance=periodic_tolerance,
+                max_revolutions=2 * max_revolutions,
+                jacobian=jacobian,
+            )
+            mode, converged = "shooting", result_f.converged
+        else:
+            options: dict[str, Any] = {}
+            if not damped and undamped_start == "unloaded":
+                par = mechanism_parameters(undamped, geometry, shell_pressure=shell_pressure)
+                options["y0"] = initial_state(par, 0.0, omega, static_deflection=False)
+            result_f = simulate_mechanism(
+                spec if damped else undamped,
+                geometry,
+                angles,
+                pressures,
+                shell_pressure,
+                omega,
+                drive=drive,
+                revolutions=None if damped else undamped_revolutions,
+                rtol=rtol,
+                method=method,
+                samples_per_revolution=samples_per_revolution,
+                periodic_tolerance=periodic_tolerance,
+                max_revolutions=max_revolutions,
+                **options,
+            )
+            mode = "until_periodic" if damped else "fixed_revolutions"
+            converged = result_f.converged if damped else None
         flexible[name] = result_f
         gas = _pressures(result_f.crank_angle, angles, pressures)
         cycles[name] = flexible_table(result_f, gas)
@@ -414,9 +649,9 @@ def run_paper_study(
             name,
             config,
             "flexible",
-            "until_periodic" if damped else "fixed_revolutions",
+            mode,
             result_f.revolutions,
-            result_f.converged if damped else None,
+            converged,
             result_f.cycle_change,
             result_f.nfev,
             timings[name],
@@ -485,9 +720,11 @@ def _settings(
             for name, b in zip(BEARING_NAMES, spec.bearings, strict=True)
         },
         "undamped_runs": (
-            f"transient from the {options['undamped_start'].replace('_', '-')} pose at TDC, "
-            f"{options['undamped_revolutions']} revolutions, the last one reported, as in a "
-            "time-marching run of the paper (no dissipation: never periodic)"
+            "periodic response at constant speed, by shooting (Newton on the one-revolution map)"
+            if options["undamped_start"] == "periodic"
+            else f"transient from the {options['undamped_start'].replace('_', '-')} pose at "
+            f"TDC, {options['undamped_revolutions']} revolutions, the last one reported, as "
+            "in a time-marching run of the paper (no dissipation: never periodic)"
         ),
         "damped_run": "from the quasi-static pose until periodic",
         **options,

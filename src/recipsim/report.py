@@ -66,6 +66,9 @@ def provenance(solution: PeriodicSolution, argv: list[str] | None = None) -> dic
             "wall_time_s": solution.wall_time,
         }
     )
+    table = getattr(solution.model.props, "table", None)
+    if table is not None:  # properties = "table": its measured error against HEOS, cache
+        meta.update(table.provenance())
     return meta
 
 

@@ -51,6 +51,7 @@ CYCLE_COLUMNS: list[tuple[str, int]] = [
     ("suction_mass_flow [kg/s]", cyl.A_MDOT_SUC),
     ("discharge_mass_flow [kg/s]", cyl.A_MDOT_DIS),
     ("leakage_mass_flow [kg/s]", cyl.A_MDOT_LEAK),
+    ("leakage_eccentricity [-]", cyl.A_LEAK_ECC),
     ("heat_flow_to_gas [W]", cyl.A_QDOT),
     ("heat_transfer_coefficient [W/(m2 K)]", cyl.A_HTC),
     ("piston_displacement [m]", cyl.A_DISPLACEMENT),
@@ -76,6 +77,7 @@ GAS_COLUMNS = {
     "suction_mass_flow [kg/s]",
     "discharge_mass_flow [kg/s]",
     "leakage_mass_flow [kg/s]",
+    "leakage_eccentricity [-]",
     "heat_flow_to_gas [W]",
     "heat_transfer_coefficient [W/(m2 K)]",
 }
@@ -346,6 +348,7 @@ def summary(
     row.update(gas)
     row["shaft_power [W]"] = p_shaft
     row["bearing_dissipation_power [W]"] = bearing_loss * freq
+    row.update(_motor_metrics(case, cycle, freq, p_shaft))
     row.update(mech)
     row.update(_solver_metrics(solution))
 
@@ -375,6 +378,28 @@ def summary(
     return row
 
 
+MOTOR_SUMMARY = ("motor_input_power [W]", "motor_rotor_loss_power [W]", "motor_slip [-]")
+
+
+def _motor_metrics(case: Case, cycle: pd.DataFrame, freq: float, p_shaft: float) -> dict[str, Any]:
+    """Air-gap power, rotor copper loss and slip of the induction motor drive (NaN for
+    other drives). The air-gap power ``omega_s * mean(T)`` (time mean) is the motor's
+    input less its stator losses, which are not modelled."""
+    if case.options.drive != "induction_motor" or case.motor is None:
+        return dict.fromkeys(MOTOR_SUMMARY, math.nan)
+    sync = case.motor.synchronous_speed
+    torque = cycle["shaft_torque [N m]"].to_numpy()
+    speed = cycle["crank_speed [rad/s]"].to_numpy()
+    # time mean of T over one revolution from uniform crank-angle samples: dt = dtheta/omega
+    mean_torque = float(np.mean(torque / speed)) * 2.0 * math.pi * freq
+    p_in = sync * mean_torque
+    return {
+        "motor_input_power [W]": p_in,
+        "motor_rotor_loss_power [W]": p_in - p_shaft,
+        "motor_slip [-]": 1.0 - 2.0 * math.pi * freq / sync,
+    }
+
+
 def _solver_metrics(solution: PeriodicSolution | None) -> dict[str, Any]:
     if solution is None:  # inverse dynamics only: nothing to converge
         return {
@@ -386,6 +411,8 @@ def _solver_metrics(solution: PeriodicSolution | None) -> dict[str, Any]:
             "rejected_steps [-]": 0,
             "events [-]": 0,
             "wall_time [s]": 0.0,
+            "periodic_method": "none",
+            "newton_iterations [-]": 0,
         }
     return {
         "revolutions [-]": solution.revolutions,
@@ -396,4 +423,6 @@ def _solver_metrics(solution: PeriodicSolution | None) -> dict[str, Any]:
         "rejected_steps [-]": solution.rejected,
         "events [-]": solution.events,
         "wall_time [s]": solution.wall_time,
+        "periodic_method": solution.method,
+        "newton_iterations [-]": solution.newton_iterations,
     }

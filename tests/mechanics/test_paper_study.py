@@ -2,13 +2,20 @@
 run end to end with the reference compressor and the smoothed ideal-cycle test curve
 (conftest), and the mechanism figures on synthetic tables.
 
-Measured with the defaults (undamped runs: 8 revolutions from the quasi-static pose),
-RMS loads [N] for primary / secondary / eccentric / pin / piston_top / piston_skirt:
+Measured with undamped runs of 8 revolutions from the quasi-static pose (the ``study``
+fixture), RMS loads [N] for primary / secondary / eccentric / pin / piston_top /
+piston_skirt:
 inertia pinned 97.3 / 37.4 / 59.9 / 32.1 / 2.84 / 2.84 (undamped flexible +0.1 to
 +0.8 %); gas pinned 261.2 / 100.5 / 160.7 / 170.9 / 7.45 / 7.45, undamped flexible
 +11.9 / +73.7 / +1.0 / +0.5 / +0.9 / +0.9 %, damped flexible +1.8 / +4.1 / +0.4 / +0.2 /
 +0.2 / +0.2 %; largest orbits (primary, secondary) 3.1 / 1.5 um (inertia), 17.2 / 10.9 um
 (gas), 15.1 / 7.8 um (gas damped). About 4 s for the whole study, figures included.
+
+The default undamped runs are the periodic response by shooting (``periodic_study``
+fixture, about 7 s): measured inertia +0.4 / +0.7 / +0.1 / +0.1 / +0.1 / +0.1 % over
+pinned (the forced response to the inertia load alone is nearly quasi-static), gas
++24.4 / +165.6 / +0.6 / +0.3 / +0.6 / +0.6 %; 23 revolutions for the inertia run (one
+Jacobian), 5 for the gas run (the same Jacobian).
 """
 
 from __future__ import annotations
@@ -80,6 +87,21 @@ def study(
         out_dir,
         undamped_revolutions=UNDAMPED_REVOLUTIONS,
         samples_per_revolution=SAMPLES,
+        undamped_start="quasi_static",
+    )
+
+
+@pytest.fixture(scope="module")
+def periodic_study(
+    spec: MechanismSpec,
+    geometry: CrankGeometry,
+    curve: PressureCurve,
+    shell_pressure: float,
+    omega: float,
+) -> PaperStudy:
+    """The defaults: undamped runs are the periodic response, by shooting."""
+    return run_paper_study(
+        spec, geometry, curve, shell_pressure, omega, None, samples_per_revolution=90
     )
 
 
@@ -320,6 +342,63 @@ def test_unloaded_start_reproduces_the_papers_large_excess(
     assert np.all(column(result, "inertia_flexible_vs_pinned [-]") > 0.1)
     assert np.all(column(result, "gas_flexible_vs_pinned [-]") > 0.1)
     assert np.all(np.abs(column(result, "gas_damped_flexible_vs_pinned [-]")) < 0.05)
+
+
+def test_undamped_periodic_response_by_shooting(periodic_study: PaperStudy) -> None:
+    """Default undamped runs: the periodic response, converged (its reported revolution
+    repeats to the periodicity tolerance, checked by the same test as the damped run),
+    where running revolutions never settles. The Jacobian carries over from the
+    inertia to the gas load (same linear part at constant speed): the gas run needs
+    far fewer revolutions. The undamped forced response is above pinned everywhere
+    and, for the gas load, above the damped response on the rotor bearings."""
+    study = periodic_study
+    assert study.settings["undamped_start"] == "periodic"
+    assert "shooting" in study.settings["undamped_runs"]
+    for name in ("inertia_flexible", "gas_flexible"):
+        record = study.runs[name]
+        assert record.mode == "shooting" and record.converged is True, record
+        assert record.cycle_change is not None and record.cycle_change < 1e-3
+        speed = study.cycles[name]["crank_speed [rad/s]"].to_numpy()
+        np.testing.assert_allclose(speed, speed[0], rtol=1e-12)  # constant speed
+    assert study.runs["inertia_flexible"].revolutions > 20  # a Jacobian: 20 revolutions
+    assert study.runs["gas_flexible"].revolutions < 10
+    for config in ("inertia", "gas"):
+        assert np.all(column(study, f"{config}_flexible_vs_pinned [-]") > -1e-3), config
+    rotor = [BEARING_NAMES.index("primary"), BEARING_NAMES.index("secondary")]
+    assert np.all(
+        column(study, "gas_flexible_rms [N]")[rotor]
+        > column(study, "gas_damped_flexible_rms [N]")[rotor]
+    )
+
+
+def test_undamped_periodic_response_is_a_fixed_point(
+    periodic_study: PaperStudy,
+    spec: MechanismSpec,
+    geometry: CrankGeometry,
+    curve: PressureCurve,
+    shell_pressure: float,
+    omega: float,
+) -> None:
+    """Independent check: revolutions run on from the periodic state by the plain
+    driver stay periodic (each revolution's change below the tolerance), and their
+    RMS loads are those of the study (within 1e-3: the periodicity tolerance)."""
+    from recipsim.mechanics import with_damping
+
+    periodic = periodic_study.flexible["gas_flexible"]
+    result = paper_study.simulate_mechanism(
+        with_damping(spec, 0.0),
+        geometry,
+        curve.crank_angle,
+        curve.pressure,
+        shell_pressure,
+        omega,
+        revolutions=2,
+        rtol=1e-7,
+        samples_per_revolution=90,
+        y0=periodic.states[0],
+    )
+    assert result.cycle_change < 1e-3
+    np.testing.assert_allclose(result.force_rms, periodic.force_rms, rtol=1e-3)
 
 
 def test_invalid_settings_are_rejected(

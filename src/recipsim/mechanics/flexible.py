@@ -20,7 +20,8 @@ along the piston axis.
 Drives (``par[P_DRIVE]``): ``constant_speed`` prescribes the spin (crank speed state
 constant, zero crank acceleration) and returns the torque about the rotor axis that
 does it; ``torque_profile`` applies a periodic table of torque vs crank angle and
-the crank speed is free.
+the crank speed is free; ``induction_motor`` applies the motor's torque at the rotor's
+spin rate (:mod:`recipsim.motor`), the crank speed is free.
 
 All compiled functions take every parameter as an argument and do not allocate in
 the right-hand side.
@@ -34,6 +35,7 @@ import numpy as np
 from numba import njit
 
 from ..kinematics import piston_displacement, rod_angle, rod_centre_of_mass
+from ..motor import induction_motor_torque
 from . import layout as lay
 from .bearings import bearing_force, bearing_spring_energy
 from .bodies import planar_marker, rotor_marker, rotor_moment
@@ -208,11 +210,21 @@ def flexible_rhs(
     pdot = (mx - bed * (i_p * wz - i_t * ald * sb)) / i_t
     aldd = (pdot + ald * bed * sb) / cb
     bedd = (my - wx * (i_t * ald * sb - i_p * wz)) / i_t
-    if int(par[lay.P_DRIVE]) == lay.DRIVE_CONSTANT_SPEED:
+    drive = int(par[lay.P_DRIVE])
+    if drive == lay.DRIVE_CONSTANT_SPEED:
         thdd = 0.0
         torque = i_p * (aldd * sb + ald * bed * cb) - mz
     else:
-        torque = periodic_linear_interpolation(th, drive_angles, drive_torques)
+        if drive == lay.DRIVE_INDUCTION_MOTOR:
+            torque = induction_motor_torque(
+                wz,
+                par[lay.P_MOTOR_SYNC_SPEED],
+                par[lay.P_MOTOR_BREAKDOWN_TORQUE],
+                par[lay.P_MOTOR_BREAKDOWN_SLIP],
+                par[lay.P_MOTOR_BACKWARD_RATIO],
+            )
+        else:
+            torque = periodic_linear_interpolation(th, drive_angles, drive_torques)
         thdd = (mz + torque) / i_p - aldd * sb - ald * bed * cb
 
     # ---------------------------------------------------- rod Newton-Euler

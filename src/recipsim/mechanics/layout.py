@@ -96,15 +96,21 @@ P_PISTON_CROWN_U = 18  # crown centre, same convention [m]
 P_PISTON_TOP_U = 19  # piston_top bearing marker, same convention [m]
 P_PISTON_SKIRT_U = 20  # piston_skirt bearing marker, same convention [m]
 P_PIN_FROM_CROWN = 21  # pin distance below the crown [m]
-P_BEARINGS = 24  # first bearing row
+P_MOTOR_SYNC_SPEED = 22  # induction motor: synchronous speed [rad/s]
+P_MOTOR_BREAKDOWN_TORQUE = 23  # induction motor: forward-field peak torque [N m]
+P_MOTOR_BREAKDOWN_SLIP = 24  # induction motor: slip at the peak [-]
+P_MOTOR_BACKWARD_RATIO = 25  # induction motor: backward/forward field ratio [-]
+P_BEARINGS = 26  # first bearing row
 N_PAR = P_BEARINGS + N_BEARINGS * N_BEARING_PAR
 
 #: Drive codes (``par[P_DRIVE]``).
 DRIVE_CONSTANT_SPEED = 0
 DRIVE_TORQUE_PROFILE = 1
+DRIVE_INDUCTION_MOTOR = 2
 DRIVE_CODES: dict[str, int] = {
     "constant_speed": DRIVE_CONSTANT_SPEED,
     "torque_profile": DRIVE_TORQUE_PROFILE,
+    "induction_motor": DRIVE_INDUCTION_MOTOR,
 }
 
 # ---------------------------------------------------------------------------- state

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..motor import MotorSpec
 from . import layout as lay
 from .spec import CrankGeometry, MechanismSpec
 
@@ -20,6 +21,7 @@ def mechanism_parameters(
     shell_pressure: float = 0.0,
     speed: float = 0.0,
     drive: str = "constant_speed",
+    motor: MotorSpec | None = None,
 ) -> np.ndarray:
     """Parameter array of the pinned and flexible models.
 
@@ -31,7 +33,9 @@ def mechanism_parameters(
         Pressure acting under the piston [Pa].
     speed : float
         Crank speed of the ``constant_speed`` drive [rad/s] (ignored by other drives).
-    drive : {"constant_speed", "torque_profile"}
+    drive : {"constant_speed", "torque_profile", "induction_motor"}
+    motor : MotorSpec, optional
+        The torque-speed curve; required by the ``induction_motor`` drive.
 
     Returns
     -------
@@ -47,6 +51,13 @@ def mechanism_parameters(
     par[lay.P_SHELL_PRESSURE] = shell_pressure
     par[lay.P_SPEED] = speed
     par[lay.P_DRIVE] = lay.DRIVE_CODES[drive]
+    if drive == "induction_motor":
+        if motor is None:
+            raise ValueError("the induction_motor drive needs a MotorSpec")
+        par[lay.P_MOTOR_SYNC_SPEED] = motor.synchronous_speed
+        par[lay.P_MOTOR_BREAKDOWN_TORQUE] = motor.breakdown_torque
+        par[lay.P_MOTOR_BREAKDOWN_SLIP] = motor.breakdown_slip
+        par[lay.P_MOTOR_BACKWARD_RATIO] = motor.backward_field_ratio
 
     rotor = spec.rotor
     par[lay.P_ROTOR_MASS] = rotor.mass

@@ -1,4 +1,5 @@
-"""Periodic steady state by revolution-by-revolution iteration, for every scene.
+"""Periodic steady state of every scene: revolution iteration, and the dispatch to
+shooting (:mod:`recipsim.solve.shooting`) by ``solver.periodic``.
 
 Each revolution starts at 270 deg (both valves shut) from the end state of the previous one
 (quadratures reset). The cycle residual is the largest of: the change of the
@@ -7,7 +8,9 @@ velocity relative to their scales, mechanism states relative to their largest va
 over the revolution) and the relative change of the revolution's suction mass,
 indicated work, mass-weighted discharge enthalpy and drive work from the
 previous revolution. Undamped flexible bearings never settle this way (their free
-vibration does not decay); such runs end at ``max_revolutions`` unconverged.
+vibration does not decay) and lightly damped ones settle slowly: ``"auto"`` hands
+such runs over to shooting (see :func:`solve_periodic`), ``"revolutions"`` ends them
+at ``max_revolutions`` unconverged.
 Back-flow through the discharge valve comes from a plenum at
 the mass-weighted discharge enthalpy of the previous revolution (Bell et al.).
 """
@@ -82,7 +85,12 @@ class Revolution:
 
 @dataclass
 class PeriodicSolution:
-    """The converged revolution and how it was reached."""
+    """The converged revolution and how it was reached.
+
+    ``revolutions`` counts every integrated revolution, including the finite-difference
+    Jacobian columns and trial steps of shooting; ``residual_history`` holds the cycle
+    residual of every revolution that was not a Jacobian column.
+    """
 
     model: Model
     final: Revolution
@@ -95,6 +103,13 @@ class PeriodicSolution:
     rejected: int = 0
     events: int = 0
     wall_time: float = 0.0
+    #: how the periodic state was found: "revolutions" or "shooting"
+    method: str = "revolutions"
+    #: shooting only: Newton steps taken, Jacobians built by finite differences and the
+    #: revolutions they cost (included in ``revolutions``)
+    newton_iterations: int = 0
+    jacobians: int = 0
+    jacobian_revolutions: int = 0
 
 
 def sample_times(model: Model, n: int) -> tuple[np.ndarray, np.ndarray]:
@@ -167,6 +182,7 @@ def integrate_revolution(
         sample_modes,
         stats,
     )
+    model.props.raise_if_interrupted()  # a Ctrl-C caught inside the property callback
     status = int(stats[ST_STATUS])
     if status != 0:
         _raise_failure(model, status, stats[ST_T], y_run, mode_run)
@@ -213,10 +229,13 @@ def _raise_failure(model: Model, status: int, t: float, y: np.ndarray, mode: np.
     )
 
 
-def cycle_residual(model: Model, rev: Revolution, previous: Revolution | None) -> float:
-    """Largest relative change over one revolution (see module docstring)."""
-    controlled = model.scale[: model.n_err] > 0.0
-    d = np.abs(rev.y_end[: model.n_err] - rev.y_start[: model.n_err])
+def residual_reference(model: Model, rev: Revolution) -> np.ndarray:
+    """Size against which each error-controlled state's change over ``rev`` is judged.
+
+    T and rho: their values at the start; reed lift and velocity: their scales;
+    mechanism states: their largest magnitude over the revolution (at least their
+    scale). Shape ``(model.n_err,)``; entries of zero scale are quadratures.
+    """
     ref = model.scale[: model.n_err].copy()
     if model.has_gas:
         ref[cyl.Y_T] = rev.y_start[cyl.Y_T]
@@ -226,22 +245,132 @@ def cycle_residual(model: Model, rev: Revolution, previous: Revolution | None) -
         # mechanism states relative to their size over the revolution (at least their scale)
         size = np.abs(rev.samples[:, m0 : m0 + mlay.N_STATE]).max(axis=0)
         ref[m0 : m0 + mlay.N_STATE] = np.maximum(size, ref[m0 : m0 + mlay.N_STATE])
+    return ref
+
+
+def state_change(model: Model, rev: Revolution) -> float:
+    """Largest change of an error-controlled state over ``rev`` relative to
+    :func:`residual_reference`; at least 1 if the discrete modes differ at its ends."""
+    controlled = model.scale[: model.n_err] > 0.0
+    d = np.abs(rev.y_end[: model.n_err] - rev.y_start[: model.n_err])
+    ref = residual_reference(model, rev)
     res = float(np.max(d[controlled] / ref[controlled]))
     if not np.array_equal(rev.mode_start, rev.mode_end):
         res = max(res, 1.0)
+    return res
+
+
+def cycle_residual(model: Model, rev: Revolution, previous: Revolution | None) -> float:
+    """Largest relative change over one revolution (see module docstring).
+
+    :func:`state_change` of ``rev`` and the relative change of its suction mass,
+    indicated work, discharge enthalpy and drive work from ``previous`` (at least 1
+    without a previous revolution).
+    """
+    res = state_change(model, rev)
     if previous is None:
         return max(res, 1.0)
-    checks = [cyl.Q_MSUC_IN, cyl.Q_WORK, cyl.Q_HDIS_OUT] if model.has_gas else []
-    if model.scene != scenes.SCENE_CYLINDER:
-        checks.append(model.mechanism_offset + mlay.N_STATE + scenes.MQ_DRIVE)
-    for q in checks:
+    for q in _revolution_totals(model):
         a, b = rev.y_end[q], previous.y_end[q]
         res = max(res, abs(a - b) / max(abs(a), abs(b), 1e-300))
     return res
 
 
+def _revolution_totals(model: Model) -> list[int]:
+    """Quadratures whose change between revolutions the cycle residual checks."""
+    checks = [cyl.Q_MSUC_IN, cyl.Q_WORK, cyl.Q_HDIS_OUT] if model.has_gas else []
+    if model.scene != scenes.SCENE_CYLINDER:
+        checks.append(model.mechanism_offset + mlay.N_STATE + scenes.MQ_DRIVE)
+    return checks
+
+
+def discharge_enthalpy(model: Model, rev: Revolution) -> float | None:
+    """Mass-weighted enthalpy of the gas discharged over ``rev`` [J/kg] (None without
+    gas or discharge)."""
+    if not model.has_gas:
+        return None
+    m_out = rev.y_end[cyl.Q_MDIS_OUT]
+    return float(rev.y_end[cyl.Q_HDIS_OUT] / m_out) if m_out > 0.0 else None
+
+
+class _Tally:
+    """Integrator counters over every revolution of a solve."""
+
+    def __init__(self) -> None:
+        self.revolutions = 0
+        self.nfev = 0
+        self.steps = 0
+        self.rejected = 0
+        self.events = 0
+
+    def add(self, rev: Revolution) -> None:
+        self.revolutions += 1
+        self.nfev += int(rev.stats[ST_NFEV])
+        self.steps += int(rev.stats[ST_NACCEPT])
+        self.rejected += int(rev.stats[ST_NREJECT])
+        self.events += int(rev.stats[ST_NEVENTS])
+
+
+#: ``solver.periodic = "auto"``: revolutions hand over to shooting when the residual's
+#: decay over the last ``_RATE_WINDOW`` revolutions predicts more revolutions to the
+#: tolerance than shooting needs (one per unknown for the Jacobian plus
+#: ``_SHOOTING_OVERHEAD``), and not before ``_AUTO_MIN_REVOLUTIONS`` revolutions.
+_RATE_WINDOW = 2
+_SHOOTING_OVERHEAD = 4
+_AUTO_MIN_REVOLUTIONS = 4
+
+
+def predicted_revolutions(history: list[float], tolerance: float) -> float:
+    """Revolutions still needed if the residual keeps decaying at its recent rate.
+
+    The rate is the geometric mean of the residual's ratio over the last
+    ``_RATE_WINDOW`` revolutions; inf if it does not decay.
+    """
+    if len(history) <= _RATE_WINDOW:
+        return math.inf
+    now, before = history[-1], history[-1 - _RATE_WINDOW]
+    if now < tolerance:
+        return 0.0
+    if not (0.0 < now < before):
+        return math.inf
+    rate = (now / before) ** (1.0 / _RATE_WINDOW)
+    return math.log(tolerance / now) / math.log(rate)
+
+
 def solve_periodic(model: Model) -> PeriodicSolution:
+    """Periodic steady state with the solver of ``model.case.solver.periodic``.
+
+    ``"revolutions"``: revolution iteration (:func:`solve_revolutions`);
+    ``"shooting"``: Newton on the one-revolution map
+    (:func:`recipsim.solve.shooting.solve_shooting`); ``"auto"``: revolutions that
+    hand over to shooting (from the state reached) when the residual's decay rate
+    predicts more revolutions than shooting costs: undamped or lightly damped
+    flexible bearings, whose free vibration decays slowly or not at all.
+
+    ``revolutions`` of the result counts every integrated revolution, those of the
+    shooting Jacobians included.
+
+    Raises
+    ------
+    SolverError
+        If a revolution fails (with crank angle and state).
+    """
+    method = model.case.solver.periodic
+    if method == "shooting":
+        from .shooting import solve_shooting
+
+        return solve_shooting(model)
+    return solve_revolutions(model, hand_over=method == "auto")
+
+
+def solve_revolutions(model: Model, hand_over: bool = False) -> PeriodicSolution:
     """Iterate revolutions until the cycle residual is below the case's tolerance.
+
+    Parameters
+    ----------
+    model : Model
+    hand_over : bool
+        Hand over to shooting when revolutions converge too slowly (``"auto"``).
 
     Raises
     ------
@@ -255,20 +384,16 @@ def solve_periodic(model: Model) -> PeriodicSolution:
     h = model.period * 1e-4
     previous: Revolution | None = None
     history: list[float] = []
-    nfev = steps = rejected = events = 0
+    tally = _Tally()
     rev: Revolution | None = None
     residual = math.inf
     converged = False
-    count = 0
     for count in range(1, s.max_revolutions + 1):
         rev, h = integrate_revolution(model, y, mode, h, s.samples_per_revolution)
-        nfev += int(rev.stats[ST_NFEV])
-        steps += int(rev.stats[ST_NACCEPT])
-        rejected += int(rev.stats[ST_NREJECT])
-        events += int(rev.stats[ST_NEVENTS])
-        m_out = rev.y_end[cyl.Q_MDIS_OUT]
-        if model.has_gas and m_out > 0.0:
-            model.set_discharge_enthalpy(rev.y_end[cyl.Q_HDIS_OUT] / m_out)
+        tally.add(rev)
+        enthalpy = discharge_enthalpy(model, rev)
+        if enthalpy is not None:
+            model.set_discharge_enthalpy(enthalpy)
         residual = cycle_residual(model, rev, previous)
         history.append(residual)
         y = rev.y_end.copy()
@@ -277,18 +402,27 @@ def solve_periodic(model: Model) -> PeriodicSolution:
         if residual < s.cycle_tolerance and count >= s.min_revolutions:
             converged = True
             break
+        if hand_over and count >= _AUTO_MIN_REVOLUTIONS:
+            from .shooting import shooting_cost, solve_shooting
+
+            cost = shooting_cost(model, mode)
+            if (
+                cost < s.max_revolutions - count
+                and predicted_revolutions(history, s.cycle_tolerance) > cost
+            ):
+                return solve_shooting(model, start=(rev, h), history=history, tally=tally, t0=start)
     assert rev is not None
     return PeriodicSolution(
         model=model,
         final=rev,
-        revolutions=count,
+        revolutions=tally.revolutions,
         residual=residual,
         converged=converged,
         residual_history=history,
-        nfev=nfev,
-        steps=steps,
-        rejected=rejected,
-        events=events,
+        nfev=tally.nfev,
+        steps=tally.steps,
+        rejected=tally.rejected,
+        events=tally.events,
         wall_time=time.perf_counter() - start,
     )
 

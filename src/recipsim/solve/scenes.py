@@ -108,18 +108,32 @@ def leakage_eccentricity(ym, mpar, piston_length: float, clearance: float) -> fl
 
     The gap flow per unit pressure drop goes as ``(1 + 1.5 eps^2)`` locally; along the
     land the resistances add in series, so the effective ``eps`` follows from the mean
-    of ``1 / (1 + 1.5 eps(s)^2)`` over the length (Simpson, exact enough for the linear
-    eps(s) of a rigid tilted piston). Clipped at 0.95: the linear bearing law of the
-    piston does not know the clearance.
+    of ``1 / (1 + 1.5 eps(s)^2)`` over the length (:func:`series_eccentricity`, exact
+    for the linear eps(s) of a rigid tilted piston). The end offsets are clipped at
+    +-0.95 of the clearance: the linear bearing law of the piston does not know it.
     """
     if clearance <= 0.0:
         return 0.0
-    acc = 0.0
-    for k in range(3):
-        e = abs(piston_lateral_offset(ym, mpar, 0.5 * k * piston_length)) / clearance
-        e = min(e, 0.95)
-        acc += (4.0 if k == 1 else 1.0) / (1.0 + 1.5 * e * e)
-    mean = acc / 6.0
+    e_crown = piston_lateral_offset(ym, mpar, 0.0) / clearance
+    e_skirt = piston_lateral_offset(ym, mpar, piston_length) / clearance
+    return series_eccentricity(min(max(e_crown, -0.95), 0.95), min(max(e_skirt, -0.95), 0.95))
+
+
+@njit(cache=True)
+def series_eccentricity(e0: float, e1: float) -> float:
+    """Uniform eccentricity ratio with the leakage of a gap whose eccentricity ratio
+    varies linearly from ``e0`` to ``e1`` along the land [-].
+
+    ``1 / (1 + 1.5 eps_eff^2) = mean over s of 1 / (1 + 1.5 eps(s)^2)``; for linear
+    eps(s) the mean is ``(atan(k e1) - atan(k e0)) / (k (e1 - e0))``, ``k = sqrt(1.5)``.
+    """
+    k = math.sqrt(1.5)
+    de = e1 - e0
+    if abs(de) < 1e-6:
+        em = 0.5 * (e0 + e1)
+        mean = 1.0 / (1.0 + 1.5 * em * em)  # error O(de^2) < 1e-12
+    else:
+        mean = (math.atan(k * e1) - math.atan(k * e0)) / (k * de)
     return math.sqrt(max((1.0 / mean - 1.0) / 1.5, 0.0))
 
 

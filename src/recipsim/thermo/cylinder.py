@@ -48,6 +48,7 @@ from .properties import (
     PROP_VISCOSITY,
     STATUS_OK,
 )
+from .property_table import STATUS_FALLBACK, table_props
 
 # ---- states -----------------------------------------------------------------------
 Y_T = 0
@@ -82,7 +83,10 @@ I_VALVES = 1
 I_FLOW = 2
 I_HT = 3
 I_LEAK = 4
-N_IPAR = 5
+I_PROPS = 5  # property backend: PROPS_HEOS (the ``props`` callback) or PROPS_TABLE
+N_IPAR = 6
+PROPS_HEOS = 0
+PROPS_TABLE = 1  # table in pbuf after the outputs (property_table); HEOS where it has no data
 VALVES_IDEAL = 0
 VALVES_QUASI_STATIC = 1
 VALVES_REED = 2
@@ -169,7 +173,8 @@ A_PISTON_VELOCITY = 23  # dx/dt [m/s]
 A_FORCE_REED_S = 24  # net opening force on the suction reed [N]
 A_FORCE_REED_D = 25
 A_STATUS = 26
-N_AUX = 27
+A_LEAK_ECC = 27  # eccentricity ratio of the piston in the bore seen by the leak [-]
+N_AUX = 28
 
 
 @njit(cache=True)
@@ -236,7 +241,12 @@ def cylinder_gas_rhs(
     dvdt = ap * xdot
     temp = y[Y_T]
     rho = y[Y_RHO]
-    status = props(temp, rho)
+    if ipar[I_PROPS] == PROPS_TABLE:
+        status = table_props(temp, rho, pbuf)
+        if status == STATUS_FALLBACK:
+            status = props(temp, rho)
+    else:
+        status = props(temp, rho)
     if status != STATUS_OK:
         aux[A_STATUS] = status
         return status
@@ -422,6 +432,7 @@ def cylinder_gas_rhs(
     aux[A_MDOT_SUC] = mdot_s
     aux[A_MDOT_DIS] = mdot_d
     aux[A_MDOT_LEAK] = mdot_leak
+    aux[A_LEAK_ECC] = leak_ecc
     aux[A_QDOT] = qdot
     aux[A_HTC] = htc
     aux[A_LIFT_S] = lift_s

@@ -20,12 +20,15 @@ step is rejected and retried with a smaller step).
 from __future__ import annotations
 
 import ctypes
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import CoolProp.CoolProp as CP
 import numba.experimental.function_type  # noqa: F401  (registers typeof for WAP objects)
 import numpy as np
 from numba import types
+
+if TYPE_CHECKING:
+    from .property_table import PropertyTable
 
 # buffer layout
 PROP_PRESSURE = 0  # p [Pa]
@@ -59,21 +62,36 @@ class HeosProperties(types.WrapperAddressProtocol):
         leakage); skipped otherwise because it costs as much as the update itself.
     t_min, t_max : float
         Temperature range accepted [K]; outside it the call returns ``STATUS_DOMAIN``.
+    tail : numpy.ndarray, optional
+        Data appended to the buffer after its ``N_PROPS`` outputs: a property table
+        (:meth:`recipsim.thermo.property_table.PropertyTable.buffer_tail`) that the
+        compiled code evaluates instead of this callback where it can.
 
     Attributes
     ----------
     buffer : numpy.ndarray
         The array the callback fills; pass it to the compiled code with the object.
+    table : PropertyTable or None
+        The property table whose data is the buffer's tail (set by the model).
     """
 
     def __init__(
-        self, coolprop_name: str, transport: bool, t_min: float, t_max: float, backend: str = "HEOS"
+        self,
+        coolprop_name: str,
+        transport: bool,
+        t_min: float,
+        t_max: float,
+        backend: str = "HEOS",
+        tail: np.ndarray | None = None,
     ) -> None:
         self.coolprop_name = coolprop_name
         self.backend = backend
         self.state = CP.AbstractState(backend, coolprop_name)
         self.sat = CP.AbstractState(backend, coolprop_name)
-        self.buffer = np.zeros(N_PROPS)
+        self.buffer = (
+            np.zeros(N_PROPS) if tail is None else np.concatenate([np.zeros(N_PROPS), tail])
+        )
+        self.table: PropertyTable | None = None
         self.calls = 0
         self.failures = 0
         r_gas = self.state.gas_constant() / self.state.molar_mass()
@@ -83,10 +101,17 @@ class HeosProperties(types.WrapperAddressProtocol):
         i_p, i_t, i_d = CP.iP, CP.iT, CP.iDmass
         twophase = CP.iphase_twophase
 
+        # A Ctrl-C that arrives while this callback runs would be swallowed by ctypes
+        # (it returns 0: "success" with a stale buffer). Catch it, fail this and every
+        # later call so the integrator stops, and let the caller re-raise it.
+        interrupted = self._interrupted = [False]
+
         def callback(temperature: float, density: float) -> int:
-            if not (t_min <= temperature <= t_max) or not (density > 0.0):
-                return STATUS_DOMAIN
             try:
+                if interrupted[0]:
+                    return STATUS_DOMAIN
+                if not (t_min <= temperature <= t_max) or not (density > 0.0):
+                    return STATUS_DOMAIN
                 update(dmasst, density, temperature)
                 p = state.p()
                 if temperature < t_crit and state.phase() == twophase:
@@ -111,10 +136,19 @@ class HeosProperties(types.WrapperAddressProtocol):
                         buf[PROP_CP] = state.cpmass()
             except Exception:
                 return STATUS_DOMAIN
+            except BaseException:  # KeyboardInterrupt, SystemExit
+                interrupted[0] = True
+                return STATUS_DOMAIN
             return STATUS_OK
 
         self._python_callback = callback
         self._cfunc = ctypes.CFUNCTYPE(ctypes.c_int32, ctypes.c_double, ctypes.c_double)(callback)
+
+    def raise_if_interrupted(self) -> None:
+        """Re-raise a Ctrl-C caught inside the callback (and re-arm the callback)."""
+        if self._interrupted[0]:
+            self._interrupted[0] = False
+            raise KeyboardInterrupt
 
     def __wrapper_address__(self) -> int:
         addr = ctypes.cast(self._cfunc, ctypes.c_void_p).value
@@ -126,7 +160,9 @@ class HeosProperties(types.WrapperAddressProtocol):
 
     def __call__(self, temperature: float, density: float) -> int:
         """Evaluate from Python (fills :attr:`buffer`)."""
-        return int(self._python_callback(temperature, density))
+        status = int(self._python_callback(temperature, density))
+        self.raise_if_interrupted()
+        return status
 
 
 def _fill_two_phase(

@@ -1,0 +1,176 @@
+"""Single-phase induction motor drive: torque-speed curve from a few datasheet values.
+
+The motor of a hermetic compressor is a two-pole single-phase induction motor whose
+rotor is the crankshaft's rotor (its inertia is the rotor body's polar inertia in
+``[mechanism.rotor]``). Its steady-state torque follows the double revolving field
+picture: the pulsating stator field is a forward field turning at synchronous speed
+and a backward one turning against it. Each acts like a polyphase motor with the Kloss
+curve ``K(s) = 2 s s_k / (s^2 + s_k^2)`` (peak 1 at the breakdown slip ``s_k``), the
+backward field at slip ``2 - s``::
+
+    T(omega) = T_k [K(s) - u K(2 - s)],   s = (omega_s - omega) / omega_s,
+    omega_s = 4 pi f / poles.
+
+``u`` is the ratio of backward to forward field strength: 0 for a capacitor motor
+balanced at its running point (PSC, the default), up to 1 for a split-phase motor on
+its main winding alone (no starting torque). ``s_k`` is fitted so that the curve
+passes through the rated point. The torque acts about the rotor axis between housing
+and rotor; the speed in the slip is the rotor's spin rate.
+
+Not modelled: the torque pulsation at twice the line frequency (it is not periodic in
+crank angle, so the response would not be a periodic steady state), stator losses
+(``motor_input_power`` is the air-gap power), electrical transients, start-winding
+switching.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any
+
+from numba import njit
+
+from .errors import CaseError
+from .schema import Field, Spec, read_table
+
+MOTOR_SPEC: Spec = {
+    "line_frequency": Field("Hz", 50.0, lo=1.0, hi=1000.0, doc="supply frequency"),
+    "poles": Field("dimensionless", 2, lo=2, hi=24, integer=True, doc="even"),
+    "rated_speed": Field("rad/s", lo=0.0, open_lo=True, doc="e.g. '2900 rpm'"),
+    "rated_torque": Field("N*m", lo=0.0, open_lo=True),
+    "breakdown_torque": Field("N*m", lo=0.0, open_lo=True, doc="peak of the forward field"),
+    "backward_field_ratio": Field(
+        "dimensionless", 0.0, lo=0.0, hi=1.0, doc="0 balanced capacitor motor, 1 main winding"
+    ),
+}
+
+
+@dataclass(frozen=True)
+class MotorSpec:
+    """An induction motor's torque-speed curve (all SI).
+
+    Attributes
+    ----------
+    line_frequency : float
+        Supply frequency [Hz].
+    poles : int
+        Number of poles (2 for household hermetic compressors).
+    rated_speed, rated_torque : float
+        A point on the curve [rad/s], [N m] (the nameplate rating).
+    breakdown_torque : float
+        Peak torque of the forward field [N m].
+    backward_field_ratio : float
+        Backward to forward field strength [-].
+    breakdown_slip : float
+        Slip of the forward field's peak torque, fitted to the rated point [-].
+    """
+
+    line_frequency: float
+    poles: int
+    rated_speed: float
+    rated_torque: float
+    breakdown_torque: float
+    backward_field_ratio: float
+    breakdown_slip: float
+
+    @property
+    def synchronous_speed(self) -> float:
+        """Speed of the forward field [rad/s]."""
+        return 4.0 * math.pi * self.line_frequency / self.poles
+
+    def torque(self, speed: float) -> float:
+        """Motor torque at rotor speed ``speed`` [rad/s] -> [N m]."""
+        return float(
+            induction_motor_torque(
+                speed,
+                self.synchronous_speed,
+                self.breakdown_torque,
+                self.breakdown_slip,
+                self.backward_field_ratio,
+            )
+        )
+
+
+@njit(cache=True)
+def kloss(slip: float, breakdown_slip: float) -> float:
+    """Normalised Kloss curve ``2 s s_k / (s^2 + s_k^2)`` (1 at ``s = s_k``)."""
+    return 2.0 * slip * breakdown_slip / (slip * slip + breakdown_slip * breakdown_slip)
+
+
+@njit(cache=True)
+def induction_motor_torque(
+    speed: float,
+    synchronous_speed: float,
+    breakdown_torque: float,
+    breakdown_slip: float,
+    backward_field_ratio: float,
+) -> float:
+    """Torque of the single-phase induction motor at rotor speed ``speed`` [rad/s].
+
+    Returns
+    -------
+    float
+        ``T_k [K(s) - u K(2 - s)]`` [N m]; positive drives the rotor forward.
+    """
+    s = (synchronous_speed - speed) / synchronous_speed
+    forward = kloss(s, breakdown_slip)
+    backward = kloss(2.0 - s, breakdown_slip)
+    return breakdown_torque * (forward - backward_field_ratio * backward)
+
+
+def motor_from_table(raw: Any, file: str) -> MotorSpec:
+    """Validate the ``[motor]`` table and fit the breakdown slip to the rated point.
+
+    Raises
+    ------
+    CaseError
+        Naming the file and key: a rated speed at or above synchronous speed, a
+        breakdown torque not above the rated torque, or a curve that cannot pass
+        through the rated point.
+    """
+    from scipy.optimize import brentq
+
+    v = read_table(raw, MOTOR_SPEC, file, "motor")
+    poles = int(v["poles"])
+    if poles % 2:
+        raise CaseError(file, "motor.poles", f"{poles} is odd; a motor has pole pairs")
+    sync = 4.0 * math.pi * v["line_frequency"] / poles
+    rated_speed, rated_torque = v["rated_speed"], v["rated_torque"]
+    t_k, u = v["breakdown_torque"], v["backward_field_ratio"]
+    if rated_speed >= sync:
+        raise CaseError(
+            file,
+            "motor.rated_speed",
+            f"{rated_speed * 30 / math.pi:.1f} rpm is not below the synchronous speed "
+            f"{sync * 30 / math.pi:.1f} rpm ({v['line_frequency']:g} Hz, {poles} poles)",
+        )
+    if t_k <= rated_torque:
+        raise CaseError(
+            file,
+            "motor.breakdown_torque",
+            f"{t_k:g} N m must exceed the rated torque {rated_torque:g} N m",
+        )
+    s_r = (sync - rated_speed) / sync
+
+    def excess(s_k: float) -> float:  # decreasing in s_k on (s_r, inf)
+        return t_k * (kloss(s_r, s_k) - u * kloss(2.0 - s_r, s_k)) - rated_torque
+
+    s_hi = 1e3
+    if excess(s_r) <= 0.0:
+        raise CaseError(
+            file,
+            "motor.backward_field_ratio",
+            f"{u:g} leaves no curve through the rated point with this breakdown torque; "
+            "lower it or raise motor.breakdown_torque",
+        )
+    s_k = float(brentq(excess, s_r, s_hi, xtol=1e-14, rtol=1e-12))
+    return MotorSpec(
+        line_frequency=float(v["line_frequency"]),
+        poles=poles,
+        rated_speed=rated_speed,
+        rated_torque=rated_torque,
+        breakdown_torque=t_k,
+        backward_field_ratio=u,
+        breakdown_slip=s_k,
+    )
