@@ -115,3 +115,14 @@ def test_reference_case_carries_the_reference_mechanism():
     assert case.geometry.liner_length == pytest.approx(
         case.geometry.stroke + 0.020 + case.geometry.clearance_volume / case.geometry.piston_area
     )
+
+
+def test_a_base_cases_pressure_curve_is_found_from_an_extending_case(tmp_path):
+    """[pressure_curve] file is relative to the file that names it, not to the child."""
+    from helpers import CASES
+
+    child = tmp_path / "child.toml"
+    child.write_text(f'extends = "{(CASES / "paper_tabulated.toml").as_posix()}"\n')
+    case = load_case(child)
+    assert case.pressure_curve is not None
+    assert case.pressure_curve.pressure.max() > 1e6

@@ -393,6 +393,10 @@ def resolve_extends(raw: dict[str, Any], path: Path, chain: list[Path]) -> dict[
     if not parent.is_file():
         raise CaseError(str(path), "extends", f"no such case file: {parent}")
     base, _ = read_toml(parent, "case")
+    curve = base.get("pressure_curve")
+    if isinstance(curve, dict) and isinstance(curve.get("file"), str):
+        # a file named in the base case is relative to the base case, not to this one
+        curve["file"] = str(parent.parent / curve["file"])
     base = resolve_extends(base, parent, chain + [parent])
     base.pop("name", None)
     base.pop("description", None)

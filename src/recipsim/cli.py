@@ -13,6 +13,8 @@ import sys
 from pathlib import Path
 from typing import Any
 
+from .bench.command import add_bench_parser
+from .check_command import add_check_parser
 from .cli_options import add_common_options, exit_status
 from .compare_command import add_compare_parser
 from .paper_command import add_paper_parser
@@ -23,6 +25,8 @@ _SUBCOMMANDS = (
     add_sweep_parser,
     add_paper_parser,
     add_compare_parser,
+    add_bench_parser,
+    add_check_parser,
 )
 
 

@@ -51,3 +51,14 @@ def exit_status(action: Callable[[], int], label: str = "") -> int:
     except RecipsimError as exc:
         print(f"recipsim: {label}{': ' if label else ''}{exc}", file=sys.stderr)
         return 1
+
+
+def positive_int(text: str) -> int:
+    """argparse type: a whole number >= 1 (e.g. ``--jobs``, ``--repeats``)."""
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a whole number, got {text!r}") from None
+    if value < 1:
+        raise argparse.ArgumentTypeError(f"must be at least 1, got {value}")
+    return value

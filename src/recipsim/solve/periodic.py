@@ -134,19 +134,15 @@ def sample_times(model: Model, n: int) -> tuple[np.ndarray, np.ndarray]:
     return times_sorted, order
 
 
-def integrate_revolution(
-    model: Model, y: np.ndarray, mode: np.ndarray, h: float, n_samples: int
-) -> tuple[Revolution, float]:
-    """Integrate one revolution from ``y`` (modified copy returned in the result).
+def revolution_setup(
+    model: Model, y: np.ndarray, mode: np.ndarray, n_samples: int
+) -> tuple[np.ndarray, np.ndarray, float, np.ndarray, np.ndarray, np.ndarray]:
+    """What any integrator needs to run one revolution from ``y``, ``mode``.
 
-    With a free crank speed the revolution ends on the crank-angle event at the start
-    angle plus 2 pi (at most three nominal periods); samples are then taken at equal
-    time steps of the nominal period and :func:`recipsim.results.cycle_table`
-    resamples them at equal crank angles.
+    Returns the state copy with the quadratures reset, the mode copy, the end time
+    (three nominal periods when the speed is free: the crank-angle event ends the
+    revolution, armed here in ``model.par``), the sample times and the sample buffers.
     """
-    s = model.case.solver
-    y_start = y.copy()
-    mode_start = mode.copy()
     y_run = y.copy()
     y_run[model.quadratures] = 0.0
     mode_run = mode.copy()
@@ -160,6 +156,25 @@ def integrate_revolution(
         times, _ = sample_times(model, n_samples)
     samples = np.zeros((n_samples, y.shape[0]))
     sample_modes = np.zeros((n_samples, mode.shape[0]), dtype=np.int64)
+    return y_run, mode_run, t_end, times, samples, sample_modes
+
+
+def integrate_revolution(
+    model: Model, y: np.ndarray, mode: np.ndarray, h: float, n_samples: int
+) -> tuple[Revolution, float]:
+    """Integrate one revolution from ``y`` (modified copy returned in the result).
+
+    With a free crank speed the revolution ends on the crank-angle event at the start
+    angle plus 2 pi (at most three nominal periods); samples are then taken at equal
+    time steps of the nominal period and :func:`recipsim.results.cycle_table`
+    resamples them at equal crank angles.
+    """
+    s = model.case.solver
+    y_run, mode_run, t_end, times, samples, sample_modes = revolution_setup(
+        model, y, mode, n_samples
+    )
+    y_start = y.copy()
+    mode_start = mode.copy()
     stats = np.zeros(N_STATS)
     omega = model.par[cyl.C_OMEGA]
     integrate(

@@ -17,7 +17,7 @@ import time
 from pathlib import Path
 from typing import Any
 
-from ..cli_options import add_common_options, exit_status
+from ..cli_options import add_common_options, exit_status, positive_int
 
 _MAX_LISTED = 8
 
@@ -28,16 +28,6 @@ _SWITCHES = (
     ("--fresh", "forget finished points and compute every point"),
     ("--quiet", "no progress bar and no summary, errors only"),
 )
-
-
-def _positive_int(text: str) -> int:
-    try:
-        value = int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"expected a whole number, got {text!r}") from None
-    if value < 1:
-        raise argparse.ArgumentTypeError(f"must be at least 1, got {value}")
-    return value
 
 
 def add_sweep_parser(sub: Any) -> argparse.ArgumentParser:
@@ -58,7 +48,7 @@ def add_sweep_parser(sub: Any) -> argparse.ArgumentParser:
     parser.add_argument(
         "-j",
         "--jobs",
-        type=_positive_int,
+        type=positive_int,
         default=None,
         metavar="N",
         help="worker processes (default: the number of CPUs); 1 runs in this process",

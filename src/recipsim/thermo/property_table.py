@@ -914,7 +914,8 @@ def _sample_region(
             sat.update(CP.QT_INPUTS, 1.0, temp)
             rho_v = sat.rhomass()
             if region == "vapour":
-                rho = math.exp(rng.uniform(x_lo, math.log(rho_v)))
+                # below the table's lowest density at very low T: sample at its edge
+                rho = math.exp(rng.uniform(x_lo, max(math.log(rho_v), x_lo)))
             elif region == "near_dew":
                 rho = rng.uniform(0.8, 1.0) * rho_v
             else:  # two_phase
