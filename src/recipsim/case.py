@@ -109,6 +109,7 @@ SOLVER_SPEC: Spec = {
     "max_step": Field(
         "rad", math.radians(2.0), lo=1e-7, hi=math.pi, doc="largest crank-angle step"
     ),
+    "start": Choice(("periodic", "rest"), "periodic", "periodic steady state; 'rest': not yet"),
     "periodic": Choice(("auto", "revolutions", "shooting"), "auto", "periodic steady-state solver"),
 }
 
@@ -443,6 +444,13 @@ def case_from_dict(raw: dict[str, Any], file: str, source_text: str = "") -> Cas
         max_step=sv["max_step"],
         periodic=sv["periodic"],
     )
+    if sv["start"] == "rest":
+        raise CaseError(
+            file,
+            "solver.start",
+            "'rest' (start-up from zero speed, a transient run on the induction motor) is not "
+            "available yet: recipsim computes periodic steady states; allowed: 'periodic'",
+        )
     if solver.min_revolutions > solver.max_revolutions:
         raise CaseError(file, "solver.min_revolutions", "must not exceed solver.max_revolutions")
     mechanism = mechanism_from_dict(raw, file, bore=geometry.bore)
