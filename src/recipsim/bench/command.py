@@ -36,7 +36,7 @@ def add_bench_parser(sub: Any) -> argparse.ArgumentParser:
             "Run a ladder of integrator x tolerance x property backend x periodic solver x "
             "fidelity settings (and a pure-Python solve_ivp baseline) on CASE, compare each "
             "with a tight-tolerance reference and write work_precision.csv, "
-            "work_precision.png and bench.json. See docs/bench.md."
+            "work_precision.png and bench.json. See the README, 'Speed against error'."
         ),
     )
     parser.add_argument("case", type=Path, help="case file (TOML)")

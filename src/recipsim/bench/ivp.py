@@ -39,7 +39,13 @@ from ..mechanics import layout as mlay
 from ..model import Model
 from ..solve import scenes
 from ..solve.integrator import N_STATS, ST_NACCEPT, ST_NEVENTS, ST_NFEV, ST_NSAMPLES, ST_T
-from ..solve.periodic import PeriodicSolution, Revolution, cycle_residual, revolution_setup
+from ..solve.periodic import (
+    PeriodicSolution,
+    Revolution,
+    cycle_residual,
+    discharge_enthalpy,
+    revolution_setup,
+)
 from ..thermo import cylinder as cyl
 from ..thermo.properties import PROPS_SIGNATURE
 
@@ -308,9 +314,9 @@ def solve_periodic_ivp(model: Model, method: str) -> PeriodicSolution:
             rev = integrate_revolution_ivp(model, y, mode, s.samples_per_revolution, method)
         nfev += int(rev.stats[ST_NFEV])
         events += int(rev.stats[ST_NEVENTS])
-        m_out = rev.y_end[cyl.Q_MDIS_OUT]
-        if model.has_gas and m_out > 0.0:
-            model.set_discharge_enthalpy(rev.y_end[cyl.Q_HDIS_OUT] / m_out)
+        enthalpy = discharge_enthalpy(model, rev)
+        if enthalpy is not None:
+            model.set_discharge_enthalpy(enthalpy)
         residual = cycle_residual(model, rev, previous)
         history.append(residual)
         y = rev.y_end.copy()
