@@ -81,7 +81,12 @@ def test_ctrl_c_inside_the_property_callback_stops_the_solve():
     from recipsim.model import build_model
     from recipsim.solve.periodic import solve_periodic
 
-    endless = ["solver.min_revolutions=1000", "solver.max_revolutions=1000"]
+    # HEOS: the compiled code calls the CoolProp callback at every evaluation
+    endless = [
+        "solver.min_revolutions=1000",
+        "solver.max_revolutions=1000",
+        "options.properties=heos",
+    ]
     model = build_model(load_case(REFERENCE, endless))
     timer = threading.Timer(0.3, lambda: os.kill(os.getpid(), signal.SIGINT))
     start = time.perf_counter()

@@ -33,11 +33,10 @@ from recipsim.thermo.property_table import (
     STATUS_FALLBACK,
     THERMO_SLOTS,
     TableResolution,
-    cache_path,
-    load_property_table,
-    measure_error,
     table_props,
 )
+from recipsim.thermo.property_table_build import measure_error
+from recipsim.thermo.property_table_cache import cache_path, load_property_table
 
 # R134a limits of refrigerants/R134a.toml (-60 C .. 180 C)
 R134A = ("R134a", 213.15, 453.15)

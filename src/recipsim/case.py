@@ -16,14 +16,17 @@ import math
 import tomllib
 from dataclasses import dataclass, field, replace
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from .errors import CaseError
 from .mechanics.spec import MechanismSpec, mechanism_from_dict
 from .mechanics.tabulated import PressureCurve, read_pressure_curve
 from .motor import MotorSpec, motor_from_table
-from .refrigerant import Fluid, RefrigerantSpec, load_refrigerant
+from .refrigerant import RefrigerantSpec, case_fluid, load_refrigerant
 from .schema import Choice, Field, Spec, Text, check_keys, read_table
+
+if TYPE_CHECKING:
+    from .refrigerant import AnyFluid
 
 OPTION_SPEC: Spec = {
     "pressure": Choice(("cylinder", "tabulated"), "cylinder", "pressure source"),
@@ -416,7 +419,7 @@ def case_from_dict(raw: dict[str, Any], file: str, source_text: str = "") -> Cas
     search = [Path(file).resolve().parent, Path(file).resolve().parent.parent]
     refrigerant = load_refrigerant(top["refrigerant"], file, "refrigerant", search)
     options = Options(**read_table(raw.get("options"), OPTION_SPEC, file, "options"))
-    fluid = Fluid(refrigerant.coolprop_name)
+    fluid = case_fluid(refrigerant, options.properties)
     op = _operating_point(raw.get("operating_point"), refrigerant, fluid, file)
     geometry = _geometry(raw.get("geometry"), file)
     valves = _valves(raw.get("valves"), options, file)
@@ -535,7 +538,7 @@ def _pressure_curve(
 
 
 def _operating_point(
-    raw: dict[str, Any] | None, ref: RefrigerantSpec, fluid: Fluid, file: str
+    raw: dict[str, Any] | None, ref: RefrigerantSpec, fluid: AnyFluid, file: str
 ) -> OperatingPoint:
     prefix = "operating_point"
     raw = dict(raw or {})

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -21,12 +22,15 @@ from .mechanics.parameters import mechanism_parameters
 from .mechanics.simulate import pinned_torque_profile
 from .mechanics.spec import CrankGeometry
 from .mechanics.tabulated import tabulated_pressure
-from .refrigerant import Fluid
+from .refrigerant import case_fluid
 from .solve import scenes
 from .thermo import cylinder as cyl
 from .thermo.heat_transfer import DEFAULT_COEFFICIENT, HT_ADAIR, HT_ADIABATIC, HT_ANNAND
 from .thermo.properties import HeosProperties
-from .thermo.property_table import load_property_table
+from .thermo.table_states import TableFluid
+
+if TYPE_CHECKING:
+    from .refrigerant import AnyFluid
 
 START_ANGLE = 1.5 * math.pi  # crank angle at which every revolution starts [rad]
 
@@ -75,7 +79,7 @@ class Model:
     """
 
     case: Case
-    fluid: Fluid
+    fluid: AnyFluid
     par: np.ndarray
     ipar: np.ndarray
     props: HeosProperties
@@ -118,7 +122,10 @@ class Model:
 
 
 def _plenum(
-    fluid: Fluid, pressure: float, temperature: float | None = None, enthalpy: float | None = None
+    fluid: AnyFluid,
+    pressure: float,
+    temperature: float | None = None,
+    enthalpy: float | None = None,
 ) -> PlenumState:
     if temperature is not None:
         st = fluid.state_pt(pressure, temperature)
@@ -161,7 +168,7 @@ def _cylinder_model(case: Case) -> Model:
     op = case.operating_point
     geo = case.geometry
     opts = case.options
-    fluid = Fluid(case.refrigerant.coolprop_name)
+    fluid = case_fluid(case.refrigerant, opts.properties)
     suction = _plenum(fluid, op.suction_pressure, temperature=op.suction_temperature)
     isentropic = fluid.state_ps(op.discharge_pressure, suction.entropy)
     discharge = _plenum(fluid, op.discharge_pressure, enthalpy=isentropic["h"])
@@ -223,11 +230,7 @@ def _cylinder_model(case: Case) -> Model:
     ref = case.refrigerant
     # properties = "table": the compiled code interpolates a cached table that follows the
     # outputs in the callback's buffer, and calls HEOS only where the table has no data
-    table = (
-        load_property_table(ref.coolprop_name, ref.min_temperature, ref.max_temperature)
-        if opts.properties == "table"
-        else None
-    )
+    table = fluid.table if isinstance(fluid, TableFluid) else None
     props = HeosProperties(
         ref.coolprop_name,
         transport=transport,

@@ -129,8 +129,6 @@ def motor_from_table(raw: Any, file: str) -> MotorSpec:
         breakdown torque not above the rated torque, or a curve that cannot pass
         through the rated point.
     """
-    from scipy.optimize import brentq
-
     v = read_table(raw, MOTOR_SPEC, file, "motor")
     poles = int(v["poles"])
     if poles % 2:
@@ -164,7 +162,18 @@ def motor_from_table(raw: Any, file: str) -> MotorSpec:
             f"{u:g} leaves no curve through the rated point with this breakdown torque; "
             "lower it or raise motor.breakdown_torque",
         )
-    s_k = float(brentq(excess, s_r, s_hi, xtol=1e-14, rtol=1e-12))
+    # bisection on the bracket (importing scipy.optimize for brentq costs 0.25 s of
+    # start-up); 200 halvings reach adjacent floats
+    s_lo = s_r
+    for _ in range(200):
+        mid = 0.5 * (s_lo + s_hi)
+        if mid in (s_lo, s_hi):
+            break
+        if excess(mid) > 0.0:
+            s_lo = mid
+        else:
+            s_hi = mid
+    s_k = 0.5 * (s_lo + s_hi)
     return MotorSpec(
         line_frequency=float(v["line_frequency"]),
         poles=poles,

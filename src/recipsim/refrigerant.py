@@ -4,7 +4,10 @@ A refrigerant file (``refrigerants/<name>.toml``) names the CoolProp fluid, opti
 tighter limits and the rating points of the standards (ASHRAE LBP, EN 12900, ...).
 :class:`Fluid` wraps one reused low-level ``AbstractState``; it is used when a case
 is loaded and when results are post-processed, never inside the right-hand side,
-which goes through :mod:`recipsim.thermo.properties`.
+which goes through :mod:`recipsim.thermo.properties`. With ``properties = "table"``
+:func:`case_fluid` answers the same questions from the property table
+(:class:`recipsim.thermo.table_states.TableFluid`) and CoolProp, whose import costs
+about 2 s, is imported only when the table has no answer.
 """
 
 from __future__ import annotations
@@ -12,13 +15,16 @@ from __future__ import annotations
 import os
 import tomllib
 from dataclasses import dataclass, field
+from functools import cache
 from pathlib import Path
-from typing import Any
-
-import CoolProp.CoolProp as CP
+from typing import TYPE_CHECKING, Any, TypeAlias
 
 from .errors import CaseError
 from .schema import Field, Spec, Text, check_keys, read_table
+from .thermo.coolprop_info import fluid_constants
+
+if TYPE_CHECKING:
+    from .thermo.table_states import TableFluid
 
 RATING_POINT_SPEC: Spec = {
     "evaporating_temperature": Field("K", lo=100.0, hi=600.0),
@@ -132,15 +138,15 @@ def read_refrigerant_file(path: Path) -> RefrigerantSpec:
         "",
     )
     try:
-        state = CP.AbstractState("HEOS", top["coolprop_name"])
+        constants = fluid_constants(top["coolprop_name"])
     except ValueError:
         raise CaseError(
             file, "coolprop_name", f"CoolProp does not know the fluid {top['coolprop_name']!r}"
         ) from None
     limits = read_table(raw.get("limits"), LIMITS_SPEC, file, "limits")
-    t_min = max(state.Tmin(), limits["min_temperature"] or 0.0)
-    t_max = min(state.Tmax(), limits["max_temperature"] or 1e9)
-    p_max = min(state.pmax(), limits["max_pressure"] or 1e12)
+    t_min = max(constants.t_min, limits["min_temperature"] or 0.0)
+    t_max = min(constants.t_max, limits["max_temperature"] or 1e9)
+    p_max = min(constants.p_max, limits["max_pressure"] or 1e12)
     points_raw = raw.get("rating_points", {})
     points = {
         pname: read_table(ptable, RATING_POINT_SPEC, file, f"rating_points.{pname}")
@@ -153,8 +159,8 @@ def read_refrigerant_file(path: Path) -> RefrigerantSpec:
         min_temperature=t_min,
         max_temperature=t_max,
         max_pressure=p_max,
-        critical_temperature=state.T_critical(),
-        critical_pressure=state.p_critical(),
+        critical_temperature=constants.t_crit,
+        critical_pressure=constants.p_crit,
         rating_points=points,
         path=file,
     )
@@ -172,6 +178,9 @@ class Fluid:
     """
 
     def __init__(self, coolprop_name: str, backend: str = "HEOS") -> None:
+        import CoolProp.CoolProp as CP
+
+        self._cp = CP
         self.name = coolprop_name
         self.state = CP.AbstractState(backend, coolprop_name)
         self.molar_mass = self.state.molar_mass()
@@ -181,43 +190,43 @@ class Fluid:
 
     def saturation_pressure(self, temperature: float, quality: float = 1.0) -> float:
         """Saturation pressure at ``temperature`` [K] -> [Pa]."""
-        self.state.update(CP.QT_INPUTS, quality, temperature)
+        self.state.update(self._cp.QT_INPUTS, quality, temperature)
         return self.state.p()
 
     def saturation_temperature(self, pressure: float, quality: float = 1.0) -> float:
         """Saturation (dew for quality 1) temperature at ``pressure`` [Pa] -> [K]."""
-        self.state.update(CP.PQ_INPUTS, pressure, quality)
+        self.state.update(self._cp.PQ_INPUTS, pressure, quality)
         return self.state.T()
 
     def state_pt(self, pressure: float, temperature: float) -> dict[str, float]:
         """Single-phase state from pressure [Pa] and temperature [K]."""
-        self.state.update(CP.PT_INPUTS, pressure, temperature)
+        self.state.update(self._cp.PT_INPUTS, pressure, temperature)
         return self._snapshot()
 
     def state_ph(self, pressure: float, enthalpy: float) -> dict[str, float]:
         """State from pressure [Pa] and specific enthalpy [J/kg]."""
-        self.state.update(CP.HmassP_INPUTS, enthalpy, pressure)
+        self.state.update(self._cp.HmassP_INPUTS, enthalpy, pressure)
         return self._snapshot()
 
     def state_ps(self, pressure: float, entropy: float) -> dict[str, float]:
         """State from pressure [Pa] and specific entropy [J/(kg K)]."""
-        self.state.update(CP.PSmass_INPUTS, pressure, entropy)
+        self.state.update(self._cp.PSmass_INPUTS, pressure, entropy)
         return self._snapshot()
 
     def state_rhos(self, density: float, entropy: float) -> dict[str, float]:
         """State from density [kg/m3] and specific entropy [J/(kg K)]."""
-        self.state.update(CP.DmassSmass_INPUTS, density, entropy)
+        self.state.update(self._cp.DmassSmass_INPUTS, density, entropy)
         return self._snapshot()
 
     def state_trho(self, temperature: float, density: float) -> dict[str, float]:
         """State from temperature [K] and density [kg/m3]."""
-        self.state.update(CP.DmassT_INPUTS, density, temperature)
+        self.state.update(self._cp.DmassT_INPUTS, density, temperature)
         return self._snapshot()
 
     def _snapshot(self) -> dict[str, float]:
         s = self.state
         phase = s.phase()
-        twophase = phase == CP.iphase_twophase
+        twophase = phase == self._cp.iphase_twophase
         snap = {
             "p": s.p(),
             "T": s.T(),
@@ -238,7 +247,7 @@ class Fluid:
 
     def saturated_vapour(self, temperature: float) -> dict[str, float]:
         """Saturated vapour at ``temperature`` [K]: properties and viscosity [Pa s]."""
-        self.state.update(CP.QT_INPUTS, 1.0, temperature)
+        self.state.update(self._cp.QT_INPUTS, 1.0, temperature)
         cp0 = self.state.cp0mass()
         return {
             "p": self.state.p(),
@@ -248,7 +257,45 @@ class Fluid:
             "viscosity": self.state.viscosity(),
         }
 
+    def liquid_enthalpy(self, pressure: float, temperature: float) -> float:
+        """Specific enthalpy [J/kg] of liquid at ``pressure`` [Pa] and ``temperature`` [K]."""
+        self.state.update(self._cp.PT_INPUTS, pressure, temperature)
+        return float(self.state.hmass())
+
     def transport(self, pressure: float, temperature: float) -> dict[str, float]:
         """Viscosity [Pa s] and thermal conductivity [W/(m K)] of a single-phase state."""
-        self.state.update(CP.PT_INPUTS, pressure, temperature)
+        self.state.update(self._cp.PT_INPUTS, pressure, temperature)
         return {"viscosity": self.state.viscosity(), "conductivity": self.state.conductivity()}
+
+
+@cache
+def _table_fluid(coolprop_name: str, t_min: float, t_max: float) -> TableFluid:
+    from .thermo.property_table_cache import load_property_table
+    from .thermo.table_states import TableFluid
+
+    table = load_property_table(coolprop_name, t_min, t_max)
+    constants = fluid_constants(coolprop_name)
+    return TableFluid(table, constants.gas_constant, constants.t_crit, constants.p_crit)
+
+
+def case_fluid(refrigerant: RefrigerantSpec, properties: str) -> AnyFluid:
+    """The point-state calculator of a case's refrigerant.
+
+    Parameters
+    ----------
+    refrigerant : RefrigerantSpec
+        The refrigerant (its CoolProp name and model temperature range).
+    properties : str
+        The case's ``options.properties``: ``"heos"`` gives a CoolProp :class:`Fluid`;
+        ``"table"`` the fluid's cached property table (built on first use), one
+        instance per fluid and range in a process (a sweep loads it once).
+    """
+    if properties == "table":
+        return _table_fluid(
+            refrigerant.coolprop_name, refrigerant.min_temperature, refrigerant.max_temperature
+        )
+    return Fluid(refrigerant.coolprop_name)
+
+
+#: what :func:`case_fluid` returns: both answer the same point-state questions
+AnyFluid: TypeAlias = "Fluid | TableFluid"

@@ -23,11 +23,11 @@ from . import __version__
 from .atomic import swap_in
 from .case import Case
 from .solve.periodic import PeriodicSolution
+from .thermo.coolprop_info import coolprop_version
 
 
 def case_provenance(case: Case, argv: list[str] | None = None) -> dict[str, Any]:
     """Versions, options and solver settings of a run of ``case``."""
-    import CoolProp
     import numba
     import numpy
     import scipy
@@ -37,7 +37,7 @@ def case_provenance(case: Case, argv: list[str] | None = None) -> dict[str, Any]
         "git_commit": git_commit(),
         "python": sys.version.split()[0],
         "platform": platform.platform(),
-        "CoolProp": CoolProp.__version__,
+        "CoolProp": coolprop_version(),
         "numpy": numpy.__version__,
         "scipy": scipy.__version__,
         "numba": numba.__version__,

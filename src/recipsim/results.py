@@ -264,7 +264,7 @@ def _gas_metrics(solution: PeriodicSolution, freq: float, p_shaft: float) -> dic
     h_in = y[cyl.Q_HSUC_IN] - y[cyl.Q_HSUC_OUT]
     fluid = model.fluid
     suction = model.suction
-    h_liquid = fluid.state_pt(op.discharge_pressure, op.liquid_temperature)["h"]
+    h_liquid = fluid.liquid_enthalpy(op.discharge_pressure, op.liquid_temperature)
     h_2s = fluid.state_ps(op.discharge_pressure, suction.entropy)["h"]
     mdot_dis = m_dis * freq
     capacity = mdot_dis * (suction.enthalpy - h_liquid)

@@ -14,7 +14,6 @@ import time
 from dataclasses import dataclass, field
 
 import numpy as np
-from scipy.integrate import solve_ivp
 
 from . import layout as lay
 from .flexible import flexible_output_history, flexible_rhs_tabulated, initial_state, state_scales
@@ -249,6 +248,8 @@ def simulate_mechanism(
         # at constant speed a revolution is one period; a driven crank ends on the event
         constant = drive == "constant_speed"
         t_end = t0 + (period if constant else 3.0 * period)
+        from scipy.integrate import solve_ivp  # 0.25 s to import: only where used
+
         sol = solve_ivp(
             fun,
             (t0, t_end),

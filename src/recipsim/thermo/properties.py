@@ -22,12 +22,15 @@ from __future__ import annotations
 import ctypes
 from typing import TYPE_CHECKING, Any
 
-import CoolProp.CoolProp as CP
 import numba.experimental.function_type  # noqa: F401  (registers typeof for WAP objects)
 import numpy as np
 from numba import types
 
+from .coolprop_info import fluid_constants
+
 if TYPE_CHECKING:
+    import CoolProp.CoolProp as CP
+
     from .property_table import PropertyTable
 
 # buffer layout
@@ -86,20 +89,29 @@ class HeosProperties(types.WrapperAddressProtocol):
     ) -> None:
         self.coolprop_name = coolprop_name
         self.backend = backend
-        self.state = CP.AbstractState(backend, coolprop_name)
-        self.sat = CP.AbstractState(backend, coolprop_name)
         self.buffer = (
             np.zeros(N_PROPS) if tail is None else np.concatenate([np.zeros(N_PROPS), tail])
         )
         self.table: PropertyTable | None = None
         self.calls = 0
         self.failures = 0
-        r_gas = self.state.gas_constant() / self.state.molar_mass()
-        t_crit = self.state.T_critical()
-        state, sat, buf = self.state, self.sat, self.buffer
-        update, dmasst = state.update, CP.DmassT_INPUTS
-        i_p, i_t, i_d = CP.iP, CP.iT, CP.iDmass
-        twophase = CP.iphase_twophase
+        constants = fluid_constants(coolprop_name)
+        r_gas, t_crit = constants.gas_constant, constants.t_crit
+        buf = self.buffer
+        # CoolProp (about 2 s to import) is loaded at the first call: with a property
+        # table in the buffer's tail the compiled code may never need it
+        state: Any = None
+        sat: Any = None
+        dmasst = i_p = i_t = i_d = twophase = 0
+
+        def load_coolprop() -> None:
+            nonlocal state, sat, dmasst, i_p, i_t, i_d, twophase
+            import CoolProp.CoolProp as CP
+
+            state = CP.AbstractState(backend, coolprop_name)
+            sat = CP.AbstractState(backend, coolprop_name)
+            dmasst, twophase = CP.DmassT_INPUTS, CP.iphase_twophase
+            i_p, i_t, i_d = CP.iP, CP.iT, CP.iDmass
 
         # A Ctrl-C that arrives while this callback runs would be swallowed by ctypes
         # (it returns 0: "success" with a stale buffer). Catch it, fail this and every
@@ -112,7 +124,9 @@ class HeosProperties(types.WrapperAddressProtocol):
                     return STATUS_DOMAIN
                 if not (t_min <= temperature <= t_max) or not (density > 0.0):
                     return STATUS_DOMAIN
-                update(dmasst, density, temperature)
+                if state is None:
+                    load_coolprop()
+                state.update(dmasst, density, temperature)
                 p = state.p()
                 if temperature < t_crit and state.phase() == twophase:
                     _fill_two_phase(sat, temperature, density, p, state.hmass(), state.Q(), buf)
@@ -142,6 +156,8 @@ class HeosProperties(types.WrapperAddressProtocol):
             return STATUS_OK
 
         self._python_callback = callback
+        self._load_coolprop = load_coolprop
+        self._coolprop_state = lambda: state
         self._cfunc = ctypes.CFUNCTYPE(ctypes.c_int32, ctypes.c_double, ctypes.c_double)(callback)
 
     def raise_if_interrupted(self) -> None:
@@ -158,8 +174,20 @@ class HeosProperties(types.WrapperAddressProtocol):
     def signature(self) -> Any:
         return PROPS_SIGNATURE
 
+    @property
+    def coolprop_loaded(self) -> bool:
+        """Whether the callback has needed CoolProp (the table did not answer)."""
+        return self._coolprop_state() is not None
+
     def __call__(self, temperature: float, density: float) -> int:
-        """Evaluate from Python (fills :attr:`buffer`)."""
+        """Evaluate from Python (fills :attr:`buffer`), as the compiled code does: from
+        the table in the buffer's tail where it answers, else HEOS."""
+        if self.table is not None:
+            from .property_table import STATUS_FALLBACK, table_props
+
+            status = int(table_props(temperature, density, self.buffer))
+            if status != STATUS_FALLBACK:
+                return status
         status = int(self._python_callback(temperature, density))
         self.raise_if_interrupted()
         return status
@@ -180,6 +208,8 @@ def _fill_two_phase(
     x = (v - v_l)/(v_v - v_l) with the derivatives of u_l, u_v, v_l, v_v along the
     saturation curve; ``(dp/dT)_rho = dp_sat/dT`` (Clapeyron).
     """
+    import CoolProp.CoolProp as CP  # loaded by the callback already
+
     sat.update(CP.QT_INPUTS, 0.0, temperature)
     rho_l = sat.rhomass()
     u_l = sat.umass()

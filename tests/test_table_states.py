@@ -1,0 +1,159 @@
+"""Point states from the property table (``properties = "table"``) against HEOS, and the
+run path that does not import CoolProp.
+
+Tolerances: the table's cells are built to 1e-5 and the compressor's vapour region is
+far better (test_property_table); Newton converges to a 1e-12 residual. States are
+therefore checked to 1e-7 relative (entropy to 1e-7 J/(kg K) per J/(kg K) of range),
+two orders below the table's bound and four below the 1e-3 a run is judged by. The
+liquid line is an expansion in pressure from the saturated liquid: 2e-6 of the
+refrigerating effect at the shipped rating points; near the critical point, where
+it would not be accurate, the question goes to HEOS (within 3 J/kg of HEOS overall).
+"""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+
+import pytest
+
+from helpers import ROOT
+from recipsim.refrigerant import Fluid, load_refrigerant
+from recipsim.thermo.coolprop_info import coolprop_version, fluid_constants
+from recipsim.thermo.property_table_cache import load_property_table
+from recipsim.thermo.table_states import TableFluid
+
+C = 273.15
+
+
+@pytest.fixture(scope="module", params=["R134a", "R600a", "R744"])
+def fluids(request):
+    ref = load_refrigerant(request.param)
+    table = load_property_table(ref.coolprop_name, ref.min_temperature, ref.max_temperature)
+    k = fluid_constants(ref.coolprop_name)
+    return TableFluid(table, k.gas_constant, k.t_crit, k.p_crit), Fluid(ref.coolprop_name)
+
+
+def _rel(a: float, b: float) -> float:
+    return abs(a / b - 1.0)
+
+
+def _operating_points(heos: Fluid):
+    """(p_suction, T_suction, p_discharge) across an LBP..AC map: condensing at 35 and
+    55 C, or for R744 (critical at 31 C) 15 C below the critical point."""
+    t_crit = heos.critical_temperature
+    conds = (35.0, 55.0) if t_crit > 70.0 + C else (t_crit - C - 15.0,)
+    for t_evap in (-35.0, -10.0, 5.0):
+        for t_cond in conds:
+            if t_evap < t_cond - 10.0:
+                p_s = heos.saturation_pressure(t_evap + C)
+                yield p_s, t_evap + C + 11.0, heos.saturation_pressure(t_cond + C)
+
+
+def test_states_agree_with_heos(fluids):
+    table, heos = fluids
+    checked = 0
+    for p_s, t_s, p_d in _operating_points(heos):
+        a, b = table.state_pt(p_s, t_s), heos.state_pt(p_s, t_s)
+        for key in ("rho", "h", "u", "cp", "cv", "speed_of_sound", "kappa", "k0"):
+            assert _rel(a[key], b[key]) < 1e-7, key
+        assert abs(a["s"] - b["s"]) < 1e-4  # J/(kg K), of s ~ 1.7e3
+        # isentropic discharge: the work per kg to 1e-7
+        a2, b2 = table.state_ps(p_d, b["s"]), heos.state_ps(p_d, b["s"])
+        assert _rel(a2["h"] - b["h"], b2["h"] - b["h"]) < 1e-7
+        # discharge temperature from (p, h)
+        a3, b3 = table.state_ph(p_d, b2["h"] + 8e3), heos.state_ph(p_d, b2["h"] + 8e3)
+        assert abs(a3["T"] - b3["T"]) < 1e-6
+        # the start state of a revolution: (rho, s)
+        a4, b4 = table.state_rhos(3.0 * b["rho"], b["s"]), heos.state_rhos(3.0 * b["rho"], b["s"])
+        assert abs(a4["T"] - b4["T"]) < 1e-6
+        # saturation
+        assert _rel(table.saturation_pressure(t_s - 11.0), p_s) < 1e-9
+        assert abs(table.saturation_temperature(p_s) - (t_s - 11.0)) < 1e-7
+        # transport at the suction state
+        mu_table = table.transport(p_s, t_s)["viscosity"]
+        assert _rel(mu_table, heos.transport(p_s, t_s)["viscosity"]) < 1e-6
+        checked += 1
+    assert checked >= 3
+    assert table.heos_calls == 0  # every question answered by the table
+
+
+def test_liquid_line_enthalpy(fluids):
+    table, heos = fluids
+    for _p_s, t_s, p_d in _operating_points(heos):
+        t_cond = heos.saturation_temperature(p_d, 0.0)
+        h_suction = heos.state_pt(_p_s, t_s)["h"]
+        for subcooling in (0.0, 8.0, 20.0):
+            t_liq = t_cond - subcooling - 1e-3
+            ha, hb = table.liquid_enthalpy(p_d, t_liq), heos.liquid_enthalpy(p_d, t_liq)
+            assert abs(ha - hb) < 3.0, (t_cond, subcooling)
+            assert abs(ha - hb) / (h_suction - hb) < 1.5e-5, (t_cond, subcooling)
+
+
+def test_supercritical_and_liquid_questions_go_to_heos():
+    ref = load_refrigerant("R744")
+    table = load_property_table(ref.coolprop_name, ref.min_temperature, ref.max_temperature)
+    k = fluid_constants(ref.coolprop_name)
+    tf, heos = TableFluid(table, k.gas_constant, k.t_crit, k.p_crit), Fluid("CO2")
+    # a transcritical gas-cooler exit (90 bar, 35 C) is not a subcooled liquid
+    assert tf.liquid_enthalpy(90e5, 35.0 + C) == heos.liquid_enthalpy(90e5, 35.0 + C)
+    assert tf.heos_calls == 1
+    # dense supercritical discharge at 90 bar from 35 bar suction: still the table
+    s = heos.state_pt(35e5, 10.0 + C)["s"]
+    a, b = tf.state_ps(90e5, s), heos.state_ps(90e5, s)
+    assert abs(a["T"] - b["T"]) < 1e-5
+
+
+def test_run_with_table_properties_does_not_import_coolprop(tmp_path):
+    """The point of the table path: `recipsim run` without CoolProp's 2 s import.
+
+    Runs the shipped default case (table properties) in a fresh interpreter with a warm
+    cache and checks that CoolProp was never imported and the results match a HEOS run.
+    """
+    script = f"""
+import json, sys
+from recipsim.simulate import simulate_case
+from recipsim.case import load_case
+run = simulate_case(load_case({str(ROOT / "cases" / "reference_r134a_lbp.toml")!r}))
+print(json.dumps({{"coolprop": "CoolProp" in sys.modules,
+                  "capacity": run.row["cooling_capacity [W]"],
+                  "power": run.row["indicated_power [W]"],
+                  "t_dis": run.row["discharge_temperature [K]"]}}))
+"""
+    # first run fills the caches (table, fluid constants, numba); the second is timed
+    for _ in range(2):
+        out = subprocess.run(
+            [sys.executable, "-c", script], capture_output=True, text=True, check=True
+        )
+    table_run = json.loads(out.stdout.strip().splitlines()[-1])
+    assert table_run["coolprop"] is False
+    from recipsim.case import load_case
+    from recipsim.simulate import simulate_case
+
+    case = load_case(ROOT / "cases" / "reference_r134a_lbp.toml", ["options.properties=heos"])
+    heos_run = simulate_case(case).row
+    assert _rel(table_run["capacity"], heos_run["cooling_capacity [W]"]) < 1e-5
+    assert _rel(table_run["power"], heos_run["indicated_power [W]"]) < 1e-6
+    assert abs(table_run["t_dis"] - heos_run["discharge_temperature [K]"]) < 1e-4
+
+
+def test_fluid_constants_are_cached_by_coolprop_version(tmp_path, monkeypatch):
+    monkeypatch.setenv("RECIPSIM_CACHE", str(tmp_path))
+    fluid_constants.cache_clear()
+    try:
+        k = fluid_constants("R134a")
+        files = list((tmp_path / "fluid_constants" / coolprop_version()).glob("*.json"))
+        assert [f.name for f in files] == ["R134a.json"]
+        assert json.loads(files[0].read_text())["t_crit"] == k.t_crit
+        heos = Fluid("R134a")
+        assert k.t_crit == heos.critical_temperature
+        assert k.gas_constant == heos.gas_constant
+        # a corrupt file is recomputed
+        files[0].write_text("{not json")
+        fluid_constants.cache_clear()
+        assert fluid_constants("R134a") == k
+        with pytest.raises(ValueError):
+            fluid_constants("NoSuchFluid")
+    finally:
+        fluid_constants.cache_clear()
