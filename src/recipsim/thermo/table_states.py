@@ -327,6 +327,15 @@ class TableFluid:
         except TableMiss:
             return self.heos().state_pt(pressure, temperature)
 
+    def _state_at_pressure(
+        self, pressure: float, residual: Any, guess: float | None
+    ) -> dict[str, float]:
+        """Newton on (T, ln rho) for ``residual`` from ``guess`` (T [K]; default: 20 K
+        above the dew point) and the vapour density there."""
+        t0 = guess if guess is not None else self._guess_temperature(pressure)
+        t, rho = self._newton(residual, t0, self._density_pt(pressure, t0))
+        return self._snapshot(t, rho)
+
     def state_ph(
         self, pressure: float, enthalpy: float, guess: float | None = None
     ) -> dict[str, float]:
@@ -344,9 +353,7 @@ class TableFluid:
             return f, jac
 
         try:
-            t0 = guess if guess is not None else self._guess_temperature(pressure)
-            t, rho = self._newton(residual, t0, self._density_pt(pressure, t0))
-            return self._snapshot(t, rho)
+            return self._state_at_pressure(pressure, residual, guess)
         except TableMiss:
             return self.heos().state_ph(pressure, enthalpy)
 
@@ -368,9 +375,7 @@ class TableFluid:
             return f, jac
 
         try:
-            t0 = guess if guess is not None else self._guess_temperature(pressure)
-            t, rho = self._newton(residual, t0, self._density_pt(pressure, t0))
-            return self._snapshot(t, rho)
+            return self._state_at_pressure(pressure, residual, guess)
         except TableMiss:
             return self.heos().state_ps(pressure, entropy)
 
