@@ -102,7 +102,7 @@ HEAT_TRANSFER_SPEC: Spec = {
 }
 
 SOLVER_SPEC: Spec = {
-    "method": Choice(("dopri5",), "dopri5", "integrator"),
+    "method": Choice(("dopri5", "dopri5_stiff", "ros34pw2"), "dopri5", "integrator"),
     "rtol": Field("dimensionless", 1e-6, lo=1e-13, hi=1e-2),
     "atol": Field("dimensionless", None, lo=1e-16, hi=1e-2, doc="on scaled states; default rtol"),
     "cycle_tolerance": Field("dimensionless", 1e-4, lo=1e-12, hi=0.1),

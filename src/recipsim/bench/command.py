@@ -194,6 +194,11 @@ def _bench(args: argparse.Namespace, argv: list[str] | None) -> int:
     by = CPU if args.rank_by == "cpu" else WALL
     result = speedup(frame, by=by)
     meta["result"] = result
+    if not args.quick:
+        from .startup import measure_startup
+
+        meta["startup"] = measure_startup(args.case, list(args.overrides))
+        say(_startup_line(meta["startup"]))
     meta["machine_end"] = machine_info()
     meta["elapsed [s]"] = time.time() - started
     title = f"recipsim bench {base.name} {' '.join(args.overrides)}".strip()
@@ -204,6 +209,18 @@ def _bench(args: argparse.Namespace, argv: list[str] | None) -> int:
         print()
     print(_verdict(result) + f"\n-> {where}")
     return 0
+
+
+def _startup_line(startup: dict[str, Any]) -> str:
+    """The start-up measured by :func:`.startup.measure_startup`, in one line."""
+    return (
+        f"start-up of `recipsim run` (median of {startup['repeats']} fresh interpreters): "
+        f"{startup['startup [s]']:.2f} s wall, {startup['startup_cpu [s]']:.2f} s CPU "
+        f"(imports {startup['imports [s]']:.2f} s, case and model "
+        f"{startup['case_and_model [s]']:.2f} s, "
+        f"numba cache {startup['numba_cache_load [s]']:.2f} s; "
+        f"CoolProp {'imported' if startup['coolprop_imported'] else 'not imported'})"
+    )
 
 
 def _verdict(result: dict[str, Any]) -> str:

@@ -5,6 +5,8 @@ them. Axes (see :func:`build_ladder`):
 
 - tolerances of the compiled DOPRI5 integrator: ``solver.rtol`` (``atol`` follows it)
   x ``solver.cycle_tolerance``, and a longer ``solver.max_step``;
+- the compiled DOPRI5 switching to the Rosenbrock-W step on stiff stretches
+  (``dopri5_stiff``, table properties);
 - integrators: scipy's ``solve_ivp`` methods driving the same compiled right-hand side
   from Python (:mod:`.ivp`);
 - periodic solver: ``solver.periodic = "revolutions" | "shooting"``;
@@ -24,6 +26,7 @@ options appear.
 
 from __future__ import annotations
 
+import itertools
 import math
 from dataclasses import dataclass
 from typing import Any
@@ -31,6 +34,11 @@ from typing import Any
 from ..case import Case, parse_override
 
 DOPRI5 = "dopri5"
+#: the compiled DOPRI5 switching to the Rosenbrock-W step on stiff stretches
+#: (``solver.method = "dopri5_stiff"``, :mod:`recipsim.solve.stiff`)
+DOPRI5_STIFF = "dopri5_stiff"
+#: integrators run by :func:`recipsim.solve.periodic.solve_periodic`
+COMPILED = (DOPRI5, DOPRI5_STIFF)
 #: scipy methods on the compiled right-hand side, in the full ladder
 IVP_METHODS = ("RK45", "LSODA", "BDF", "Radau")
 #: pure-Python baseline methods (what a user would pick: the default and the stiff switcher)
@@ -127,6 +135,10 @@ def _table(rtol: float, cycle: float, *extra: str, label: str = "table") -> Rung
     return _rung(DOPRI5, rtol, cycle, *extra, label=label, properties="table")
 
 
+def _stiff(rtol: float, cycle: float, *extra: str, label: str = "table") -> Rung:
+    return _rung(DOPRI5_STIFF, rtol, cycle, *extra, label=label, properties="table")
+
+
 def lower_fidelity(case: Case) -> list[tuple[str, tuple[str, ...]]]:
     """``(label, overrides)`` that simplify the case's model, one simplification each."""
     out: list[tuple[str, tuple[str, ...]]] = []
@@ -167,6 +179,7 @@ def build_ladder(case: Case, quick: bool = False, baseline: bool = True) -> list
         rungs.append(_rung("LSODA", 1e-6, 1e-3))
         rungs.append(_rung(DOPRI5, 1e-6, 1e-3, "solver.periodic=shooting", label="shooting"))
         rungs.append(_table(1e-6, 1e-3))
+        rungs.append(_stiff(1e-6, 1e-3))
         rungs += _fidelity_rungs(case, [(1e-6, 1e-3)])[:1]
         if baseline:
             rungs.append(_rung("LSODA", 1e-5, 1e-2, baseline=True))
@@ -196,6 +209,13 @@ def build_ladder(case: Case, quick: bool = False, baseline: bool = True) -> list
         rungs.append(_table(rtol, cycle, "solver.max_step=5deg", label="table step=5deg"))
     for rtol in (1e-5, 1e-6, 1e-7):
         rungs.append(_table(rtol, 1e-3, "solver.periodic=shooting", label="table shooting"))
+    # DOPRI5 switching to the Rosenbrock-W step where its stability limits the step
+    for rtol in (1e-5, 1e-6, 1e-7):
+        for cycle in (1e-3, 1e-4):
+            rungs.append(_stiff(rtol, cycle))
+    for rtol, cycle in itertools.product((1e-5, 1e-6), (1e-3, 1e-4)):
+        step = "solver.max_step=5deg"
+        rungs.append(_stiff(rtol, cycle, step, label="table step=5deg"))
     rungs += _fidelity_rungs(case, [(1e-6, 1e-3), (1e-6, 1e-4)])
     if baseline:
         for method in BASELINE_METHODS:

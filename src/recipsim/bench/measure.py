@@ -12,6 +12,7 @@ repeat beyond the requested count until their solves add up to a minimum time.
 
 from __future__ import annotations
 
+import dataclasses
 import gc
 import math
 import statistics
@@ -26,7 +27,7 @@ import numpy as np
 from ..case import Case, load_case
 from ..errors import CaseError, RecipsimError
 from .errors import compared_quantities
-from .ladder import DOPRI5, Rung, case_settings, fidelity, requested_settings
+from .ladder import COMPILED, Rung, case_settings, fidelity, requested_settings
 
 OK = "ok"
 UNCONVERGED = "unconverged"
@@ -103,9 +104,13 @@ def pressure_trace(cycle: Any) -> tuple[np.ndarray, np.ndarray]:
 
 def solve(model: Any, integrator: str) -> Any:
     """Solve ``model`` to its periodic state with ``integrator`` (a PeriodicSolution)."""
-    if integrator == DOPRI5:
+    if integrator in COMPILED:
         from ..solve.periodic import solve_periodic
 
+        # the rung names the compiled integrator, whatever the case file's solver.method
+        model.case = dataclasses.replace(
+            model.case, solver=dataclasses.replace(model.case.solver, method=integrator)
+        )
         return solve_periodic(model)
     from .ivp import solve_periodic_ivp
 

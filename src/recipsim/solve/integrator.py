@@ -14,6 +14,22 @@ One call integrates a scene from ``t0`` to ``t1`` without returning to Python:
   never clamped inside the right-hand side);
 - samples at given times come from the same Hermite interpolant.
 
+Stiff stretches (``method`` = :data:`METHOD_AUTO`, ``solver.method =
+"dopri5_stiff"``): after every accepted DOPRI5 step, Hairer's stiffness
+test estimates ``h |lambda|`` from the last two stages (both at ``t + h``); once it has
+exceeded 3.25 (DOPRI5's stability boundary on the negative real axis) on
+:data:`STIFF_AFTER` steps without :data:`NONSTIFF_RESET` non-stiff steps in between,
+the integrator continues with the L-stable Rosenbrock-W step of
+:mod:`recipsim.solve.stiff` (finite-difference Jacobian of the error-controlled
+states, refreshed every :data:`JAC_EVERY` accepted steps and after a rejection), with
+the same error norm, events, impacts, re-step to the event and Hermite dense output.
+It returns to DOPRI5 once the step the W-method takes would be inside DOPRI5's
+stability region (``h * rho(J) <`` :data:`BACK_TO_DOPRI5`, ``rho`` bounded by the
+scaled infinity norm of the Jacobian) on :data:`NONSTIFF_AFTER` consecutive steps.
+At tight tolerances DOPRI5's steps stay inside its stability region, the test never
+fires and the integration is pure DOPRI5. :data:`METHOD_DOPRI5` never switches,
+:data:`METHOD_ROSW` uses the W-method throughout (tests).
+
 Status codes returned in ``stats[ST_STATUS]``: 0 done, 1 step size underflow,
 2 property failure that smaller steps could not cure, 3 too many events at one
 instant (chattering).
@@ -27,6 +43,7 @@ import numpy as np
 from numba import njit
 
 from .scenes import N_AUX, N_EVENTS, scene_event_action, scene_event_values, scene_rhs
+from .stiff import ERR_ORDER, jacobian_fd, spectral_bound, w_step
 
 ST_STATUS = 0
 ST_NFEV = 1
@@ -36,7 +53,21 @@ ST_NEVENTS = 4
 ST_T = 5
 ST_H = 6
 ST_NSAMPLES = 7
-N_STATS = 8
+ST_NSTIFF = 8  # accepted Rosenbrock-W steps
+ST_NJAC = 9  # finite-difference Jacobians
+N_STATS = 10
+
+#: ``method`` of :func:`integrate`
+METHOD_DOPRI5 = 0
+METHOD_AUTO = 1
+METHOD_ROSW = 2
+#: stiffness switching (see the module docstring)
+STIFF_LIMIT = 3.25
+STIFF_AFTER = 5
+NONSTIFF_RESET = 6
+BACK_TO_DOPRI5 = 2.0
+NONSTIFF_AFTER = 3
+JAC_EVERY = 1
 
 DONE = 0
 STEP_UNDERFLOW = 1
@@ -142,6 +173,75 @@ def _hermite(t0, h, y0, f0, y1, f1, tau, out) -> None:
 
 
 @njit(cache=True)
+def _step(
+    use_w,
+    t,
+    h,
+    y,
+    mode,
+    par,
+    ipar,
+    props,
+    pbuf,
+    rtol,
+    atol,
+    scale,
+    n_err,
+    jac,
+    lu,
+    piv,
+    stages,
+    ytmp,
+    ynew,
+    aux,
+):
+    """One DOPRI5 or Rosenbrock-W step: ``(status, error_norm, evaluations)``."""
+    if use_w:
+        st, err = w_step(
+            t,
+            h,
+            y,
+            mode,
+            par,
+            ipar,
+            props,
+            pbuf,
+            rtol,
+            atol,
+            scale,
+            n_err,
+            jac,
+            lu,
+            piv,
+            stages,
+            ytmp,
+            ynew,
+            aux,
+        )
+        return st, err, 4
+    st, err = _dp_step(
+        t, h, y, mode, par, ipar, props, pbuf, rtol, atol, scale, n_err, stages, ytmp, ynew, aux
+    )
+    return st, err, 6
+
+
+@njit(cache=True)
+def _stiffness(h, y, ynew, ytmp, k6, k7, rtol, atol, scale, n_err) -> float:
+    """Hairer's estimate of ``h |lambda|`` from DOPRI5's last two stages (both at t + h)."""
+    num = 0.0
+    den = 0.0
+    for i in range(n_err):
+        if scale[i] == 0.0:
+            continue
+        sc = atol * scale[i] + rtol * max(abs(y[i]), abs(ynew[i]))
+        num += ((k7[i] - k6[i]) / sc) ** 2
+        den += ((ynew[i] - ytmp[i]) / sc) ** 2
+    if den <= 0.0:
+        return 0.0
+    return h * math.sqrt(num / den)
+
+
+@njit(cache=True)
 def integrate(
     t0,
     t1,
@@ -161,6 +261,7 @@ def integrate(
     samples,
     sample_modes,
     stats,
+    method=METHOD_DOPRI5,
 ):
     """Integrate a scene from ``t0`` to ``t1`` in place.
 
@@ -190,10 +291,14 @@ def integrate(
         Output, one row per sample time.
     stats : ndarray
         Output counters (see ``ST_*``).
+    method : int
+        :data:`METHOD_DOPRI5`, :data:`METHOD_AUTO` (switch to the Rosenbrock-W step
+        on stiff stretches) or :data:`METHOD_ROSW` (Rosenbrock-W throughout).
     """
     n = y.shape[0]
     stages = np.empty((7, n))  # Dormand-Prince stages: f(t, y) first, f(t + h, y_new) last
     k1 = stages[0]
+    k6 = stages[5]
     k7 = stages[6]
     ytmp = np.empty(n)
     ynew = np.empty(n)
@@ -204,10 +309,15 @@ def integrate(
     g_old = np.empty(N_EVENTS)
     g_new = np.empty(N_EVENTS)
     g_int = np.empty(N_EVENTS)
+    jac = np.zeros((n, n_err))
+    lu = np.empty((n_err, n_err))
+    piv = np.empty(n_err, dtype=np.int64)
     nfev = 0
     n_acc = 0
     n_rej = 0
     n_ev = 0
+    n_w = 0
+    n_jac = 0
     n_samples = sample_times.shape[0]
     i_sample = 0
     while i_sample < n_samples and sample_times[i_sample] < t0:
@@ -227,6 +337,11 @@ def integrate(
     t_last_event = -1e300
     result = DONE
     property_failed = False  # the last trial step failed in the property call
+    use_w = method == METHOD_ROSW
+    n_stiff = 0  # DOPRI5 steps that looked stiff
+    n_nonstiff = 0  # DOPRI5 steps that did not (W: steps DOPRI5 could have taken)
+    jac_age = -1  # accepted steps since the Jacobian was built (-1: none for this y)
+    rho_jac = 0.0
     while t < t1:
         if h < h_min:
             result = PROPERTY_FAILURE if property_failed else STEP_UNDERFLOW
@@ -235,22 +350,68 @@ def integrate(
         if t + h >= t1:
             h = t1 - t
             last = True
-        st, err = _dp_step(
-            t, h, y, mode, par, ipar, props, pbuf, rtol, atol, scale, n_err, stages, ytmp, ynew, aux
+        if use_w and (jac_age < 0 or jac_age >= JAC_EVERY):
+            stj, nj = jacobian_fd(
+                t, y, k1, mode, par, ipar, props, pbuf, scale, n_err, jac, ytmp, ftmp, aux
+            )
+            nfev += nj
+            n_jac += 1
+            jac_age = 0
+            rho_jac = spectral_bound(jac, scale, n_err)
+            if stj != 0:
+                result = PROPERTY_FAILURE
+                break
+        st, err, ne = _step(
+            use_w,
+            t,
+            h,
+            y,
+            mode,
+            par,
+            ipar,
+            props,
+            pbuf,
+            rtol,
+            atol,
+            scale,
+            n_err,
+            jac,
+            lu,
+            piv,
+            stages,
+            ytmp,
+            ynew,
+            aux,
         )
-        nfev += 6
-        property_failed = st != 0
+        nfev += ne
+        property_failed = st > 0
         if st != 0:
             n_rej += 1
             h *= 0.25
+            if use_w and jac_age > 0:
+                jac_age = -1
             continue
         if not (err <= 1.0):  # also catches NaN
             n_rej += 1
             if err != err:
                 h *= 0.25
+            elif use_w:
+                h *= max(0.2, 0.9 * err ** (-1.0 / ERR_ORDER))
             else:
                 h *= max(0.2, 0.9 * err**-0.2)
+            if use_w and jac_age > 0:
+                jac_age = -1  # a stale Jacobian may be why: refresh it
             continue
+
+        # stiffness test on the accepted DOPRI5 step (k6, ytmp: its sixth stage)
+        if method == METHOD_AUTO and not use_w:
+            if _stiffness(h, y, ynew, ytmp, k6, k7, rtol, atol, scale, n_err) > STIFF_LIMIT:
+                n_stiff += 1
+                n_nonstiff = 0
+            else:
+                n_nonstiff += 1
+                if n_nonstiff >= NONSTIFF_RESET:
+                    n_stiff = 0
 
         # accepted: look for events on [t, t + h]
         scene_event_values(ynew, mode, par, ipar, aux, g_new)
@@ -304,6 +465,9 @@ def integrate(
                 sample_modes[i_sample, i] = mode[i]
             i_sample += 1
         n_acc += 1
+        if use_w:
+            n_w += 1
+            jac_age += 1
         if k_event < 0:
             t = t + h
             for i in range(n):
@@ -319,7 +483,8 @@ def integrate(
             h_event = t_event - t
             _hermite(t, h, y, k1, ynew, k7, t_event, yint)  # fallback if the re-step fails
             if h_event > 0.0:
-                st, err = _dp_step(
+                st, err, ne = _step(
+                    use_w,
                     t,
                     h_event,
                     y,
@@ -332,12 +497,15 @@ def integrate(
                     atol,
                     scale,
                     n_err,
+                    jac,
+                    lu,
+                    piv,
                     stages,
                     ytmp,
                     ystep,
                     aux,
                 )
-                nfev += 6
+                nfev += ne
                 if st == 0:
                     for i in range(n):
                         yint[i] = ystep[i]
@@ -346,6 +514,7 @@ def integrate(
             scene_rhs(t_event, y, mode, par, ipar, props, pbuf, ftmp, aux)
             terminal = scene_event_action(k_event, y, mode, par, ipar, aux)
             n_ev += 1
+            jac_age = -1  # new mode or impact: the Jacobian is rebuilt if needed
             if t_event - t_last_event < 1e-12 * max(1.0, abs(t_event)):
                 events_here += 1
                 if events_here > 50:
@@ -366,11 +535,33 @@ def integrate(
             if t >= t1 or terminal:
                 break
             continue
+        if use_w:
+            if err > 0.0:
+                fac = min(5.0, max(0.2, 0.9 * err ** (-1.0 / ERR_ORDER)))
+            else:
+                fac = 5.0
+            h = min(h * fac, h_max)
+            if method == METHOD_AUTO:
+                # back to DOPRI5 once it could take the step the W-method takes
+                if h * rho_jac < BACK_TO_DOPRI5:
+                    n_nonstiff += 1
+                    if n_nonstiff >= NONSTIFF_AFTER:
+                        use_w = False
+                        n_stiff = 0
+                        n_nonstiff = 0
+                else:
+                    n_nonstiff = 0
+            continue
         if err > 0.0:
             fac = min(5.0, max(0.2, 0.9 * err**-0.2))
         else:
             fac = 5.0
         h = min(h * fac, h_max)
+        if method == METHOD_AUTO and n_stiff >= STIFF_AFTER:
+            use_w = True
+            jac_age = -1
+            n_stiff = 0
+            n_nonstiff = 0
 
     stats[ST_STATUS] = result
     stats[ST_NFEV] = nfev
@@ -380,3 +571,5 @@ def integrate(
     stats[ST_T] = t
     stats[ST_H] = h
     stats[ST_NSAMPLES] = i_sample
+    stats[ST_NSTIFF] = n_w
+    stats[ST_NJAC] = n_jac
