@@ -59,7 +59,9 @@ Limits: the map is only as smooth as the integrator makes it. Undamped bearings 
 at up to 6.6 kHz, over a hundred periods per revolution, and at ``rtol = 1e-6`` the
 end state of a revolution jumps by about 1e-4 of the vibration amplitude when the
 start state moves by 1e-9 (the step sequence changes): that is the cycle tolerance,
-so undamped runs need ``solver.rtol = 1e-7`` or tighter to converge reliably. With the
+so undamped runs need a tighter ``solver.rtol``: 1e-7 under the tabulated curve,
+1e-8 on the coupled scene (measured: at 1e-7 Newton stalls there; 68 revolutions at
+1e-8, ``cases/hard/bearings_undamped.toml``). With the
 ``torque_profile`` drive and light or no damping there is no periodic state to find:
 the crank speed drifts every revolution by the energy the angle-only torque does not
 balance, and the response of the undamped high-frequency modes is so sensitive to
