@@ -131,12 +131,10 @@ def _rung(
     return Rung(name, integrator, overrides, baseline)
 
 
-def _table(rtol: float, cycle: float, *extra: str, label: str = "table") -> Rung:
-    return _rung(DOPRI5, rtol, cycle, *extra, label=label, properties="table")
-
-
-def _stiff(rtol: float, cycle: float, *extra: str, label: str = "table") -> Rung:
-    return _rung(DOPRI5_STIFF, rtol, cycle, *extra, label=label, properties="table")
+def _table(
+    rtol: float, cycle: float, *extra: str, label: str = "table", integrator: str = DOPRI5
+) -> Rung:
+    return _rung(integrator, rtol, cycle, *extra, label=label, properties="table")
 
 
 def lower_fidelity(case: Case) -> list[tuple[str, tuple[str, ...]]]:
@@ -179,7 +177,7 @@ def build_ladder(case: Case, quick: bool = False, baseline: bool = True) -> list
         rungs.append(_rung("LSODA", 1e-6, 1e-3))
         rungs.append(_rung(DOPRI5, 1e-6, 1e-3, "solver.periodic=shooting", label="shooting"))
         rungs.append(_table(1e-6, 1e-3))
-        rungs.append(_stiff(1e-6, 1e-3))
+        rungs.append(_table(1e-6, 1e-3, integrator=DOPRI5_STIFF))
         rungs += _fidelity_rungs(case, [(1e-6, 1e-3)])[:1]
         if baseline:
             rungs.append(_rung("LSODA", 1e-5, 1e-2, baseline=True))
@@ -212,10 +210,10 @@ def build_ladder(case: Case, quick: bool = False, baseline: bool = True) -> list
     # DOPRI5 switching to the Rosenbrock-W step where its stability limits the step
     for rtol in (1e-5, 1e-6, 1e-7):
         for cycle in (1e-3, 1e-4):
-            rungs.append(_stiff(rtol, cycle))
+            rungs.append(_table(rtol, cycle, integrator=DOPRI5_STIFF))
     for rtol, cycle in itertools.product((1e-5, 1e-6), (1e-3, 1e-4)):
         step = "solver.max_step=5deg"
-        rungs.append(_stiff(rtol, cycle, step, label="table step=5deg"))
+        rungs.append(_table(rtol, cycle, step, label="table step=5deg", integrator=DOPRI5_STIFF))
     rungs += _fidelity_rungs(case, [(1e-6, 1e-3), (1e-6, 1e-4)])
     if baseline:
         for method in BASELINE_METHODS:

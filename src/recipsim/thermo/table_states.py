@@ -228,6 +228,10 @@ class TableFluid:
         self._buf = np.concatenate([np.zeros(N_PROPS), table.buffer_tail(transport=False)])
         self._buf_transport = np.concatenate([np.zeros(N_PROPS), table.buffer_tail(transport=True)])
         self._heos: Fluid | None = None
+        # pseudo-pure mixtures have no QT saturation data (NaN rows): their saturation
+        # questions go to HEOS
+        t_mid = 0.5 * (table.header(H_TS0) + table.header(H_TSAT_MAX))
+        self._pure = math.isfinite(saturation_row(t_mid, S_VL, self._buf))
         #: questions answered by HEOS (the table had no answer)
         self.heos_calls = 0
 
@@ -423,11 +427,7 @@ class TableFluid:
 
     def _pure_saturation(self) -> None:
         """TableMiss for a pseudo-pure mixture (no ``QT`` saturation data in the table)."""
-        if not math.isfinite(
-            saturation_row(
-                0.5 * (self.table.header(H_TS0) + self.table.header(H_TSAT_MAX)), S_VL, self._buf
-            )
-        ):
+        if not self._pure:
             raise TableMiss
 
     def saturation_pressure(self, temperature: float, quality: float = 1.0) -> float:
