@@ -16,6 +16,8 @@ def _options(path: Path) -> dict:
     with path.open("rb") as fh:
         raw = tomllib.load(fh)
     parent = raw.get("extends")
+    if parent and not parent.endswith(".toml"):  # a shipped case by name
+        parent = str(CASES / f"{parent}.toml")
     base = _options(path.parent / parent) if parent else {}
     return {**base, **raw.get("options", {})}
 

@@ -10,6 +10,7 @@ import pandas as pd
 import pytest
 
 from helpers import CASES, REFERENCE
+from recipsim.atomic import MARKER
 from recipsim.case import load_case
 from recipsim.cli import main
 from recipsim.compare import (
@@ -156,7 +157,8 @@ def test_output_directory_layout(tab_vs_coupled):
     out = tab_vs_coupled.out
     label_a, label_b = tab_vs_coupled.labels
     names = {p.name for p in out.iterdir()}
-    assert names == {"comparison.csv", "cases.csv", "provenance.json", label_a, label_b} | OVERLAYS
+    expected = {"comparison.csv", "cases.csv", "provenance.json", label_a, label_b, MARKER}
+    assert names == expected | OVERLAYS
     assert not [p for p in out.parent.iterdir() if p.name.startswith(".")]  # no temp left
     table = pd.read_csv(out / "comparison.csv")
     assert list(table.columns) == [*FIXED[:2], label_a, label_b, *FIXED[2:]]
@@ -206,6 +208,7 @@ def test_self_comparison_has_zero_differences(tmp_path, capsys):
         "provenance.json",
         "paper_tabulated_a",
         "paper_tabulated_b",
+        MARKER,
     }
 
 
@@ -319,5 +322,5 @@ def test_refuses_to_replace_a_directory_that_is_not_a_comparison(tmp_path, capsy
     """``--out reports`` must not wipe the reports: exit 2, the directory untouched."""
     (tmp_path / "keep.txt").write_text("mine")
     assert main(["compare", str(PAPER), str(PAPER), "--out", str(tmp_path), "--no-plots"]) == 2
-    assert "not a comparison directory" in capsys.readouterr().err
+    assert "not written by recipsim" in capsys.readouterr().err
     assert [p.name for p in tmp_path.iterdir()] == ["keep.txt"]

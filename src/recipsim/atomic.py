@@ -1,15 +1,178 @@
-"""Atomic writes: a file or an output directory appears whole or not at all."""
+"""Atomic writes: a file or an output directory appears whole or not at all.
+
+Output directories are also *guarded*: recipsim only ever replaces a directory that it
+wrote itself (it carries :data:`MARKER`), or an empty one, and only at a path inside the
+directory the user pointed to (:func:`output_dir`). A name that would lead elsewhere
+(``""``, ``"."``, ``".."``, ``"a/b"``, an absolute path) is refused before anything is
+written (:func:`checked_name`).
+"""
 
 from __future__ import annotations
 
 import os
+import re
 import shutil
+import socket
 import tempfile
 import time
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from pathlib import Path
 from typing import IO, Any
+
+from .errors import CaseError
+
+#: File written into every directory recipsim creates as a whole (reports, comparisons,
+#: studies, sweeps, benches); a directory without it is never replaced or written into.
+MARKER = ".recipsim-output"
+
+#: Longest case, study or sweep name [characters].
+MAX_NAME_LENGTH = 100
+
+_NAME = re.compile(r"[A-Za-z0-9._-]+")
+
+
+def checked_name(name: object, file: str, key: str = "name") -> str:
+    """Return ``name`` if it is a plain file name, else raise :class:`CaseError`.
+
+    Allowed: letters, digits, ``.``, ``_`` and ``-``, 1 to :data:`MAX_NAME_LENGTH`
+    characters, not ``.`` or ``..`` and not starting with a dot (recipsim's temporary
+    directories do). Such a name, joined to a directory, stays inside it.
+    """
+    allowed = (
+        f"a plain file name: letters, digits, '.', '_' and '-', 1 to {MAX_NAME_LENGTH} "
+        "characters, not starting with '.'"
+    )
+    if not isinstance(name, str):
+        raise CaseError(file, key, f"expected a string, {allowed}")
+    if not _NAME.fullmatch(name) or name.startswith(".") or len(name) > MAX_NAME_LENGTH:
+        shown = name if len(name) <= 40 else name[:40] + "..."
+        raise CaseError(file, key, f"{shown!r} is not allowed as a name; {allowed}")
+    return name
+
+
+def name_from_stem(stem: str) -> str:
+    """A safe default name from a file name's stem (other characters become ``_``)."""
+    name = re.sub(r"[^A-Za-z0-9._-]", "_", stem).lstrip(".")[:MAX_NAME_LENGTH]
+    return name or "case"
+
+
+def output_dir(parent: Path, name: str, file: str = "--out") -> Path:
+    """The output directory ``parent/name``, checked to be replaceable by recipsim.
+
+    Parameters
+    ----------
+    parent : Path
+        The directory the user pointed to (``--out``); created if missing.
+    name : str
+        A name checked by :func:`checked_name`.
+    file : str
+        Where ``parent`` came from, for messages.
+
+    Raises
+    ------
+    CaseError
+        ``parent`` exists and is not a directory, or ``parent/name`` exists and is not
+        an empty directory or one written by recipsim.
+    """
+    parent = Path(parent)
+    if parent.exists() and not parent.is_dir():
+        raise CaseError(str(parent), file, "exists and is not a directory")
+    target = parent / checked_name(name, file)
+    check_replaceable(target)
+    return target
+
+
+def check_replaceable(target: Path) -> None:
+    """Refuse ``target`` if it exists and is neither empty nor a recipsim output."""
+    if target.is_symlink() or (target.exists() and not target.is_dir()):
+        raise CaseError(str(target), "--out", "exists and is not a directory; choose another")
+    if target.is_dir() and not (target / MARKER).is_file():
+        try:
+            empty = not any(target.iterdir())
+        except OSError as exc:
+            raise CaseError(str(target), "--out", f"cannot be read ({exc.strerror})") from None
+        if not empty:
+            raise CaseError(
+                str(target),
+                "--out",
+                f"exists and was not written by recipsim (no {MARKER}); recipsim replaces "
+                "only its own output directories: choose a new or empty directory",
+            )
+
+
+def _temporary_prefix(target: Path) -> str:
+    return f".{target.name}.tmp-{socket.gethostname()}-"
+
+
+def _pid_alive(pid: int) -> bool:
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:
+        return True
+    return True
+
+
+def clean_stale_temporaries(target: Path) -> None:
+    """Remove temporary and old copies of ``target`` left by killed runs on this host.
+
+    A temporary directory is named ``.<name>.tmp-<host>-<pid>-<random>``; it is removed
+    only when its process is gone, so a concurrent run's work is never touched.
+    """
+    prefix = _temporary_prefix(target)
+    try:
+        entries = list(target.parent.glob(f".{glob_escape(target.name)}.*"))
+    except OSError:
+        return
+    for entry in entries:
+        rest = entry.name[len(prefix) :] if entry.name.startswith(prefix) else None
+        if rest is not None:
+            pid = rest.split("-", 1)[0]
+            if pid.isdigit() and not _pid_alive(int(pid)):
+                shutil.rmtree(entry, ignore_errors=True)
+        elif entry.name.startswith(f".{target.name}.old-"):
+            shutil.rmtree(entry, ignore_errors=True)
+
+
+def glob_escape(text: str) -> str:
+    """Escape the glob metacharacters of ``text``."""
+    return re.sub(r"([*?\[])", r"[\1]", text)
+
+
+@contextmanager
+def atomic_directory(target: Path) -> Iterator[Path]:
+    """Build a directory beside ``target``; it replaces ``target`` when the block ends.
+
+    ``target`` must be replaceable (:func:`check_replaceable`); the new directory gets
+    :data:`MARKER`. If the block raises, ``target`` is untouched and the temporary
+    directory removed; one left by a killed process is removed by the next call.
+    """
+    target = Path(target)
+    check_replaceable(target)
+    target.parent.mkdir(parents=True, exist_ok=True)
+    clean_stale_temporaries(target)
+    tmp = Path(
+        tempfile.mkdtemp(prefix=f"{_temporary_prefix(target)}{os.getpid()}-", dir=target.parent)
+    )
+    try:
+        yield tmp
+        (tmp / MARKER).write_text("written by recipsim; recipsim may replace this directory\n")
+        check_replaceable(target)  # it may have appeared while we were writing
+        swap_in(tmp, target)
+    except BaseException:
+        shutil.rmtree(tmp, ignore_errors=True)
+        raise
+
+
+def mark_output(directory: Path) -> None:
+    """Create ``directory`` (if needed) and mark it as a recipsim output directory."""
+    check_replaceable(directory)
+    directory.mkdir(parents=True, exist_ok=True)
+    marker = directory / MARKER
+    if not marker.is_file():
+        marker.write_text("written by recipsim; recipsim may replace this directory\n")
 
 
 @contextmanager
@@ -47,7 +210,8 @@ def atomic_write(path: Path, write: Callable[[Path], None]) -> None:
 def swap_in(new: Path, target: Path) -> None:
     """Replace directory ``target`` by ``new`` with renames (the old one is removed after).
 
-    A reader sees either the old or the new directory, never a half-written one.
+    A reader sees either the old or the new directory, never a half-written one. Callers
+    check first that ``target`` may be replaced (:func:`atomic_directory` does).
     """
     old = None
     if target.exists():

@@ -18,7 +18,9 @@ from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
+from .atomic import checked_name, name_from_stem
 from .errors import CaseError
+from .inputs import MAX_EXTENDS_DEPTH, read_toml, resolve_reference
 from .mechanics.spec import MechanismSpec, mechanism_from_dict
 from .mechanics.tabulated import PressureCurve, read_pressure_curve
 from .motor import MotorSpec, motor_from_table
@@ -43,11 +45,11 @@ OPERATING_POINT_SPEC: Spec = {
     "rating_point": Text(None, "name of a rating point in the refrigerant file"),
     "evaporating_temperature": Field("K", None, lo=50.0, hi=700.0),
     "condensing_temperature": Field("K", None, lo=50.0, hi=700.0),
-    "suction_pressure": Field("Pa", None, lo=0.0, open_lo=True),
-    "discharge_pressure": Field("Pa", None, lo=0.0, open_lo=True),
+    "suction_pressure": Field("Pa", None, lo=0.0, open_lo=True, hi=1e9),
+    "discharge_pressure": Field("Pa", None, lo=0.0, open_lo=True, hi=1e9),
     "suction_temperature": Field("K", None, lo=50.0, hi=700.0),
     "liquid_temperature": Field("K", None, lo=50.0, hi=700.0),
-    "shell_pressure": Field("Pa", None, lo=0.0, open_lo=True),
+    "shell_pressure": Field("Pa", None, lo=0.0, open_lo=True, hi=1e9),
     "shaft_speed": Field("rad/s", lo=0.0, hi=2000.0, open_lo=True, doc="e.g. '3500 rpm'"),
 }
 
@@ -131,7 +133,6 @@ TOP_KEYS = {
     "bearings",
     "pressure_curve",
     "motor",
-    "output",
 }
 
 
@@ -325,7 +326,9 @@ def apply_overrides(raw: dict[str, Any], overrides: list[str], file: str) -> dic
     return data
 
 
-def load_case(path: str | Path, overrides: list[str] | None = None) -> Case:
+def load_case(
+    path: str | Path, overrides: list[str] | None = None, *, allow_external_paths: bool = False
+) -> Case:
     """Read, override and validate a case file.
 
     Parameters
@@ -334,6 +337,10 @@ def load_case(path: str | Path, overrides: list[str] | None = None) -> Case:
         The TOML case file.
     overrides : list of str
         ``KEY=VALUE`` strings, KEY a dotted path into the file.
+    allow_external_paths : bool
+        Let ``extends`` and ``pressure_curve.file`` name files outside the case file's
+        directory (absolute paths, ``..``); by default only files beside the case, below
+        it, or shipped cases by name are read.
 
     Returns
     -------
@@ -347,9 +354,9 @@ def load_case(path: str | Path, overrides: list[str] | None = None) -> Case:
     path = Path(path)
     file = str(path)
     raw, text = read_toml(path, "case")
-    raw = resolve_extends(raw, path, [path.resolve()])
+    raw = resolve_extends(raw, path, [path.resolve()], allow_external_paths)
     raw = apply_overrides(raw, overrides or [], file)
-    return case_from_dict(raw, file, text)
+    return case_from_dict(raw, file, text, allow_external_paths=allow_external_paths)
 
 
 def _deep_merge(base: dict[str, Any], child: dict[str, Any]) -> dict[str, Any]:
@@ -362,59 +369,62 @@ def _deep_merge(base: dict[str, Any], child: dict[str, Any]) -> dict[str, Any]:
     return out
 
 
-def read_toml(path: Path, kind: str) -> tuple[dict[str, Any], str]:
-    """Parse the TOML file ``path``; returns its data and its text.
+def resolve_extends(
+    raw: dict[str, Any], path: Path, chain: list[Path], allow_external: bool = False
+) -> dict[str, Any]:
+    """Merge the case named by ``extends`` under this one.
 
-    Raises
-    ------
-    CaseError
-        If the file does not exist ("no such <kind> file") or is not valid TOML.
-    """
-    file = str(path)
-    if not path.is_file():
-        raise CaseError(file, "", f"no such {kind} file")
-    text = path.read_text()
-    try:
-        return tomllib.loads(text), text
-    except tomllib.TOMLDecodeError as exc:
-        raise CaseError(file, "", f"not valid TOML: {exc}") from None
-
-
-def resolve_extends(raw: dict[str, Any], path: Path, chain: list[Path]) -> dict[str, Any]:
-    """Merge the case named by ``extends`` (relative to this file) under this one.
-
+    ``extends`` names a file beside this one (``"base.toml"``) or a shipped case by
+    name (``"reference_r134a_lbp"``), see :func:`recipsim.inputs.resolve_reference`.
     ``name`` and ``description`` are not inherited: a case's name defaults to its
     file name.
     """
     parent_name = raw.pop("extends", None)
     if parent_name is None:
         return raw
-    if not isinstance(parent_name, str):
-        raise CaseError(str(path), "extends", "expected a file name, e.g. 'reference.toml'")
-    parent = (path.parent / parent_name).resolve()
+    if len(chain) > MAX_EXTENDS_DEPTH:
+        raise CaseError(
+            str(path), "extends", f"chain of extends deeper than {MAX_EXTENDS_DEPTH} files"
+        )
+    parent = resolve_reference(
+        parent_name, str(path), "extends", "case file", allow_external, by_name=True
+    )
     if parent in chain:
-        raise CaseError(str(path), "extends", f"circular extends through {parent}")
-    if not parent.is_file():
-        raise CaseError(str(path), "extends", f"no such case file: {parent}")
+        raise CaseError(str(path), "extends", f"circular extends through {parent.name}")
     base, _ = read_toml(parent, "case")
     curve = base.get("pressure_curve")
     if isinstance(curve, dict) and isinstance(curve.get("file"), str):
-        # a file named in the base case is relative to the base case, not to this one
-        curve["file"] = str(parent.parent / curve["file"])
-    base = resolve_extends(base, parent, chain + [parent])
+        # a file named in the base case is relative to the base case, not to this one:
+        # resolved (and checked) here, where the base case is known
+        curve["file"] = str(
+            resolve_reference(
+                curve["file"],
+                str(parent),
+                "pressure_curve.file",
+                "pressure curve",
+                allow_external,
+            )
+        )
+    base = resolve_extends(base, parent, chain + [parent], allow_external)
     base.pop("name", None)
     base.pop("description", None)
     return _deep_merge(base, raw)
 
 
-def case_from_dict(raw: dict[str, Any], file: str, source_text: str = "") -> Case:
+def case_from_dict(
+    raw: dict[str, Any], file: str, source_text: str = "", *, allow_external_paths: bool = False
+) -> Case:
     """Validate the raw TOML data of a case (see :func:`load_case`)."""
     check_keys(raw, TOP_KEYS, file, "")
     top = read_table(
         {k: raw[k] for k in ("name", "description", "refrigerant") if k in raw},
-        {"name": Text(Path(file).stem), "description": Text(""), "refrigerant": Text()},
+        {"name": Text(None), "description": Text(""), "refrigerant": Text()},
         file,
         "",
+    )
+    # the name becomes a directory name: a plain file name or refused
+    top["name"] = (
+        name_from_stem(Path(file).stem) if top["name"] is None else checked_name(top["name"], file)
     )
     search = [Path(file).resolve().parent, Path(file).resolve().parent.parent]
     refrigerant = load_refrigerant(top["refrigerant"], file, "refrigerant", search)
@@ -465,7 +475,8 @@ def case_from_dict(raw: dict[str, Any], file: str, source_text: str = "") -> Cas
             + geometry.clearance_volume / geometry.piston_area,
         )
     _check_supported(options, file)
-    curve = _pressure_curve(raw.get("pressure_curve"), options, file)
+    _check_consistency(geometry, valves, options, file)
+    curve = _pressure_curve(raw.get("pressure_curve"), options, file, allow_external_paths)
     motor = _motor(raw.get("motor"), options, file)
     return Case(
         name=top["name"],
@@ -485,6 +496,37 @@ def case_from_dict(raw: dict[str, Any], file: str, source_text: str = "") -> Cas
         raw=raw,
         source_text=source_text,
     )
+
+
+def _check_consistency(geometry: Geometry, valves: Valves, options: Options, file: str) -> None:
+    """Refuse geometry that cannot be built: ports wider than the bore, reeds narrower
+    than their port, a liner too short for the stroke."""
+    crown_at_bdc = geometry.stroke + geometry.clearance_volume / geometry.piston_area
+    if geometry.liner_length is not None and geometry.liner_length <= crown_at_bdc:
+        raise CaseError(
+            file,
+            "geometry.liner_length",
+            f"{geometry.liner_length:.4g} m is too short: the piston crown travels "
+            f"{crown_at_bdc:.4g} m from the head (stroke + clearance height); allowed: longer",
+        )
+    if options.valves == "ideal":
+        return  # the lossless valves use no valve data
+    for side in ("suction", "discharge"):
+        valve: ValveSpec = getattr(valves, side)
+        if valve.port_diameter >= geometry.bore:
+            raise CaseError(
+                file,
+                f"valves.{side}.port_diameter",
+                f"{valve.port_diameter:.4g} m; a port in the valve plate must be narrower than "
+                f"the bore {geometry.bore:.4g} m",
+            )
+        if valve.reed_width <= valve.port_diameter:
+            raise CaseError(
+                file,
+                f"valves.{side}.reed_width",
+                f"{valve.reed_width:.4g} m cannot cover its port of {valve.port_diameter:.4g} m; "
+                "allowed: wider than port_diameter",
+            )
 
 
 def _check_supported(options: Options, file: str) -> None:
@@ -521,7 +563,7 @@ PRESSURE_CURVE_SPEC: Spec = {
 
 
 def _pressure_curve(
-    raw: dict[str, Any] | None, options: Options, file: str
+    raw: dict[str, Any] | None, options: Options, file: str, allow_external: bool = False
 ) -> PressureCurve | None:
     """The tabulated p(theta) curve: a CSV named relative to the case file."""
     table = read_table(raw, PRESSURE_CURVE_SPEC, file, "pressure_curve")
@@ -534,7 +576,10 @@ def _pressure_curve(
             "required with options.pressure = 'tabulated': a CSV beside the case with columns "
             "'crank_angle [deg]' (0 at top dead centre) and 'cylinder_pressure [Pa]'",
         )
-    return read_pressure_curve(Path(file).resolve().parent / table["file"])
+    path = resolve_reference(
+        table["file"], file, "pressure_curve.file", "pressure curve", allow_external
+    )
+    return read_pressure_curve(path, file)
 
 
 def _operating_point(
@@ -595,6 +640,15 @@ def _operating_point(
                 f"{prefix}.suction_pressure",
                 f"{p_suc:.4g} Pa is not below the critical pressure {ref.critical_pressure:.4g} Pa",
             )
+        p_lo = fluid.saturation_pressure(t_lo, 1.0)
+        if p_suc < p_lo:
+            raise CaseError(
+                file,
+                f"{prefix}.suction_pressure",
+                f"{p_suc:.4g} Pa is below the saturation pressure at the lowest temperature "
+                f"of {ref.name} ({t_lo:.2f} K): allowed [{p_lo:.4g}, "
+                f"{ref.critical_pressure:.4g}) Pa",
+            )
         t_evap = fluid.saturation_temperature(p_suc, 1.0)
     # discharge side
     if exactly_one("condensing_temperature", "discharge_pressure") == "condensing_temperature":
@@ -652,6 +706,14 @@ def _operating_point(
                 "pressure: the liquid would not be liquid",
             )
     p_shell = values["shell_pressure"] if values["shell_pressure"] is not None else p_suc
+    if not 0.0 < p_shell <= ref.max_pressure:
+        raise CaseError(
+            file,
+            f"{prefix}.shell_pressure",
+            f"{p_shell:.4g} Pa is outside the pressure range of {ref.name}: "
+            f"(0, {ref.max_pressure:.4g}] Pa (a hermetic shell sits at suction or discharge "
+            f"pressure, here {p_suc:.4g} or {p_dis:.4g} Pa)",
+        )
     return OperatingPoint(
         evaporating_temperature=t_evap,
         condensing_temperature=t_cond,

@@ -51,7 +51,9 @@ def add_check_parser(sub: Any) -> argparse.ArgumentParser:
         help="expectations file (default: expectations.toml beside the cases)",
     )
     parser.add_argument("--quiet", action="store_true", help="print the table only")
-    add_common_options(parser, Path("reports/check"), "output directory (default reports/check/)")
+    add_common_options(
+        parser, Path("reports/check"), "output directory (default reports/check/)", False
+    )
     parser.set_defaults(handler=run_check_command)
     return parser
 

@@ -2,7 +2,9 @@
 ``recipsim sweep SWEEP [--jobs N] [--scheduler ADDRESS] [--out DIR]`` (see
 :mod:`recipsim.sweep.command`).
 
-Exit status: 0 success; 1 a simulation failed (message names crank angle and state);
+Exit status: 0 success; 1 a simulation failed (message names crank angle and state), a
+case did not reach its periodic state within ``solver.max_revolutions`` (its report is
+written and says so) or the file system failed (disk full, read-only, no permission);
 2 invalid input (message names file, key and what is allowed), no traceback.
 """
 
@@ -47,14 +49,26 @@ def _parser() -> argparse.ArgumentParser:
 
 
 def run_case(
-    path: Path, overrides: list[str], out: Path, plots: bool = True, argv: list[str] | None = None
+    path: Path,
+    overrides: list[str],
+    out: Path,
+    plots: bool = True,
+    argv: list[str] | None = None,
+    allow_external_paths: bool = False,
 ) -> dict[str, Any]:
-    """Load, simulate and report one case; returns its summary row."""
+    """Load, simulate and report one case into ``out/<case name>``; returns its summary row.
+
+    The report directory is checked before the simulation (it must be new, empty or a
+    recipsim report), so a refused ``--out`` costs nothing.
+    """
+    from .atomic import output_dir
     from .case import load_case
     from .simulate import simulate_case, write_case_report
 
-    run = simulate_case(load_case(path, overrides), argv)
-    write_case_report(run, out / run.case.name, overrides, plots)
+    case = load_case(path, overrides, allow_external_paths=allow_external_paths)
+    target = output_dir(out, case.name)
+    run = simulate_case(case, argv)
+    write_case_report(run, target, overrides, plots)
     return run.row
 
 
@@ -70,9 +84,19 @@ def _run_command(args: argparse.Namespace, argv: list[str] | None) -> int:
                 args.out,
                 not args.no_plots,
                 argv if argv is not None else sys.argv,
+                args.allow_external_paths,
             )
             if not args.quiet:
                 _print_summary(row, args.out / row["case"])
+            if not row["converged [-]"]:
+                print(
+                    f"recipsim: {path}: did not reach its periodic state in "
+                    f"{row['revolutions [-]']} revolutions (cycle residual "
+                    f"{row['cycle_residual [-]']:.1e}, tolerance in solver.cycle_tolerance); "
+                    f"the report says so: {args.out / row['case']}",
+                    file=sys.stderr,
+                )
+                return 1
             return 0
 
         status = max(status, exit_status(one, str(path)))

@@ -9,9 +9,13 @@ from pathlib import Path
 
 
 def add_common_options(
-    parser: argparse.ArgumentParser, out_default: Path | None, out_help: str
+    parser: argparse.ArgumentParser,
+    out_default: Path | None,
+    out_help: str,
+    external_paths: bool = True,
 ) -> None:
-    """Add ``--out DIR``, ``--set KEY=VALUE`` (repeatable) and ``--no-plots`` to ``parser``.
+    """Add ``--out DIR``, ``--set KEY=VALUE`` (repeatable), ``--no-plots`` and
+    ``--allow-external-paths`` to ``parser``.
 
     Parameters
     ----------
@@ -21,6 +25,8 @@ def add_common_options(
         Default of ``--out``; None lets the command choose from its input.
     out_help : str
         What ``--out`` names for this command.
+    external_paths : bool
+        Offer ``--allow-external-paths`` (commands that load the user's case files).
     """
     parser.add_argument("--out", type=Path, default=out_default, help=out_help)
     parser.add_argument(
@@ -32,25 +38,45 @@ def add_common_options(
         help="override a case value, KEY a dotted path (e.g. solver.rtol=1e-9); repeatable",
     )
     parser.add_argument("--no-plots", action="store_true", help="write the tables only")
+    if not external_paths:
+        return
+    parser.add_argument(
+        "--allow-external-paths",
+        action="store_true",
+        help=(
+            "let case files name files outside their own directory (extends, "
+            "pressure_curve.file) with absolute or '..' paths"
+        ),
+    )
 
 
 def exit_status(action: Callable[[], int], label: str = "") -> int:
     """Run ``action`` and turn recipsim's errors into a message and an exit status.
 
     Returns ``action()``'s status, 2 for invalid input (:class:`CaseError`) or 1 for any
-    other :class:`RecipsimError` (a solver failure names the crank angle and state).
-    ``label`` (e.g. the case file) prefixes the message of a failure.
+    other :class:`RecipsimError` (a solver failure names the crank angle and state) and
+    for failures of the environment (:class:`OSError`: disk full, read-only, no
+    permission). ``label`` (e.g. the case file) prefixes the message of a failure.
     """
     from .errors import CaseError, RecipsimError
 
+    prefix = f"recipsim: {label}{': ' if label else ''}"
     try:
         return action()
     except CaseError as exc:
         print(f"recipsim: invalid input: {exc}", file=sys.stderr)
         return 2
     except RecipsimError as exc:
-        print(f"recipsim: {label}{': ' if label else ''}{exc}", file=sys.stderr)
+        print(f"{prefix}{exc}", file=sys.stderr)
         return 1
+    except OSError as exc:
+        where = f" ({exc.filename})" if exc.filename else ""
+        reason = exc.strerror or type(exc).__name__
+        print(f"{prefix}file system error: {reason}{where}", file=sys.stderr)
+        return 1
+    except RecursionError:
+        print(f"{prefix}input nested too deeply", file=sys.stderr)
+        return 2
 
 
 def positive_int(text: str) -> int:

@@ -15,8 +15,8 @@ one file can be compared with itself at another setting. Labels are the case nam
 suffixed ``_a``/``_b`` when equal. Default ``--out``: ``reports/compare/<A>_vs_<B>``.
 
 Exit status: 0 success; 1 a simulation failed (the message names the case file, crank
-angle and state); 2 invalid input (missing file, bad ``--set``, an ``--out`` that is
-not a comparison directory). Nothing is written unless both cases ran.
+angle and state); 2 invalid input (missing file, bad ``--set``, an ``--out`` that exists and was not
+written by recipsim). Nothing is written unless both cases ran.
 """
 
 from __future__ import annotations
@@ -24,9 +24,7 @@ from __future__ import annotations
 import argparse
 import json
 import math
-import shutil
 import sys
-import tempfile
 import time
 from dataclasses import dataclass
 from pathlib import Path
@@ -46,8 +44,6 @@ _CONSOLE_ROWS = (
     "indicated_power [W]",
     "shaft_power [W]",
 )
-#: Files that mark a directory as written by this command (safe to replace).
-_MARKER = "comparison.csv"
 
 
 @dataclass
@@ -121,6 +117,7 @@ def run_compare_command(args: argparse.Namespace, argv: list[str] | None) -> int
             out=args.out,
             plots=not args.no_plots,
             argv=argv if argv is not None else sys.argv,
+            allow_external_paths=args.allow_external_paths,
         )
         if not args.quiet:
             print(console_summary(comparison))
@@ -140,21 +137,6 @@ def _simulate(path: Path, case: Any, argv: list[str] | None) -> CaseRun:
         raise SolverError(f"{path}: {exc}") from exc
 
 
-def _check_out(out: Path) -> None:
-    """Refuse to replace a directory that is not a comparison (e.g. ``--out reports``)."""
-    from .errors import CaseError
-
-    if out.exists() and (
-        not out.is_dir() or (any(out.iterdir()) and not (out / _MARKER).is_file())
-    ):
-        raise CaseError(
-            str(out),
-            "--out",
-            f"exists and is not a comparison directory (no {_MARKER}); "
-            "give a new or empty directory",
-        )
-
-
 def run_comparison(
     path_a: Path,
     path_b: Path,
@@ -164,6 +146,7 @@ def run_comparison(
     out: Path | None = None,
     plots: bool = True,
     argv: list[str] | None = None,
+    allow_external_paths: bool = False,
 ) -> Comparison:
     """Run two cases and write their comparison directory atomically.
 
@@ -181,6 +164,8 @@ def run_comparison(
         Write the overlay figures and each report's figures.
     argv : list of str, optional
         Command line recorded in the provenance.
+    allow_external_paths : bool
+        See :func:`recipsim.case.load_case`.
 
     Returns
     -------
@@ -194,6 +179,7 @@ def run_comparison(
     SolverError
         A case failed (the message names its file); nothing is written.
     """
+    from .atomic import check_replaceable
     from .case import load_case
     from .compare import case_labels, cases_table, comparison_table
 
@@ -203,10 +189,13 @@ def run_comparison(
         [*(overrides or []), *(overrides_a or [])],
         [*(overrides or []), *(overrides_b or [])],
     ]
-    cases = [load_case(p, s) for p, s in zip(paths, sets, strict=True)]  # both before running
+    cases = [
+        load_case(p, s, allow_external_paths=allow_external_paths)
+        for p, s in zip(paths, sets, strict=True)
+    ]  # both before running
     labels = case_labels(cases[0].name, cases[1].name)
     target = Path(out) if out is not None else _default_out(cases[0].name, cases[1].name)
-    _check_out(target)
+    check_replaceable(target)  # before anything runs
     runs = (_simulate(paths[0], cases[0], argv), _simulate(paths[1], cases[1], argv))
     table = comparison_table(runs[0].row, runs[1].row, *labels)
     extra = [
@@ -234,12 +223,10 @@ def _write(
     start: float,
 ) -> None:
     """Build the output directory beside ``target`` and swap it in."""
-    from .atomic import swap_in
+    from .atomic import atomic_directory
     from .simulate import write_case_report
 
-    target.parent.mkdir(parents=True, exist_ok=True)
-    tmp = Path(tempfile.mkdtemp(prefix=f".{target.name}.", dir=target.parent))
-    try:
+    with atomic_directory(target) as tmp:
         for run, label, s in zip(runs, labels, sets, strict=True):
             write_case_report(run, tmp / label, s, plots)
         table.to_csv(tmp / "comparison.csv", index=False)
@@ -260,10 +247,6 @@ def _write(
         meta = _provenance(runs, labels, case_rows, argv)
         meta["wall_time_s"] = time.perf_counter() - start
         (tmp / "provenance.json").write_text(json.dumps(meta, indent=2, default=str))
-        swap_in(tmp, target)
-    except BaseException:
-        shutil.rmtree(tmp, ignore_errors=True)
-        raise
 
 
 def _provenance(

@@ -55,6 +55,7 @@ def add_paper_parser(sub: Any) -> None:
 
 def run_paper_command(args: argparse.Namespace) -> int:
     """Run the study for ``args.case``; returns the exit status."""
+    from .atomic import check_replaceable
     from .case import load_case
     from .mechanics.tabulated import PressureCurve
     from .model import build_model, crank_geometry
@@ -62,7 +63,8 @@ def run_paper_command(args: argparse.Namespace) -> int:
     from .results import cycle_table
     from .solve.periodic import solve_periodic
 
-    case = load_case(args.case, args.overrides)
+    external = args.allow_external_paths
+    case = load_case(args.case, args.overrides, allow_external_paths=external)
     op = case.operating_point
     if case.pressure_curve is not None:
         curve = case.pressure_curve
@@ -71,6 +73,7 @@ def run_paper_command(args: argparse.Namespace) -> int:
         rigid = load_case(
             args.case,
             [*args.overrides, 'options.mechanics="pinned"', 'options.drive="constant_speed"'],
+            allow_external_paths=external,
         )
         cycle = cycle_table(solve_periodic(build_model(rigid)))
         curve = PressureCurve(
@@ -79,6 +82,7 @@ def run_paper_command(args: argparse.Namespace) -> int:
         )
         source = "the cylinder pressure of the case on the rigid crank"
     out = args.out or Path("reports") / "paper" / case.name
+    check_replaceable(out)  # before the study runs
     drive = case.options.drive if case.options.mechanics == "flexible" else "torque_profile"
     start = args.undamped_start or ("periodic" if args.undamped_revolutions is None else "unloaded")
     study = run_paper_study(

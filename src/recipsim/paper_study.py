@@ -52,8 +52,6 @@ from __future__ import annotations
 
 import json
 import math
-import shutil
-import tempfile
 import time
 from dataclasses import dataclass, field, replace
 from pathlib import Path
@@ -64,7 +62,7 @@ import pandas as pd
 from scipy.integrate import solve_ivp
 
 from . import __version__
-from .atomic import swap_in
+from .atomic import atomic_directory
 from .mechanics import (
     BEARING_NAMES,
     CrankGeometry,
@@ -738,8 +736,9 @@ def write_paper_study(study: PaperStudy, out_dir: str | Path, *, plots: bool = T
     """Write a study's files into ``out_dir`` atomically.
 
     Everything is built in a temporary directory beside ``out_dir`` and swapped in
-    with renames (:func:`recipsim.atomic.swap_in`); a previous ``out_dir`` is
-    replaced entirely, and left untouched if writing fails.
+    with renames (:func:`recipsim.atomic.atomic_directory`); a previous ``out_dir``
+    written by recipsim is replaced entirely, and left untouched if writing fails; any
+    other existing directory is refused.
 
     Parameters
     ----------
@@ -754,9 +753,7 @@ def write_paper_study(study: PaperStudy, out_dir: str | Path, *, plots: bool = T
         The files written, as paths under ``out_dir``.
     """
     out_dir = Path(out_dir)
-    out_dir.parent.mkdir(parents=True, exist_ok=True)
-    tmp = Path(tempfile.mkdtemp(prefix=f".{out_dir.name}.", dir=out_dir.parent))
-    try:
+    with atomic_directory(out_dir) as tmp:
         names = ["table1.csv"]
         study.table1.to_csv(tmp / "table1.csv", index=False)
         for run, table in study.cycles.items():
@@ -767,10 +764,6 @@ def write_paper_study(study: PaperStudy, out_dir: str | Path, *, plots: bool = T
         names.extend(["study.json", "README.md"])
         (tmp / "study.json").write_text(json.dumps(_summary(study, names), indent=2) + "\n")
         (tmp / "README.md").write_text(_readme(study, names))
-        swap_in(tmp, out_dir)
-    except BaseException:
-        shutil.rmtree(tmp, ignore_errors=True)
-        raise
     return [out_dir / n for n in names]
 
 

@@ -13,13 +13,14 @@ about 2 s, is imported only when the table has no answer.
 from __future__ import annotations
 
 import os
-import tomllib
 from dataclasses import dataclass, field
 from functools import cache
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, TypeAlias
 
+from .atomic import checked_name
 from .errors import CaseError
+from .inputs import read_toml
 from .schema import Field, Spec, Text, check_keys, read_table
 from .thermo.coolprop_info import fluid_constants
 
@@ -115,6 +116,7 @@ def load_refrigerant(
         Naming ``case_file`` and ``key`` when no such refrigerant exists, or naming the
         refrigerant file when it is invalid.
     """
+    checked_name(name, case_file, key)  # a refrigerant name is a file name, never a path
     for d in refrigerant_dirs(search):
         path = d / f"{name}.toml"
         if path.is_file():
@@ -126,10 +128,7 @@ def load_refrigerant(
 def read_refrigerant_file(path: Path) -> RefrigerantSpec:
     """Read and validate one refrigerant file."""
     file = str(path)
-    try:
-        raw = tomllib.loads(path.read_text())
-    except tomllib.TOMLDecodeError as exc:
-        raise CaseError(file, "", f"not valid TOML: {exc}") from None
+    raw, _ = read_toml(path, "refrigerant")
     check_keys(raw, {"name", "coolprop_name", "description", "limits", "rating_points"}, file, "")
     top = read_table(
         {k: v for k, v in raw.items() if k in ("name", "coolprop_name", "description")},
@@ -148,6 +147,10 @@ def read_refrigerant_file(path: Path) -> RefrigerantSpec:
     t_max = min(constants.t_max, limits["max_temperature"] or 1e9)
     p_max = min(constants.p_max, limits["max_pressure"] or 1e12)
     points_raw = raw.get("rating_points", {})
+    if not isinstance(points_raw, dict):
+        raise CaseError(
+            file, "rating_points", "expected tables [rating_points.<name>] of rating points"
+        )
     points = {
         pname: read_table(ptable, RATING_POINT_SPEC, file, f"rating_points.{pname}")
         for pname, ptable in points_raw.items()

@@ -9,10 +9,8 @@ from __future__ import annotations
 
 import json
 import platform
-import shutil
 import subprocess
 import sys
-import tempfile
 import time
 from pathlib import Path
 from typing import Any
@@ -20,7 +18,7 @@ from typing import Any
 import pandas as pd
 
 from . import __version__
-from .atomic import swap_in
+from .atomic import atomic_directory
 from .case import Case
 from .solve.periodic import PeriodicSolution
 from .thermo.coolprop_info import coolprop_version
@@ -95,15 +93,16 @@ def write_report(
 ) -> Path:
     """Write one case's report into ``out_dir`` atomically.
 
+    ``out_dir`` is replaced whole if it is a recipsim output directory (or empty);
+    any other existing directory is refused (:func:`recipsim.atomic.atomic_directory`).
+
     Returns
     -------
     Path
         ``out_dir``.
     """
     out_dir = Path(out_dir)
-    out_dir.parent.mkdir(parents=True, exist_ok=True)
-    tmp = Path(tempfile.mkdtemp(prefix=f".{out_dir.name}.", dir=out_dir.parent))
-    try:
+    with atomic_directory(out_dir) as tmp:
         pd.DataFrame([summary_row]).to_csv(tmp / "summary.csv", index=False)
         cycle.to_csv(tmp / "cycle.csv", index=False)
         header = "".join(f"# --set {o}\n" for o in overrides)
@@ -115,8 +114,4 @@ def write_report(
             from .plotting import save_cycle_figures
 
             save_cycle_figures(cycle, tmp, plenum=plenum)
-        swap_in(tmp, out_dir)
-    except BaseException:
-        shutil.rmtree(tmp, ignore_errors=True)
-        raise
     return out_dir

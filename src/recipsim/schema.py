@@ -55,7 +55,11 @@ class Field:
     def check(self, value: float, file: str, key: str) -> float:
         bad_lo = value <= self.lo if self.open_lo else value < self.lo
         bad_hi = value >= self.hi if self.open_hi else value > self.hi
-        if math.isnan(value) or bad_lo or bad_hi:
+        if not math.isfinite(value):
+            raise CaseError(
+                file, key, f"{value:g} is not a finite number; allowed {self.allowed()}"
+            )
+        if bad_lo or bad_hi:
             raise CaseError(file, key, f"{value:g} is out of range; allowed {self.allowed()}")
         if self.integer and value != int(value):
             raise CaseError(file, key, f"{value:g} must be a whole number")

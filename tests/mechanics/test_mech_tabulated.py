@@ -65,7 +65,7 @@ def test_missing_column_and_missing_file(tmp_path: Path) -> None:
     path = write(tmp_path, "0,1\n", header="crank_angle [deg],pressure [bar]\n")
     with pytest.raises(CaseError, match="missing column"):
         read_pressure_curve(path)
-    with pytest.raises(CaseError, match="cannot read"):
+    with pytest.raises(CaseError, match="no such pressure curve file"):
         read_pressure_curve(tmp_path / "none.csv")
 
 

@@ -30,6 +30,7 @@ import pytest
 from matplotlib.figure import Figure
 
 from recipsim import paper_study
+from recipsim.atomic import MARKER
 from recipsim.mechanics import (
     BEARING_NAMES,
     CrankGeometry,
@@ -61,9 +62,10 @@ SAMPLES = 360
 
 @pytest.fixture(scope="module")
 def out_dir(tmp_path_factory: pytest.TempPathFactory) -> Path:
-    """Where the study is written; holds a stale report before the run."""
+    """Where the study is written; holds a stale report (of recipsim) before the run."""
     out = tmp_path_factory.mktemp("paper") / "study"
     out.mkdir()
+    (out / MARKER).write_text("")
     (out / "stale.txt").write_text("from a previous run\n")
     (out / "table1.csv").write_text("bearing\nold\n")
     return out
@@ -290,7 +292,7 @@ def test_output_replaces_the_previous_directory_atomically(
     """The stale report is gone entirely, nothing but the study's files is left, and no
     temporary or old directory remains beside the output."""
     assert study.out_dir == out_dir
-    assert {p.name for p in out_dir.iterdir()} == {p.name for p in study.files}
+    assert {p.name for p in out_dir.iterdir()} == {p.name for p in study.files} | {MARKER}
     assert not (out_dir / "stale.txt").exists()
     assert [p.name for p in out_dir.parent.iterdir()] == [out_dir.name]
 
@@ -300,6 +302,7 @@ def test_failed_write_keeps_the_previous_directory(
 ) -> None:
     out = tmp_path / "study"
     out.mkdir()
+    (out / MARKER).write_text("")
     (out / "keep.txt").write_text("previous report\n")
 
     def broken(*args: object, **kwargs: object) -> list[Path]:
@@ -308,12 +311,12 @@ def test_failed_write_keeps_the_previous_directory(
     monkeypatch.setattr(paper_study, "_write_figures", broken)
     with pytest.raises(RuntimeError, match="disk full"):
         write_paper_study(study, out)
-    assert [p.name for p in out.iterdir()] == ["keep.txt"]
+    assert sorted(p.name for p in out.iterdir()) == sorted([MARKER, "keep.txt"])
     assert [p.name for p in tmp_path.iterdir()] == ["study"]
     # without figures the same study writes fine
     files = write_paper_study(study, out, plots=False)
     assert not any(p.suffix == ".png" for p in files)
-    assert {p.name for p in out.iterdir()} == {p.name for p in files}
+    assert {p.name for p in out.iterdir()} == {p.name for p in files} | {MARKER}
 
 
 def test_unloaded_start_reproduces_the_papers_large_excess(

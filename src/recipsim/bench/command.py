@@ -41,7 +41,7 @@ def add_bench_parser(sub: Any) -> argparse.ArgumentParser:
     )
     parser.add_argument("case", type=Path, help="case file (TOML)")
     add_common_options(
-        parser, None, "output directory (default: reports/bench/<case>[+<overrides>]/)"
+        parser, None, "output directory (default: reports/bench/<case>[+<overrides>]/)", False
     )
     parser.add_argument(
         "--repeats",

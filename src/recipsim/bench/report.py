@@ -13,8 +13,6 @@ from __future__ import annotations
 
 import json
 import math
-import shutil
-import tempfile
 from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
@@ -22,7 +20,7 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
-from ..atomic import swap_in
+from ..atomic import atomic_directory
 from .errors import MAX_ERROR, error_columns
 from .measure import OK, Outcome
 
@@ -247,17 +245,11 @@ def write_bench(
 ) -> Path:
     """Write ``work_precision.csv``, ``work_precision.png`` and ``bench.json`` atomically."""
     out_dir = Path(out_dir)
-    out_dir.parent.mkdir(parents=True, exist_ok=True)
-    tmp = Path(tempfile.mkdtemp(prefix=f".{out_dir.name}.", dir=out_dir.parent))
-    try:
+    with atomic_directory(out_dir) as tmp:
         frame.to_csv(tmp / "work_precision.csv", index=False)
         if plots:
             plot(frame, title, by=by).savefig(tmp / "work_precision.png", dpi=150)
         (tmp / "bench.json").write_text(json.dumps(meta, indent=2, default=_json_default) + "\n")
-        swap_in(tmp, out_dir)
-    except BaseException:
-        shutil.rmtree(tmp, ignore_errors=True)
-        raise
     return out_dir
 
 

@@ -11,6 +11,7 @@ first one shifted by one revolution.
 from __future__ import annotations
 
 import csv
+import io
 import math
 from dataclasses import dataclass
 from pathlib import Path
@@ -19,6 +20,7 @@ import numpy as np
 from numba import njit
 
 from ..errors import CaseError
+from ..inputs import MAX_CSV_BYTES, read_input_text
 from ..kinematics import piston_displacement_array
 
 ANGLE_COLUMN = "crank_angle [deg]"
@@ -154,12 +156,14 @@ def tabulated_pressure_curve_from_arrays(
     return PressureCurve(np.radians(a), p.copy())
 
 
-def read_pressure_curve(path: str | Path) -> PressureCurve:
+def read_pressure_curve(path: str | Path, case_file: str = "") -> PressureCurve:
     """Read and validate a tabulated pressure CSV (see the module docstring).
 
     Parameters
     ----------
     path : str or pathlib.Path
+    case_file : str
+        The case file naming ``path`` (for the message if ``path`` cannot be read).
 
     Returns
     -------
@@ -168,15 +172,19 @@ def read_pressure_curve(path: str | Path) -> PressureCurve:
     Raises
     ------
     CaseError
-        Missing file or column, non-numbers, non-monotonic angles, a span of a
-        revolution or more, non-positive pressures.
+        Missing, non-regular, oversized or non-UTF-8 file, missing column,
+        non-numbers, non-monotonic angles, a span of a revolution or more,
+        non-positive pressures. Messages name rows and columns, never the content of
+        a file that is not a valid table.
     """
     file = str(path)
+    text = read_input_text(
+        Path(path), "pressure curve", MAX_CSV_BYTES, case_file, "pressure_curve.file"
+    )
     try:
-        with open(path, newline="", encoding="utf-8") as fh:
-            rows = list(csv.reader(fh))
-    except OSError as exc:
-        raise CaseError(file, "", f"cannot read the pressure table ({exc.strerror})") from None
+        rows = list(csv.reader(io.StringIO(text, newline="")))
+    except csv.Error as exc:
+        raise CaseError(file, "", f"not a valid CSV table ({exc})") from None
     if not rows:
         raise CaseError(file, "", f"empty; needs columns {ANGLE_COLUMN!r}, {PRESSURE_COLUMN!r}")
     header = [h.strip() for h in rows[0]]
@@ -185,7 +193,8 @@ def read_pressure_curve(path: str | Path) -> PressureCurve:
             raise CaseError(
                 file,
                 col,
-                f"missing column; found {header}; needs {ANGLE_COLUMN!r} and {PRESSURE_COLUMN!r}",
+                f"missing column in the first line ({len(header)} columns there); needs "
+                f"{ANGLE_COLUMN!r} and {PRESSURE_COLUMN!r}",
             )
     ia, ip = header.index(ANGLE_COLUMN), header.index(PRESSURE_COLUMN)
     angles, pressures = [], []
@@ -195,10 +204,12 @@ def read_pressure_curve(path: str | Path) -> PressureCurve:
         values = []
         for col, i in ((ANGLE_COLUMN, ia), (PRESSURE_COLUMN, ip)):
             try:
-                values.append(float(row[i]))
+                value = float(row[i])
             except (IndexError, ValueError):
-                cell = row[i] if i < len(row) else ""
-                raise CaseError(file, f"{col}, row {n}", f"{cell!r} is not a number") from None
+                raise CaseError(file, f"{col}, row {n}", "not a number") from None
+            if not math.isfinite(value):
+                raise CaseError(file, f"{col}, row {n}", "not a finite number")
+            values.append(value)
         angles.append(values[0])
         pressures.append(values[1])
     return tabulated_pressure_curve_from_arrays(np.array(angles), np.array(pressures), file)
