@@ -8,8 +8,10 @@ from pathlib import Path
 import pytest
 
 from helpers import CASES, REFERENCE
+from recipsim.case import load_case
 from recipsim.cli import main
 from recipsim.errors import CaseError
+from recipsim.sweep.engine import run_sweep
 from recipsim.sweep.plan import axis_column_names, plan_sweep
 from recipsim.sweep.spec import load_sweep
 
@@ -40,14 +42,13 @@ operating_point.evaporating_temperature = 248.15
     )
     spec = load_sweep(path)
     assert spec.name == "small"
-    points = spec.expand()
-    assert len(points) == 2 * 2 * 2
+    points = list(spec.expand())
+    assert len(points) == spec.size == 2 * 2 * 2
     # first axis slowest, explicit points fastest
     assert [dict(p.values)["refrigerant"] for p in points] == ["R134a"] * 4 + ["R600a"] * 4
     assert dict(points[1].values)["operating_point.evaporating_temperature"] == 248.15
     planned = plan_sweep(spec)
     assert [p.index for p in planned] == list(range(8))
-    assert all(p.invalid is None for p in planned)
     first = planned[0]
     assert list(first.columns) == [
         "refrigerant",
@@ -153,19 +154,25 @@ def test_command_line_set_may_not_name_an_axis(tmp_path):
 
 
 def test_invalid_values_become_invalid_points_not_errors(tmp_path):
+    """Invalid values do not stop the plan; each such point is validated where it runs and
+    becomes an ``invalid`` row naming the key, while the valid point is computed."""
     path = write(
         tmp_path,
+        "[set]\nsolver.max_revolutions = 3\nsolver.min_revolutions = 1\n"
         '[axes]\nrefrigerant = ["R134a", "R999"]\n'
         'operating_point.evaporating_temperature = ["-30 degC", "60 degC"]\n',
     )
     planned = plan_sweep(load_sweep(path))
-    invalid = {
-        (p.columns["refrigerant"], p.columns["evaporating_temperature [K]"]): p.invalid
-        for p in planned
+    assert len(planned) == 4
+    outcome = run_sweep(path, jobs=1, out=tmp_path / "out", plots=False)
+    rows = {
+        (r["refrigerant"], r["evaporating_temperature [K]"]): r for _, r in outcome.table.iterrows()
     }
-    assert invalid[("R134a", 243.14999999999998)] is None
-    assert "condensing_temperature" in invalid[("R134a", 333.15)]
-    assert "unknown refrigerant 'R999'" in invalid[("R999", 243.14999999999998)]
+    assert rows[("R134a", 243.14999999999998)]["status"] in ("ok", "not_converged")
+    assert rows[("R134a", 333.15)]["status"] == "invalid"
+    assert "condensing_temperature" in rows[("R134a", 333.15)]["message"]
+    assert rows[("R999", 243.14999999999998)]["status"] == "invalid"
+    assert "unknown refrigerant 'R999'" in rows[("R999", 243.14999999999998)]["message"]
 
 
 def test_shipped_sweeps_are_valid():
@@ -173,8 +180,9 @@ def test_shipped_sweeps_are_valid():
     for name, size in sizes.items():
         spec = load_sweep(SWEEPS / f"{name}.toml")
         planned = plan_sweep(spec)
-        assert len(planned) == size, name
-        assert [p.invalid for p in planned] == [None] * size, name
+        assert len(planned) == size == spec.size, name
+        for point in planned:  # every point is a valid case
+            load_case(spec.base, list(point.overrides))
         assert len({p.point_id for p in planned}) == size, name
     lbp = plan_sweep(load_sweep(SWEEPS / "lbp_map.toml"))
     evaporating = sorted({round(p.columns["evaporating_temperature [K]"] - 273.15, 9) for p in lbp})

@@ -40,8 +40,8 @@ def checked_name(name: object, file: str, key: str = "name") -> str:
     directories do). Such a name, joined to a directory, stays inside it.
     """
     allowed = (
-        f"a plain file name: letters, digits, '.', '_' and '-', 1 to {MAX_NAME_LENGTH} "
-        "characters, not starting with '.'"
+        f"a plain file name (it becomes a directory name): letters, digits, '.', '_' and "
+        f"'-', 1 to {MAX_NAME_LENGTH} characters, not starting with '.'"
     )
     if not isinstance(name, str):
         raise CaseError(file, key, f"expected a string, {allowed}")
@@ -75,7 +75,7 @@ def output_dir(parent: Path, name: str, file: str = "--out") -> Path:
         ``parent`` exists and is not a directory, or ``parent/name`` exists and is not
         an empty directory or one written by recipsim.
     """
-    parent = Path(parent)
+    parent = normalised(parent)
     if parent.exists() and not parent.is_dir():
         raise CaseError(str(parent), file, "exists and is not a directory")
     target = parent / checked_name(name, file)
@@ -83,8 +83,16 @@ def output_dir(parent: Path, name: str, file: str = "--out") -> Path:
     return target
 
 
+def normalised(path: Path | str) -> Path:
+    """``path`` made absolute with ``..`` and ``.`` removed as written (``out/x/..`` is
+    ``out`` even where ``x`` does not exist yet), so that every later check and write
+    sees the same directory."""
+    return Path(os.path.normpath(os.path.abspath(path)))
+
+
 def check_replaceable(target: Path) -> None:
     """Refuse ``target`` if it exists and is neither empty nor a recipsim output."""
+    target = normalised(target)
     if target.is_symlink() or (target.exists() and not target.is_dir()):
         raise CaseError(str(target), "--out", "exists and is not a directory; choose another")
     if target.is_dir() and not (target / MARKER).is_file():
@@ -149,7 +157,7 @@ def atomic_directory(target: Path) -> Iterator[Path]:
     :data:`MARKER`. If the block raises, ``target`` is untouched and the temporary
     directory removed; one left by a killed process is removed by the next call.
     """
-    target = Path(target)
+    target = normalised(target)
     check_replaceable(target)
     target.parent.mkdir(parents=True, exist_ok=True)
     clean_stale_temporaries(target)
@@ -168,6 +176,7 @@ def atomic_directory(target: Path) -> Iterator[Path]:
 
 def mark_output(directory: Path) -> None:
     """Create ``directory`` (if needed) and mark it as a recipsim output directory."""
+    directory = normalised(directory)
     check_replaceable(directory)
     directory.mkdir(parents=True, exist_ok=True)
     marker = directory / MARKER

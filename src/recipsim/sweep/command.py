@@ -17,7 +17,7 @@ import time
 from pathlib import Path
 from typing import Any
 
-from ..cli_options import add_common_options, exit_status, positive_int
+from ..cli_options import add_common_options, exit_status, positive_float, positive_int
 
 _MAX_LISTED = 8
 
@@ -57,6 +57,20 @@ def add_sweep_parser(sub: Any) -> argparse.ArgumentParser:
         "--scheduler",
         metavar="ADDRESS",
         help="run on an existing Dask distributed cluster, e.g. tcp://127.0.0.1:8786",
+    )
+    parser.add_argument(
+        "--scheduler-timeout",
+        type=positive_float,
+        default=10.0,
+        metavar="SECONDS",
+        help="give up on a Dask scheduler that does not answer within this time (default 10)",
+    )
+    parser.add_argument(
+        "--max-points",
+        type=positive_int,
+        default=None,
+        metavar="N",
+        help="refuse sweeps of more points (default: the sweep file's max_points, else 100000)",
     )
     add_common_options(
         parser,
@@ -99,6 +113,9 @@ def _run_sweep(args: argparse.Namespace, argv: list[str] | None, started: float)
             progress=not args.quiet,
             argv=["recipsim", *(argv if argv is not None else sys.argv[1:])],
             started=started,
+            max_points=args.max_points,
+            scheduler_timeout=args.scheduler_timeout,
+            allow_external_paths=args.allow_external_paths,
         )
     except (SweepInterrupted, WorkerLost) as exc:
         print(f"recipsim: {exc}; {resume}", file=sys.stderr)

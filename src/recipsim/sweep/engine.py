@@ -20,12 +20,12 @@ from typing import Any
 import pandas as pd
 
 from .. import __version__
-from ..atomic import atomic_file, atomic_write
+from ..atomic import atomic_file, atomic_write, mark_output, output_dir
 from ..errors import RecipsimError
 from .plan import PlannedPoint, plan_sweep
 from .spec import SweepSpec, load_sweep
 from .store import PointStore
-from .worker import INVALID, NOT_CONVERGED, OK, PointTask
+from .worker import NOT_CONVERGED, OK, PointTask
 
 TIMING_COLUMNS = ("wall_time [s]",)
 """Summary columns that differ from run to run (everything else is deterministic)."""
@@ -169,6 +169,9 @@ def run_sweep(
     progress: bool = False,
     argv: list[str] | None = None,
     started: float | None = None,
+    max_points: int | None = None,
+    scheduler_timeout: float = 10.0,
+    allow_external_paths: bool = False,
 ) -> SweepOutcome:
     """Run (or resume) a sweep.
 
@@ -202,6 +205,13 @@ def run_sweep(
     started : float, optional
         :func:`time.perf_counter` value at which the command started (so that the
         reported wall time includes its imports); default: now.
+    max_points : int, optional
+        Refuse sweeps of more points (default: the sweep file's ``max_points``, else
+        100 000), checked before any point is built.
+    scheduler_timeout : float
+        Seconds to wait for the Dask scheduler to answer [s].
+    allow_external_paths : bool
+        Let the sweep's ``base`` and the cases name files outside their directory.
 
     Returns
     -------
@@ -210,18 +220,21 @@ def run_sweep(
     Raises
     ------
     CaseError
-        Invalid sweep file (or an unknown case key in it).
+        Invalid sweep file (or an unknown case key in it), more points than allowed,
+        or an output directory that recipsim did not write.
     SweepInterrupted
         Ctrl-C; finished points are kept and a rerun resumes.
     WorkerLost
         A worker died; finished points are kept and a rerun resumes.
     """
     start = time.perf_counter() if started is None else started
-    spec = load_sweep(path)
+    spec = load_sweep(path, allow_external_paths)
     if parquet:
         _check_parquet()
-    planned = plan_sweep(spec, overrides)
-    root = Path(out) / spec.name
+    spec.check_size(max_points)
+    root = output_dir(Path(out), spec.name)  # a new, empty or earlier sweep directory
+    planned = plan_sweep(spec, overrides, max_points, allow_external_paths)
+    mark_output(root)
     store = PointStore(root)
     store.clean_temporaries()
     if fresh:
@@ -236,18 +249,10 @@ def run_sweep(
         pid = point.point_id
         if pid in records or pid in queued:
             continue  # the same case twice in the sweep: computed once
-        record = store.load(pid)
+        record = store.load(pid, point.overrides)
         if record is not None and _keep(record, retry_failed, reports, store, pid):
             records[pid] = record
             reused.append(pid)
-        elif point.invalid is not None:
-            records[pid] = _record(
-                PointTask(point.index, pid, str(spec.base), point.overrides),
-                {"status": INVALID, "message": point.invalid, "summary": {}},
-                run_id,
-            )
-            store.save(pid, records[pid])
-            computed.append(pid)
         else:
             queued.add(pid)
             tasks.append(
@@ -258,6 +263,7 @@ def run_sweep(
                     overrides=point.overrides,
                     report_dir=str(store.report_dir(pid).resolve()) if reports else None,
                     plots=plots,
+                    allow_external_paths=allow_external_paths,
                 )
             )
 
@@ -290,7 +296,7 @@ def run_sweep(
     used_jobs = 0 if scheduler or not tasks else max(1, min(jobs or default_jobs(), len(tasks)))
     try:
         if tasks:
-            _execute(tasks, scheduler, used_jobs, on_result, on_start)
+            _execute(tasks, scheduler, used_jobs, on_result, on_start, scheduler_timeout)
     except KeyboardInterrupt:
         done = len(records)
         raise SweepInterrupted(
@@ -333,12 +339,17 @@ def _keep(
 
 
 def _execute(
-    tasks: list[PointTask], scheduler: str | None, jobs: int, on_result: Any, on_start: Any
+    tasks: list[PointTask],
+    scheduler: str | None,
+    jobs: int,
+    on_result: Any,
+    on_start: Any,
+    scheduler_timeout: float,
 ) -> None:
     from . import runner
 
     if scheduler:
-        runner.run_dask(tasks, scheduler, on_result, on_start)
+        runner.run_dask(tasks, scheduler, on_result, on_start, scheduler_timeout)
         return
     if jobs > 1:
         # import the solver here, before the workers are forked: they start warm

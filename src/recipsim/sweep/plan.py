@@ -1,10 +1,12 @@
-"""Expand a sweep into points, validate each point as a case, key and label them.
+"""Expand a sweep into points, key and label them; check its size and its keys.
 
-Every point is loaded as a case here, before anything is computed: a key that the
-case schema does not know (a typo in an axis key) stops the sweep at once with a
-message naming the sweep file and the key, while a point whose *values* are invalid
-(a temperature outside a refrigerant's range, an unknown refrigerant) is kept and
-recorded as an ``invalid`` row without being sent to a worker.
+The size is checked before anything is expanded (:attr:`SweepSpec.size`). One case
+per set of point keys is built here: a key that the case schema does not know (a typo
+in an axis key) stops the sweep at once with a message naming the sweep file and the
+key. Every point's *values* are validated once, where the point runs: a point whose
+values are invalid (a temperature outside a refrigerant's range, an unknown
+refrigerant) becomes an ``invalid`` row. Nothing here builds a case per point, so a
+large sweep starts computing at once.
 
 Each point gets a stable identifier, a hash of the case it runs (the base case with
 its ``extends`` resolved and the overrides applied), of the refrigerant file it
@@ -18,7 +20,6 @@ from __future__ import annotations
 import hashlib
 import json
 import math
-import tomllib
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -40,6 +41,8 @@ from ..case import (
     resolve_extends,
 )
 from ..errors import CaseError
+from ..inputs import MAX_TOML_BYTES, read_input_text, read_toml
+from ..refrigerant import refrigerant_dirs
 from ..schema import Choice, Field, Text
 from ..units import to_si
 from .spec import SweepSpec
@@ -95,15 +98,12 @@ class PlannedPoint:
     columns : dict
         Axis columns of the summary row: column name to value in SI (a string for
         text keys such as ``refrigerant``).
-    invalid : str or None
-        The case error of a point that cannot be built, else ``None``.
     """
 
     index: int
     point_id: str
     overrides: tuple[str, ...]
     columns: dict[str, Any] = field(default_factory=dict)
-    invalid: str | None = None
 
 
 def toml_literal(value: Any) -> str:
@@ -175,14 +175,10 @@ def axis_value(key: str, value: Any, file: str) -> Any:
     return value
 
 
-def _read_base(spec: SweepSpec) -> dict[str, Any]:
+def _read_base(spec: SweepSpec, allow_external_paths: bool = False) -> dict[str, Any]:
     """The base case's TOML data with its ``extends`` chain merged in."""
-    base = spec.base
-    try:
-        raw = tomllib.loads(base.read_text())
-    except tomllib.TOMLDecodeError as exc:
-        raise CaseError(str(base), "", f"not valid TOML: {exc}") from None
-    return resolve_extends(raw, base, [base.resolve()])
+    raw, _ = read_toml(spec.base, "case")
+    return resolve_extends(raw, spec.base, [spec.base.resolve()], allow_external_paths)
 
 
 def point_id(case_data: Mapping[str, Any], refrigerant_text: str) -> str:
@@ -200,8 +196,40 @@ def point_id(case_data: Mapping[str, Any], refrigerant_text: str) -> str:
     return hashlib.sha256(blob.encode()).hexdigest()[:16]
 
 
-def plan_sweep(spec: SweepSpec, extra: Iterable[str] = ()) -> list[PlannedPoint]:
-    """Expand and validate every point of a sweep.
+class _RefrigerantTexts:
+    """The text of each refrigerant file a sweep names, read once (``""`` if unknown)."""
+
+    def __init__(self, base: Path) -> None:
+        self.search = [base.parent, base.parent.parent]
+        self.texts: dict[str, str] = {}
+
+    def __call__(self, name: Any) -> str:
+        key = str(name)
+        if key not in self.texts:
+            self.texts[key] = ""
+            for directory in refrigerant_dirs(self.search):
+                path = directory / f"{key}.toml"
+                if isinstance(name, str) and "/" not in key and path.is_file():
+                    try:
+                        self.texts[key] = read_input_text(path, "refrigerant", MAX_TOML_BYTES)
+                    except CaseError:
+                        pass  # the point's case load reports it
+                    break
+        return self.texts[key]
+
+
+def plan_sweep(
+    spec: SweepSpec,
+    extra: Iterable[str] = (),
+    max_points: int | None = None,
+    allow_external_paths: bool = False,
+) -> list[PlannedPoint]:
+    """Expand a sweep into points, key and label them, without building their cases.
+
+    The size is checked first (from the axis lengths, nothing expanded); then one case
+    per explicit point is built, which catches every key the case schema does not know
+    (the keys are the same at every grid point). The *values* of each point are
+    validated once, where the point runs (an invalid point is an ``invalid`` row).
 
     Parameters
     ----------
@@ -210,6 +238,10 @@ def plan_sweep(spec: SweepSpec, extra: Iterable[str] = ()) -> list[PlannedPoint]
     extra : iterable of str
         ``KEY=VALUE`` overrides from the command line, applied to every point after
         ``[set]``; they may not name an axis or explicit-point key.
+    max_points : int, optional
+        Refuse more points than this (default: the sweep file's ``max_points``).
+    allow_external_paths : bool
+        See :func:`recipsim.case.load_case`.
 
     Returns
     -------
@@ -219,9 +251,11 @@ def plan_sweep(spec: SweepSpec, extra: Iterable[str] = ()) -> list[PlannedPoint]
     Raises
     ------
     CaseError
-        For an unknown or misplaced case key in the sweep (naming the sweep file and
-        ``axes.KEY``, ``set.KEY`` or ``points[i].KEY``), or an invalid base case file.
+        A sweep larger than the limit; an unknown or misplaced case key in the sweep
+        (naming the sweep file and ``axes.KEY``, ``set.KEY`` or ``points[i].KEY``), or
+        an invalid base case file.
     """
+    spec.check_size(max_points)
     file = str(spec.path)
     varying = spec.varying_keys
     extra = list(extra)
@@ -231,39 +265,46 @@ def plan_sweep(spec: SweepSpec, extra: Iterable[str] = ()) -> list[PlannedPoint]
             raise CaseError("--set", key, f"is an axis of {file}; it cannot be set for all points")
     fixed = [override(k, v) for k, v in spec.fixed] + extra
     names = axis_column_names(varying)
-    base_data = _read_base(spec)
+    base_data = _read_base(spec, allow_external_paths)
     base_file = str(spec.base)
-    refrigerant_texts: dict[str, str] = {}
+    refrigerant_text = _RefrigerantTexts(spec.base)
+    explicit_checked: set[tuple[str, ...]] = set()
     planned: list[PlannedPoint] = []
     for point in spec.expand():
         overrides = tuple(fixed + [override(k, v) for k, v in point.values])
-        columns = {names[k]: axis_value(k, v, file) for k, v in point.values}
-        invalid = None
-        refrigerant_text = ""
-        try:
-            case = load_case(spec.base, list(overrides))
-            ref_path = case.refrigerant.path
-            if ref_path not in refrigerant_texts:
-                refrigerant_texts[ref_path] = Path(ref_path).read_text() if ref_path else ""
-            refrigerant_text = refrigerant_texts[ref_path]
-        except CaseError as exc:
-            if exc.message.startswith(_KEY_ERRORS):
-                raise _sweep_key_error(spec, exc, point.values, extra) from None
-            invalid = str(exc)
+        keys = tuple(k for k, _ in point.values)
+        if keys not in explicit_checked:  # the first point of each set of keys
+            explicit_checked.add(keys)
+            _check_keys(spec, overrides, point.values, extra, allow_external_paths)
         try:
             data = apply_overrides(base_data, list(overrides), base_file)
-        except CaseError as exc:  # pragma: no cover - load_case raised it first
+        except CaseError as exc:
             raise _sweep_key_error(spec, exc, point.values, extra) from None
         planned.append(
             PlannedPoint(
                 index=point.index,
-                point_id=point_id(data, refrigerant_text),
+                point_id=point_id(data, refrigerant_text(data.get("refrigerant"))),
                 overrides=overrides,
-                columns=columns,
-                invalid=invalid,
+                columns={names[k]: axis_value(k, v, file) for k, v in point.values},
             )
         )
     return planned
+
+
+def _check_keys(
+    spec: SweepSpec,
+    overrides: tuple[str, ...],
+    values: tuple[tuple[str, Any], ...],
+    extra: list[str],
+    allow_external_paths: bool,
+) -> None:
+    """Build one point's case; raise a key error as an error of the sweep file."""
+    try:
+        load_case(spec.base, list(overrides), allow_external_paths=allow_external_paths)
+    except CaseError as exc:
+        if exc.message.startswith(_KEY_ERRORS):
+            raise _sweep_key_error(spec, exc, values, extra) from None
+        # an invalid value: the point (and any other like it) becomes an invalid row
 
 
 def _sweep_key_error(

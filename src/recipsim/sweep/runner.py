@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import multiprocessing
 import os
+import re
 import signal
 import sys
 import threading
@@ -28,7 +29,7 @@ from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, wai
 from concurrent.futures.process import BrokenProcessPool
 from typing import Any
 
-from ..errors import RecipsimError
+from ..errors import CaseError, RecipsimError
 from .worker import FAILED, PointTask, init_worker, run_point, worker_version
 
 ResultCallback = Callable[[PointTask, dict[str, Any]], None]
@@ -164,12 +165,67 @@ def _drain(running: dict[Future[dict[str, Any]], PointTask], on_result: ResultCa
         pass
 
 
+_SCHEDULER_ADDRESS = re.compile(r"(tcp|tls|ws|wss|inproc|ucx)://[^\s/]+(:\d+)?/?")
+
+
+def check_scheduler_address(address: str) -> None:
+    """Refuse an address that is not ``PROTOCOL://HOST[:PORT]`` before connecting.
+
+    Raises
+    ------
+    CaseError
+        Naming ``--scheduler`` and the allowed form.
+    """
+    if not _SCHEDULER_ADDRESS.fullmatch(address):
+        raise CaseError(
+            "--scheduler",
+            "",
+            f"{address!r} is not a scheduler address; expected PROTOCOL://HOST:PORT, e.g. "
+            "tcp://127.0.0.1:8786",
+        )
+
+
+def probe_scheduler(address: str, timeout: float) -> None:
+    """Check that a ``tcp://`` address answers like a Dask scheduler within ``timeout``.
+
+    A Dask scheduler sends its handshake as soon as a connection opens; a server that
+    accepts the connection and stays silent (not Dask) would leave ``Client`` waiting
+    for minutes. Other protocols are left to ``Client``'s own timeout.
+
+    Raises
+    ------
+    RecipsimError
+        Nothing listens there, or what listens sends nothing within ``timeout`` [s].
+    """
+    import socket
+
+    protocol, _, location = address.partition("://")
+    if protocol != "tcp":
+        return
+    host, _, port = location.rstrip("/").rpartition(":")
+    if not port.isdigit():
+        host, port = location.rstrip("/"), "8786"
+    try:
+        with socket.create_connection((host.strip("[]"), int(port)), timeout=timeout) as sock:
+            sock.settimeout(timeout)
+            if not sock.recv(1):
+                raise RecipsimError(f"the server at {address} closed the connection: not Dask")
+    except TimeoutError:
+        raise RecipsimError(
+            f"no Dask scheduler answers at {address} within {timeout:g} s (--scheduler-timeout)"
+        ) from None
+    except OSError as exc:
+        raise RecipsimError(
+            f"cannot reach the Dask scheduler at {address}: {exc.strerror or exc}"
+        ) from None
+
+
 def run_dask(
     tasks: Sequence[PointTask],
     address: str,
     on_result: ResultCallback,
     on_start: StartCallback = _nothing,
-    connect_timeout: float = 30.0,
+    connect_timeout: float = 10.0,
 ) -> None:
     """Run the points on an existing Dask distributed cluster.
 
@@ -199,10 +255,15 @@ def run_dask(
             "--scheduler needs Dask distributed: pip install 'dask[distributed]' "
             "(or pip install 'recipsim[dask]')"
         ) from None
+    check_scheduler_address(address)
+    probe_scheduler(address, connect_timeout)
     try:
         client = Client(address, timeout=connect_timeout, set_as_default=False)
     except Exception as exc:  # OSError on a timeout, ValueError on a malformed address
-        raise RecipsimError(f"cannot reach the Dask scheduler at {address}: {exc}") from None
+        reason = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
+        raise RecipsimError(
+            f"cannot reach the Dask scheduler at {address} within {connect_timeout:g} s: {reason}"
+        ) from None
     try:
         from .. import __version__
 

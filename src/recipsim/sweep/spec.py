@@ -5,7 +5,9 @@ a bare number in the key's SI unit or a string with a unit)::
 
     name = "lbp_map"                      # optional; default: the file name
     description = "R134a and R600a at LBP"
-    base = "../reference_r134a_lbp.toml"  # the case every point starts from
+    base = "reference_r134a_lbp"          # the case every point starts from: a file
+                                          # beside this one or a shipped case by name
+    max_points = 100000                   # optional; refuse larger sweeps (default 100 000)
 
     [set]                                 # overrides applied to every point
     solver.max_revolutions = 100
@@ -28,18 +30,21 @@ that must change together, such as condensing and liquid temperature, are swept)
 from __future__ import annotations
 
 import itertools
-import re
+import math
 from collections.abc import Iterator, Mapping
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from ..case import read_toml
+from ..atomic import checked_name, name_from_stem
 from ..errors import CaseError
+from ..inputs import read_toml, resolve_reference
 from ..schema import check_keys
 
-SWEEP_KEYS = {"name", "description", "base", "set", "axes", "points"}
-_NAME = re.compile(r"^[A-Za-z0-9][A-Za-z0-9_.+-]*$")
+SWEEP_KEYS = {"name", "description", "base", "set", "axes", "points", "max_points"}
+
+#: Largest sweep run unless the sweep file (``max_points``) or ``--max-points`` allows more.
+DEFAULT_MAX_POINTS = 100_000
 
 Scalar = str | int | float | bool
 Assignment = tuple[tuple[str, Any], ...]
@@ -85,6 +90,8 @@ class SweepSpec:
         ``[axes]``: dotted case key to its values, in file order.
     points : tuple of Assignment
         ``[[points]]``: explicit points, each a tuple of (dotted key, value).
+    max_points : int
+        Largest number of points this sweep may have (``max_points``).
     """
 
     name: str
@@ -95,6 +102,31 @@ class SweepSpec:
     fixed: Assignment
     axes: tuple[tuple[str, tuple[Any, ...]], ...]
     points: tuple[Assignment, ...]
+    max_points: int = DEFAULT_MAX_POINTS
+
+    @property
+    def size(self) -> int:
+        """Number of points, computed from the axis lengths without expanding them."""
+        grid = math.prod(len(values) for _, values in self.axes)
+        return grid * max(1, len(self.points))
+
+    def check_size(self, limit: int | None = None) -> None:
+        """Refuse a sweep larger than ``limit`` (default :attr:`max_points`).
+
+        Raises
+        ------
+        CaseError
+            Naming the sweep file, ``max_points``, the count and the limit.
+        """
+        limit = self.max_points if limit is None else limit
+        if self.size > limit:
+            raise CaseError(
+                str(self.path),
+                "max_points",
+                f"the sweep has {self.size:,} points, more than the limit of {limit:,}; "
+                "split it, or raise the limit with max_points in the sweep file or "
+                "--max-points",
+            )
 
     @property
     def varying_keys(self) -> list[str]:
@@ -115,17 +147,16 @@ class SweepSpec:
             return f"set.{key}"
         return key
 
-    def expand(self) -> list[SweepPoint]:
-        """All points: the grid of the axes crossed with the explicit points."""
+    def expand(self) -> Iterator[SweepPoint]:
+        """All points, one at a time: the grid of the axes crossed with the explicit points."""
         grid = itertools.product(*(values for _, values in self.axes))
         keys = [key for key, _ in self.axes]
         explicit: tuple[Assignment, ...] = self.points or ((),)
-        out: list[SweepPoint] = []
+        index = 0
         for combo in grid:
             for point in explicit:
-                values = tuple(zip(keys, combo, strict=True)) + point
-                out.append(SweepPoint(index=len(out), values=values))
-        return out
+                yield SweepPoint(index=index, values=tuple(zip(keys, combo, strict=True)) + point)
+                index += 1
 
 
 def _flatten(table: Mapping[str, Any], prefix: str = "") -> Iterator[tuple[str, Any]]:
@@ -178,16 +209,19 @@ def _check_scalar(value: Any, file: str, key: str) -> None:
         )
 
 
-def load_sweep(path: str | Path) -> SweepSpec:
+def load_sweep(path: str | Path, allow_external_paths: bool = False) -> SweepSpec:
     """Read and check a sweep file.
 
-    The case keys themselves are checked later, when every point is validated as a
-    case (:func:`recipsim.sweep.plan.plan_sweep`).
+    The case keys themselves are checked later, when the points are planned
+    (:func:`recipsim.sweep.plan.plan_sweep`).
 
     Parameters
     ----------
     path : str or Path
         The sweep file (TOML).
+    allow_external_paths : bool
+        Let ``base`` name a file outside the sweep file's directory (absolute or
+        ``..``); shipped cases by name are always allowed.
 
     Returns
     -------
@@ -202,22 +236,16 @@ def load_sweep(path: str | Path) -> SweepSpec:
     file = str(path)
     raw, text = read_toml(path, "sweep")
     check_keys(raw, SWEEP_KEYS, file, "")
-    name = raw.get("name", path.stem)
-    if not isinstance(name, str) or not _NAME.match(name):
-        raise CaseError(
-            file, "name", f"{name!r} is not allowed; letters, digits and _ . + - (a directory name)"
-        )
+    name = checked_name(raw["name"], file) if "name" in raw else name_from_stem(path.stem)
+    max_points = raw.get("max_points", DEFAULT_MAX_POINTS)
+    if isinstance(max_points, bool) or not isinstance(max_points, int) or max_points < 1:
+        raise CaseError(file, "max_points", f"{max_points!r}: expected a whole number >= 1")
     description = raw.get("description", "")
     if not isinstance(description, str):
         raise CaseError(file, "description", "expected a string")
-    base_name = raw.get("base")
-    if not isinstance(base_name, str):
-        raise CaseError(
-            file, "base", "missing or not a string: the base case file, relative to the sweep file"
-        )
-    base = (path.parent / base_name).resolve()
-    if not base.is_file():
-        raise CaseError(file, "base", f"no such case file: {base}")
+    base = resolve_reference(
+        raw.get("base"), file, "base", "case file", allow_external_paths, by_name=True
+    )
     fixed = _assignment(raw.get("set", {}), file, "set", lists=False)
     axes = _assignment(raw.get("axes", {}), file, "axes", lists=True)
     points_raw = raw.get("points", [])
@@ -250,4 +278,5 @@ def load_sweep(path: str | Path) -> SweepSpec:
         fixed=tuple(fixed.items()),
         axes=tuple(axes.items()),
         points=tuple(points),
+        max_points=max_points,
     )

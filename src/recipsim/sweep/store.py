@@ -12,20 +12,35 @@ Layout of a sweep's output directory ``<out>/<name>/``::
 
 Every file is written to a temporary file in the same directory and renamed over its
 destination (:func:`os.replace`), so a killed sweep leaves either the old file or the
-new one, never half of one. A point file that cannot be read (which only a hand
-edit can cause) counts as missing and the point is computed again.
+new one, never half of one. Each point file carries the point's inputs (its
+overrides, whose case its id hashes) and a SHA-256 checksum of its content: a file
+that cannot be read, whose checksum does not match (a hand edit, an injected column)
+or whose inputs are not the planned point's counts as missing and the point is
+computed again. Nothing on disk is trusted that recipsim did not write for this point.
 """
 
 from __future__ import annotations
 
+import hashlib
 import json
+from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
 from ..atomic import atomic_file
 from .worker import STATUSES
 
-FORMAT = 1
+#: A point file larger than this is not read (it was not written by recipsim) [bytes].
+_MAX_RECORD_BYTES = 10_000_000
+
+FORMAT = 2
+
+
+def record_checksum(record: dict[str, Any]) -> str:
+    """SHA-256 of a point record's canonical JSON, its ``checksum`` field left out."""
+    body = {k: v for k, v in record.items() if k != "checksum"}
+    blob = json.dumps(body, sort_keys=True, allow_nan=True, default=str, ensure_ascii=True)
+    return hashlib.sha256(blob.encode()).hexdigest()
 
 
 class PointStore:
@@ -62,16 +77,28 @@ class PointStore:
             for path in self.points.glob("*.json"):
                 path.unlink(missing_ok=True)
 
-    def load(self, point_id: str) -> dict[str, Any] | None:
-        """The stored record of a point, or ``None`` if it is not finished."""
+    def load(self, point_id: str, overrides: Sequence[str]) -> dict[str, Any] | None:
+        """The stored record of a point, or ``None`` if it is not finished.
+
+        Parameters
+        ----------
+        point_id : str
+        overrides : sequence of str
+            The planned point's overrides: a record made for other inputs is ignored.
+        """
+        path = self.path(point_id)
         try:
-            record = json.loads(self.path(point_id).read_text())
+            if path.stat().st_size > _MAX_RECORD_BYTES:
+                return None
+            record = json.loads(path.read_text(encoding="utf-8"))
         except (OSError, ValueError):
             return None
         if (
             not isinstance(record, dict)
             or record.get("format") != FORMAT
+            or record.get("checksum") != record_checksum(record)
             or record.get("point_id") != point_id
+            or record.get("overrides") != list(overrides)
             or record.get("status") not in STATUSES
             or not isinstance(record.get("summary"), dict)
         ):
@@ -79,7 +106,9 @@ class PointStore:
         return record
 
     def save(self, point_id: str, record: dict[str, Any]) -> None:
-        """Write a point's record atomically (``format`` and ``point_id`` are added)."""
+        """Write a point's record atomically (``format``, ``point_id`` and ``checksum``
+        are added)."""
         data = {"format": FORMAT, "point_id": point_id, **record}
+        data["checksum"] = record_checksum(data)
         with atomic_file(self.path(point_id)) as handle:
             json.dump(data, handle, indent=1, allow_nan=True)

@@ -49,6 +49,8 @@ class PointTask:
         Write the point's report (as ``recipsim run`` does) into this directory.
     plots : bool
         With ``report_dir``: also draw the report's figures.
+    allow_external_paths : bool
+        See :func:`recipsim.case.load_case`.
     """
 
     index: int
@@ -57,6 +59,7 @@ class PointTask:
     overrides: tuple[str, ...]
     report_dir: str | None = None
     plots: bool = False
+    allow_external_paths: bool = False
 
 
 def _plain(value: Any) -> Any:
@@ -90,7 +93,10 @@ def run_point(task: PointTask) -> dict[str, Any]:
 
     try:
         argv = ["recipsim", "sweep", f"point {task.point_id}"]
-        run = simulate_case(load_case(task.case, list(task.overrides)), argv)
+        case = load_case(
+            task.case, list(task.overrides), allow_external_paths=task.allow_external_paths
+        )
+        run = simulate_case(case, argv)
         row = {k: _plain(v) for k, v in run.row.items()}
         if task.report_dir is not None:
             write_case_report(run, Path(task.report_dir), list(task.overrides), task.plots)

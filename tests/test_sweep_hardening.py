@@ -1,0 +1,204 @@
+"""``recipsim sweep`` under hostile input: bounded work, honest resumes, one-line errors.
+
+Every test asserts the exit status, a one-line message without a traceback, and (where
+the sweep could write) that nothing outside ``--out`` changed.
+"""
+
+from __future__ import annotations
+
+import json
+import socket
+import time
+import tracemalloc
+from pathlib import Path
+
+import pandas as pd
+import pytest
+
+from helpers import REFERENCE
+from recipsim.atomic import MARKER
+from recipsim.cli import main
+from recipsim.sweep.engine import TIMING_COLUMNS
+from recipsim.sweep.spec import load_sweep
+from recipsim.sweep.store import record_checksum
+
+SMALL = """
+[set]
+solver.max_revolutions = 40
+[axes]
+operating_point.evaporating_temperature = ["-30 degC", "-20 degC"]
+"""
+
+
+def write(tmp_path: Path, body: str, name: str = "small") -> Path:
+    path = tmp_path / "inputs" / f"{name}.toml"
+    path.parent.mkdir(exist_ok=True)
+    path.write_text(f'name = "{name}"\nbase = "reference_r134a_lbp"\n{body}')
+    return path
+
+
+def sentinels(tmp_path: Path) -> tuple[Path, dict[str, bytes]]:
+    """An output directory with files beside and above it; returns it and a snapshot."""
+    out = tmp_path / "work" / "out"
+    out.mkdir(parents=True)
+    (tmp_path / "above.txt").write_text("above")
+    (tmp_path / "work" / "beside.txt").write_text("beside")
+    return out, snapshot(tmp_path, out)
+
+
+def snapshot(root: Path, out: Path) -> dict[str, bytes]:
+    return {
+        str(p.relative_to(root)): p.read_bytes()
+        for p in sorted(root.rglob("*"))
+        if p.is_file() and not p.is_relative_to(out) and not p.is_relative_to(root / "inputs")
+    }
+
+
+def one_line_error(capsys: pytest.CaptureFixture[str]) -> str:
+    err = capsys.readouterr().err.strip()
+    assert "Traceback" not in err and err.count("\n") == 0, err
+    return err
+
+
+def test_a_huge_grid_is_refused_before_anything_is_built(tmp_path, capsys):
+    """1e9 points: refused from the axis lengths in milliseconds, nothing allocated."""
+    values = ", ".join(f'"{t} rpm"' for t in range(2000, 3000))
+    body = (
+        "[axes]\n"
+        f"operating_point.shaft_speed = [{values}]\n"
+        f"valves.suction.preload = [{', '.join(str(i / 10) for i in range(1000))}]\n"
+        f"valves.discharge.preload = [{', '.join(str(i / 10) for i in range(1000))}]\n"
+    )
+    sweep = write(tmp_path, body)
+    assert load_sweep(sweep).size == 10**9
+    out, before = sentinels(tmp_path)
+    tracemalloc.start()
+    start = time.perf_counter()
+    status = main(["sweep", str(sweep), "--out", str(out), "--quiet", "--no-plots"])
+    elapsed = time.perf_counter() - start
+    peak = tracemalloc.get_traced_memory()[1]
+    tracemalloc.stop()
+    err = one_line_error(capsys)
+    assert status == 2 and "1,000,000,000 points" in err and "max_points" in err
+    assert elapsed < 2.0 and peak < 50e6
+    assert list(out.iterdir()) == [] and snapshot(tmp_path, out) == before
+
+
+def test_the_limit_is_configurable_in_the_file_and_on_the_command_line(tmp_path, capsys):
+    sweep = write(tmp_path, "max_points = 1\n" + SMALL)
+    out = tmp_path / "out"
+    assert main(["sweep", str(sweep), "--out", str(out), "--quiet", "--no-plots"]) == 2
+    assert "2 points, more than the limit of 1" in one_line_error(capsys)
+    argv = ["sweep", str(sweep), "--out", str(out), "--quiet", "--no-plots", "--max-points", "2"]
+    assert main(argv) == 0
+    bad = write(tmp_path, "max_points = 0\n" + SMALL, "bad")
+    assert main(["sweep", str(bad), "--out", str(out), "--quiet"]) == 2
+    assert "max_points" in one_line_error(capsys)
+
+
+def test_a_large_sweep_starts_without_validating_every_point(tmp_path, monkeypatch):
+    """Planning 20 000 points builds one case (for the keys), not 20 000."""
+    import recipsim.sweep.plan as plan
+
+    calls = []
+    real = plan.load_case
+    monkeypatch.setattr(plan, "load_case", lambda *a, **k: calls.append(1) or real(*a, **k))
+    values = ", ".join(str(i / 1000) for i in range(20_000))
+    sweep = write(tmp_path, f"[axes]\nvalves.suction.preload = [{values}]\n")
+    start = time.perf_counter()
+    planned = plan.plan_sweep(load_sweep(sweep))
+    assert len(planned) == 20_000 and len(calls) == 1
+    assert time.perf_counter() - start < 30.0
+
+
+def test_scheduler_that_is_not_a_url_is_invalid_input(tmp_path, capsys):
+    sweep = write(tmp_path, SMALL)
+    argv = ["sweep", str(sweep), "--out", str(tmp_path / "o"), "--scheduler", "not a url"]
+    assert main(argv) == 2
+    assert "not a scheduler address" in one_line_error(capsys)
+    assert not (tmp_path / "o" / "small" / "points").exists()
+
+
+def test_a_silent_server_is_not_waited_for(tmp_path, capsys):
+    """An open port that is not Dask: exit 1 within the timeout, one line."""
+    sweep = write(tmp_path, SMALL)
+    with socket.socket() as server:
+        server.bind(("127.0.0.1", 0))
+        server.listen()
+        address = f"tcp://127.0.0.1:{server.getsockname()[1]}"
+        argv = ["sweep", str(sweep), "--out", str(tmp_path / "o"), "--scheduler", address]
+        start = time.perf_counter()
+        assert main([*argv, "--scheduler-timeout", "1", "--quiet"]) == 1
+        assert time.perf_counter() - start < 15.0
+    assert "no Dask scheduler answers" in one_line_error(capsys)
+
+
+def test_a_tampered_point_file_is_recomputed(tmp_path, capsys):
+    """COP 99 and an injected column in a finished point: not trusted, recomputed, and
+    the table equals a clean run's."""
+    sweep = write(tmp_path, SMALL)
+    out = tmp_path / "out"
+    argv = ["sweep", str(sweep), "--out", str(out), "--quiet", "--no-plots", "--jobs", "1"]
+    assert main(argv) == 0
+    clean = pd.read_csv(out / "small" / "summary.csv")
+    point = sorted((out / "small" / "points").glob("*.json"))[0]
+    record = json.loads(point.read_text())
+    assert record["checksum"] == record_checksum(record)
+    record["summary"]["COP [-]"] = 99.0
+    record["summary"]["injected [-]"] = 1.0
+    point.write_text(json.dumps(record))
+    assert main(argv) == 0
+    again = pd.read_csv(out / "small" / "summary.csv")
+    assert "injected [-]" not in again.columns and (again["COP [-]"] < 10).all()
+    timing = [c for c in TIMING_COLUMNS if c in clean]
+    pd.testing.assert_frame_equal(clean.drop(columns=timing), again.drop(columns=timing))
+    # a forged checksum does not help when the inputs are not the point's
+    record = json.loads(point.read_text())
+    record["overrides"] = ["operating_point.shaft_speed=1.0"]
+    record["checksum"] = record_checksum(record)
+    point.write_text(json.dumps(record))
+    mtime = point.stat().st_mtime_ns
+    assert main(argv) == 0
+    assert point.stat().st_mtime_ns != mtime  # recomputed and rewritten
+    assert json.loads(point.read_text())["overrides"] != ["operating_point.shaft_speed=1.0"]
+
+
+def test_unsafe_sweep_names_and_foreign_directories_are_refused(tmp_path, capsys):
+    out, before = sentinels(tmp_path)
+    for name in ('""', '".."', '"../x"', '"/tmp"'):
+        sweep = tmp_path / "inputs" / "bad.toml"
+        sweep.parent.mkdir(exist_ok=True)
+        sweep.write_text(f'name = {name}\nbase = "reference_r134a_lbp"\n{SMALL}')
+        assert main(["sweep", str(sweep), "--out", str(out), "--quiet"]) == 2
+        assert "name" in one_line_error(capsys)
+    foreign = out / "small"
+    foreign.mkdir()
+    (foreign / "thesis.tex").write_text("mine")
+    sweep = write(tmp_path, SMALL)
+    assert main(["sweep", str(sweep), "--out", str(out), "--quiet", "--no-plots"]) == 2
+    assert "not written by recipsim" in one_line_error(capsys)
+    assert sorted(p.name for p in foreign.iterdir()) == ["thesis.tex"]
+    assert main(["sweep", str(sweep), "--out", str(out / "x" / ".."), "--quiet"]) == 2
+    one_line_error(capsys)
+    assert snapshot(tmp_path, out) == before
+
+
+def test_base_outside_the_sweep_directory_needs_the_opt_in(tmp_path, capsys):
+    (tmp_path / "base.toml").write_text(f'extends = "{REFERENCE.as_posix()}"\n')
+    sweep = tmp_path / "inputs" / "s.toml"
+    sweep.parent.mkdir()
+    sweep.write_text(f'base = "../base.toml"\n{SMALL}')
+    argv = ["sweep", str(sweep), "--out", str(tmp_path / "o"), "--quiet", "--no-plots"]
+    assert main(argv) == 2
+    assert "--allow-external-paths" in one_line_error(capsys)
+    assert main([*argv, "--allow-external-paths", "--jobs", "1"]) == 0
+    assert (tmp_path / "o" / "s" / MARKER).is_file()
+
+
+def test_out_on_a_file_is_one_line(tmp_path, capsys):
+    sweep = write(tmp_path, SMALL)
+    target = tmp_path / "file.txt"
+    target.write_text("x")
+    assert main(["sweep", str(sweep), "--out", str(target), "--quiet"]) == 2
+    assert "not a directory" in one_line_error(capsys)
+    assert target.read_text() == "x"
