@@ -144,7 +144,8 @@ def test_cache_hit_miss_stale_and_corrupt(cache):
 
     # a corrupt file is rebuilt and replaced
     first.path.write_bytes(b"not an npz file")
-    third = load_property_table(*args)
+    with pytest.warns(UserWarning, match="unreadable"):
+        third = load_property_table(*args)
     assert not third.from_cache
     np.testing.assert_array_equal(third.data, first.data)
     assert load_property_table(*args).from_cache

@@ -37,8 +37,8 @@ def _isolate_numba_cache() -> None:
     constant it reads from another module does (e.g. a parameter-layout index in
     ``mechanics/layout.py``): a stale cache would then silently read the wrong slots.
     A cache directory per source digest rules that out. Honours ``NUMBA_CACHE_DIR``
-    (used as the parent); default ``~/.cache/recipsim/numba`` (or
-    ``$XDG_CACHE_HOME/recipsim/numba``).
+    (used as the parent); default ``<recipsim cache>/numba``
+    (:func:`recipsim.cache_dirs.cache_dir`).
     """
     if os.environ.get("NUMBA_DISABLE_JIT") == "1":
         return
@@ -46,8 +46,13 @@ def _isolate_numba_cache() -> None:
     if base is not None and Path(base).name.startswith("recipsim-"):
         base = str(Path(base).parent)  # set by a parent recipsim process
     if base is None:
-        xdg = os.environ.get("XDG_CACHE_HOME") or str(Path.home() / ".cache")
-        base = str(Path(xdg) / "recipsim" / "numba")
+        from .cache_dirs import cache_dir, private_dir
+
+        base = str(cache_dir() / "numba")
+        try:
+            private_dir(Path(base))  # numba's cache is pickled: keep it private
+        except OSError:
+            pass  # numba falls back to its own handling of an unwritable cache
     path = str(Path(base) / f"recipsim-{_compiled_sources_digest()}")
     numba = sys.modules.get("numba")
     if numba is not None:

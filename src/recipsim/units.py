@@ -19,11 +19,14 @@ def _registry() -> Any:
     import pint
 
     # autoconvert_offset_to_baseunit: "-23.3 degC" converts to K without an error.
-    # pint's own cache of the parsed definitions (under the user cache directory) takes
-    # the registry from 0.11 s to 0.015 s; without a writable cache, parse them.
+    # pint's own cache of the parsed definitions (in recipsim's cache directory) takes
+    # the registry from 0.11 s to 0.015 s; without a usable cache, parse them.
     try:
-        return pint.UnitRegistry(autoconvert_offset_to_baseunit=True, cache_folder=":auto:")
-    except OSError:
+        from .cache_dirs import cache_dir, private_dir
+
+        folder = private_dir(cache_dir() / "pint")
+        return pint.UnitRegistry(autoconvert_offset_to_baseunit=True, cache_folder=folder)
+    except Exception:  # unwritable or malformed cache (pint raises several types): parse
         return pint.UnitRegistry(autoconvert_offset_to_baseunit=True)
 
 

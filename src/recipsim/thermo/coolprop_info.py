@@ -10,13 +10,14 @@ constant) from a small cache filled by CoolProp the first time a fluid is used.
 from __future__ import annotations
 
 import json
-import os
+import math
 from dataclasses import asdict, dataclass
 from functools import cache, lru_cache
 from importlib import metadata
 from pathlib import Path
 
 from ..atomic import atomic_write
+from ..cache_dirs import cache_dir, private_dir
 
 
 @lru_cache(maxsize=1)
@@ -28,12 +29,6 @@ def coolprop_version() -> str:
         import CoolProp
 
         return str(CoolProp.__version__)
-
-
-def cache_dir() -> Path:
-    """recipsim's cache directory: ``$RECIPSIM_CACHE`` or ``~/.cache/recipsim``."""
-    env = os.environ.get("RECIPSIM_CACHE")
-    return Path(env) if env else Path.home() / ".cache" / "recipsim"
 
 
 @dataclass(frozen=True)
@@ -90,7 +85,9 @@ def fluid_constants(coolprop_name: str) -> FluidConstants:
     """The constants of a CoolProp fluid, from the cache or from CoolProp.
 
     The cache file (``fluid_constants/<CoolProp version>/<name>.json``) is written
-    atomically the first time a fluid is asked for; an unreadable one is recomputed.
+    atomically the first time a fluid is asked for; an unreadable, malformed or tampered
+    one (another fluid, missing or extra keys, values that are not finite numbers) is
+    recomputed and replaced.
 
     Raises
     ------
@@ -99,17 +96,37 @@ def fluid_constants(coolprop_name: str) -> FluidConstants:
     """
     safe = "".join(c if c.isalnum() else "_" for c in coolprop_name)
     path = cache_dir() / "fluid_constants" / coolprop_version() / f"{safe}.json"
-    try:
-        data = json.loads(path.read_text())
-        if data.get("coolprop_name") == coolprop_name:
-            return FluidConstants(**data)
-    except (OSError, ValueError, TypeError):
-        pass
+    cached = _read_constants(path, coolprop_name)
+    if cached is not None:
+        return cached
     constants = _from_coolprop(coolprop_name)
     text = json.dumps(asdict(constants), indent=1)
 
     def write(tmp: Path) -> None:
         tmp.write_text(text)
 
+    private_dir(path.parent)
     atomic_write(path, write)
     return constants
+
+
+def _read_constants(path: Path, coolprop_name: str) -> FluidConstants | None:
+    """The cached constants, or None if the file is missing, malformed or not this fluid's."""
+    try:
+        if path.stat().st_size > 100_000:
+            return None
+        data = json.loads(path.read_text(encoding="utf-8"))
+    except (OSError, ValueError):
+        return None
+    fields = set(FluidConstants.__dataclass_fields__)
+    if not isinstance(data, dict) or set(data) != fields:
+        return None
+    if data["coolprop_name"] != coolprop_name:
+        return None
+    numbers = [v for k, v in data.items() if k != "coolprop_name"]
+    if not all(
+        isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v)
+        for v in numbers
+    ):
+        return None
+    return FluidConstants(**data)

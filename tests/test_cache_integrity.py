@@ -1,0 +1,153 @@
+"""Caches are checked before they are reused, and live where one rule says.
+
+A tampered, truncated or malformed cache file is rebuilt with a warning, never used;
+``XDG_CACHE_HOME`` (through platformdirs) or ``RECIPSIM_CACHE`` decides where every
+cache lives, created with mode 0o700.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import stat
+import subprocess
+import sys
+import warnings
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from recipsim.cache_dirs import check_private, private_dir
+from recipsim.thermo.coolprop_info import fluid_constants
+from recipsim.thermo.property_table import TableResolution
+from recipsim.thermo.property_table_cache import load_property_table
+
+COARSE = TableResolution(dt=4.0, dx=0.16, dt_sat=1.0)
+R600A = ("Isobutane", 220.0, 400.0)
+
+
+@pytest.fixture
+def cache(tmp_path, monkeypatch):
+    monkeypatch.setenv("RECIPSIM_CACHE", str(tmp_path / "cache"))
+    fluid_constants.cache_clear()
+    yield tmp_path / "cache"
+    fluid_constants.cache_clear()
+
+
+def _rewrite(path: Path, **changes: object) -> None:
+    """Rewrite the table file with some arrays changed, keeping it a loadable npz."""
+    with np.load(path, allow_pickle=False) as npz:
+        arrays = {name: npz[name] for name in npz.files}
+    arrays.update({k: np.asarray(v) for k, v in changes.items()})
+    with open(path, "wb") as handle:
+        np.savez(handle, **arrays)
+
+
+def test_a_tampered_table_is_rebuilt_and_its_provenance_is_honest(cache):
+    built = load_property_table(*R600A, COARSE)
+    assert not built.from_cache and built.path.is_file()
+    again = load_property_table(*R600A, COARSE)
+    assert again.from_cache and np.array_equal(again.data, built.data, equal_nan=True)
+    with np.load(built.path, allow_pickle=False) as npz:
+        data = np.array(npz["data"])
+    data[len(data) // 2] *= 1.001  # a plausible-looking edit of one coefficient
+    _rewrite(built.path, data=data)
+    with pytest.warns(UserWarning, match="checksum does not match"):
+        rebuilt = load_property_table(*R600A, COARSE)
+    assert not rebuilt.from_cache
+    assert np.array_equal(rebuilt.data, built.data, equal_nan=True)
+    # a claimed error that is not the measured one fails the checksum too
+    _rewrite(built.path, error=json.dumps({"max_relative_error": 1e-12}))
+    with pytest.warns(UserWarning, match="checksum"):
+        honest = load_property_table(*R600A, COARSE)
+    assert honest.error == built.error and not honest.from_cache
+    assert load_property_table(*R600A, COARSE).from_cache  # the rebuilt file is good
+
+
+@pytest.mark.parametrize(
+    "damage",
+    [b"", b"not a zip file at all", b"PK\x03\x04" + b"\x00" * 64],
+    ids=["empty", "garbage", "truncated-zip"],
+)
+def test_an_unreadable_table_is_rebuilt_without_a_traceback(cache, damage):
+    path = load_property_table(*R600A, COARSE).path
+    path.write_bytes(damage)
+    with pytest.warns(UserWarning, match="unreadable"):
+        table = load_property_table(*R600A, COARSE)
+    assert not table.from_cache and path.stat().st_size > 1000
+
+
+def test_a_table_without_checksum_or_with_the_wrong_shape_is_rebuilt(cache):
+    path = load_property_table(*R600A, COARSE).path
+    with np.load(path, allow_pickle=False) as npz:
+        arrays = {name: npz[name] for name in npz.files if name != "checksum"}
+    with open(path, "wb") as handle:
+        np.savez(handle, **arrays)
+    with pytest.warns(UserWarning, match="unreadable"):
+        assert not load_property_table(*R600A, COARSE).from_cache
+    _rewrite(path, data=np.zeros((3, 3)))
+    with pytest.warns(UserWarning, match="not shaped"):
+        assert not load_property_table(*R600A, COARSE).from_cache
+
+
+@pytest.mark.parametrize(
+    "content",
+    [
+        "garbage{",
+        "[1, 2, 3]",
+        '{"coolprop_name": "R134a"}',
+        "WRONG_TYPES",
+        "NAN",
+        "OTHER_FLUID",
+    ],
+)
+def test_malformed_fluid_constants_are_recomputed(cache, content):
+    good = fluid_constants("R134a")
+    path = next((cache / "fluid_constants").rglob("R134a.json"))
+    data = json.loads(path.read_text())
+    if content == "WRONG_TYPES":
+        content = json.dumps({**data, "t_crit": "374 K"})
+    elif content == "NAN":
+        content = json.dumps({**data, "p_crit": float("nan")})
+    elif content == "OTHER_FLUID":
+        content = json.dumps({**data, "coolprop_name": "R32"})
+    path.write_text(content)
+    fluid_constants.cache_clear()
+    assert fluid_constants("R134a") == good
+    assert json.loads(path.read_text()) == data  # replaced by a good file
+
+
+def test_every_cache_follows_xdg_cache_home_with_private_directories(tmp_path):
+    """In a fresh interpreter without RECIPSIM_CACHE: fluid constants, pint's definitions
+    and numba's cache all land under $XDG_CACHE_HOME/recipsim, created 0o700."""
+    env = {k: v for k, v in os.environ.items() if k not in ("RECIPSIM_CACHE", "NUMBA_CACHE_DIR")}
+    env["XDG_CACHE_HOME"] = str(tmp_path / "xdg")
+    code = (
+        "import os, recipsim\n"
+        "from recipsim.thermo.coolprop_info import fluid_constants\n"
+        "from recipsim.units import to_si\n"
+        "fluid_constants('R134a'); to_si('3 mm', 'm', 'f', 'k')\n"
+        "print(os.environ['NUMBA_CACHE_DIR'])\n"
+    )
+    out = subprocess.run(
+        [sys.executable, "-c", code], env=env, capture_output=True, text=True, timeout=120
+    )
+    assert out.returncode == 0, out.stderr
+    root = tmp_path / "xdg" / "recipsim"
+    assert Path(out.stdout.strip()).parent == root / "numba"
+    assert list((root / "fluid_constants").rglob("R134a.json"))
+    assert (root / "pint").is_dir()
+    for directory in (root, root / "fluid_constants", root / "pint", root / "numba"):
+        assert stat.S_IMODE(directory.stat().st_mode) == 0o700, directory
+
+
+def test_a_cache_directory_others_can_write_is_reported(tmp_path):
+    shared = private_dir(tmp_path / "shared")
+    assert stat.S_IMODE(shared.stat().st_mode) == 0o700
+    shared.chmod(0o777)
+    with pytest.warns(UserWarning, match="writable by other users"):
+        check_private(shared)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        check_private(shared)  # once per directory
