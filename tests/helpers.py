@@ -37,8 +37,8 @@ TABULATED = [p for p in ALL_CASES if _scene(p)[0] == "tabulated"]
 
 def solve_case(path: Path, overrides: list[str] | None = None):
     """Load, build and solve a case; returns the periodic solution."""
-    from recipsim.case import load_case
-    from recipsim.model import build_model
+    from recipsim.case.load import load_case
+    from recipsim.solve.drive import build_model_for
     from recipsim.solve.periodic import solve_periodic
 
-    return solve_periodic(build_model(load_case(path, overrides or [])))
+    return solve_periodic(build_model_for(load_case(path, overrides or [])))

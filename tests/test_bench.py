@@ -13,12 +13,12 @@ import pandas as pd
 import pytest
 
 from helpers import REFERENCE
-from recipsim.bench.errors import MAX_ERROR, PRESSURE_ERROR, error_columns
-from recipsim.bench.ladder import Rung, build_ladder, reference_overrides
-from recipsim.bench.measure import OK, UNAVAILABLE, run_rung
-from recipsim.bench.report import RUN_COLUMNS, SETTING_COLUMNS, outcome_row
-from recipsim.case import load_case
-from recipsim.cli import main
+from recipsim.case.load import load_case
+from recipsim.cli.main import main
+from recipsim.studies.bench.errors import MAX_ERROR, PRESSURE_ERROR, error_columns
+from recipsim.studies.bench.ladder import Rung, build_ladder, reference_overrides
+from recipsim.studies.bench.measure import OK, UNAVAILABLE, run_rung
+from recipsim.studies.bench.report import RUN_COLUMNS, SETTING_COLUMNS, outcome_row
 
 BEARINGS = ("primary", "secondary", "eccentric", "pin", "piston_top", "piston_skirt")
 

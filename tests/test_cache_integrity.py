@@ -19,9 +19,9 @@ import numpy as np
 import pytest
 
 from recipsim.cache_dirs import check_private, private_dir
-from recipsim.thermo.coolprop_info import fluid_constants
-from recipsim.thermo.property_table import TableResolution
-from recipsim.thermo.property_table_cache import load_property_table
+from recipsim.physics.thermo.coolprop_info import fluid_constants
+from recipsim.physics.thermo.property_table import TableResolution
+from recipsim.physics.thermo.property_table_cache import load_property_table
 
 COARSE = TableResolution(dt=4.0, dx=0.16, dt_sat=1.0)
 R600A = ("Isobutane", 220.0, 400.0)
@@ -125,8 +125,8 @@ def test_every_cache_follows_xdg_cache_home_with_private_directories(tmp_path):
     env["XDG_CACHE_HOME"] = str(tmp_path / "xdg")
     code = (
         "import os, recipsim\n"
-        "from recipsim.thermo.coolprop_info import fluid_constants\n"
-        "from recipsim.units import to_si\n"
+        "from recipsim.physics.thermo.coolprop_info import fluid_constants\n"
+        "from recipsim.case.units import to_si\n"
         "fluid_constants('R134a'); to_si('3 mm', 'm', 'f', 'k')\n"
         "print(os.environ['NUMBA_CACHE_DIR'])\n"
     )

@@ -6,8 +6,8 @@ from pathlib import Path
 import pytest
 
 from helpers import ALL_CASES, REFERENCE
-from recipsim.case import load_case, parse_override
-from recipsim.cli import main
+from recipsim.case.load import load_case, parse_override
+from recipsim.cli.main import main
 from recipsim.errors import CaseError
 
 
@@ -107,7 +107,7 @@ def test_extends_merges_tables():
 
 def test_reference_case_carries_the_reference_mechanism():
     """One source of mechanism data: the case tables equal the library's reference spec."""
-    from recipsim.mechanics import reference_mechanism
+    from recipsim.case.mechanism import reference_mechanism
 
     case = load_case(REFERENCE)
     assert case.mechanism == reference_mechanism()

@@ -11,9 +11,11 @@ import pytest
 
 from helpers import CASES, REFERENCE
 from recipsim.atomic import MARKER
-from recipsim.case import load_case
-from recipsim.cli import main
-from recipsim.compare import (
+from recipsim.case.load import load_case
+from recipsim.cli.compare import run_comparison
+from recipsim.cli.main import main
+from recipsim.results.run import simulate_case
+from recipsim.studies.compare import (
     GROUPS,
     case_labels,
     comparison_table,
@@ -21,8 +23,6 @@ from recipsim.compare import (
     quantity_group,
     relative_difference,
 )
-from recipsim.compare_command import run_comparison
-from recipsim.simulate import simulate_case
 
 PAPER = CASES / "paper_tabulated.toml"
 FIXED = ["quantity", "group", "difference", "relative_difference [-]"]

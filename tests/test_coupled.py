@@ -23,11 +23,12 @@ import pytest
 from scipy.integrate import quad
 
 from helpers import CASES, REFERENCE, solve_case
-from recipsim.case import load_case
-from recipsim.mechanics import BEARING_NAMES
-from recipsim.motor import induction_motor_torque, motor_from_table
-from recipsim.results import cycle_table, summary
-from recipsim.solve.scenes import series_eccentricity
+from recipsim.case.load import load_case
+from recipsim.case.motor import motor_from_table
+from recipsim.model.scenes import series_eccentricity
+from recipsim.physics.mechanics.layout import BEARING_NAMES
+from recipsim.physics.motor import induction_motor_torque
+from recipsim.results.tables import cycle_table, summary
 
 COUPLED = CASES / "reference_r134a_lbp_coupled.toml"
 CONSTANT = ['options.drive="constant_speed"']
@@ -55,8 +56,8 @@ def test_coupled_motor_run_closes_mass_and_energy(motor_run):
     assert row["bearing_dissipation_power [W]"] > 1e-3 * row["shaft_power [W]"]
     assert row["shaft_power [W]"] == pytest.approx(balance, rel=5e-3)
     # the cylinder's -closed p dV and the mechanism's gas-on-piston work: two quadratures
-    from recipsim.mechanics import layout as mlay
-    from recipsim.solve import scenes
+    from recipsim.model import scenes
+    from recipsim.physics.mechanics import layout as mlay
 
     q = sol.model.mechanism_offset + mlay.N_STATE + scenes.MQ_GAS
     gas_on_piston = -sol.final.y_end[q] / sol.final.duration

@@ -5,7 +5,7 @@ import math
 import pytest
 
 from helpers import REFERENCE, SHIPPED, solve_case
-from recipsim.thermo import cylinder as cyl
+from recipsim.physics.thermo import cylinder as cyl
 
 IDEAL = [
     "options.valves=ideal",

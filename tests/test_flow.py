@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 from scipy.optimize import minimize_scalar
 
-from recipsim.thermo.flow import (
+from recipsim.physics.thermo.flow import (
     critical_pressure_ratio,
     gap_leakage_mass_flow,
     nozzle_mass_flux,

@@ -3,7 +3,7 @@ table logic (reed openings, judging, expectations file, CSV, exit status).
 
 The suite run (one module-scoped fixture, about 20 s on one core) is the CI run of the
 stability suite: each case must end as cases/hard/expectations.toml says, converged
-cases with finite results and closures within the tolerances of recipsim.check
+cases with finite results and closures within the tolerances of recipsim.studies.check
 (mass 1e-3, energy 5e-3 of the swept mass and its isentropic work; drive 5e-3). The
 unit tests use synthetic rows and refused cases only (nothing is integrated).
 """
@@ -19,7 +19,9 @@ import pandas as pd
 import pytest
 
 from helpers import CASES, REFERENCE
-from recipsim.check import (
+from recipsim.cli.main import main
+from recipsim.errors import CaseError
+from recipsim.studies.check import (
     CheckRow,
     Expectation,
     find_cases,
@@ -30,8 +32,6 @@ from recipsim.check import (
     run_check,
     write_check_csv,
 )
-from recipsim.cli import main
-from recipsim.errors import CaseError
 
 HARD = CASES / "hard"
 
@@ -137,8 +137,8 @@ def test_soft_reed_flutters_and_stiff_bearings_reach_the_rigid_limit(
     # bearings 1000x stiffer than the reference: the flexible crank train's volumetric
     # efficiency within 1e-3 of the rigid crank's (pinned run of the same case); the
     # reference bearings move it by 6 % (the crank train's compliance adds clearance)
-    from recipsim.case import load_case
-    from recipsim.simulate import simulate_case
+    from recipsim.case.load import load_case
+    from recipsim.results.run import simulate_case
 
     rigid = simulate_case(
         load_case(HARD / "bearings_stiff_x1000.toml", ["options.mechanics=pinned"])
@@ -309,9 +309,9 @@ def test_cli_exit_status_follows_the_expectations(tmp_path: Path) -> None:
 
 def test_a_failing_case_is_a_row(monkeypatch: pytest.MonkeyPatch) -> None:
     # a solver failure and an internal error both become "failed" rows, never exceptions
-    import recipsim.simulate
-    from recipsim.check import check_case
+    import recipsim.results.run
     from recipsim.errors import SolverError
+    from recipsim.studies.check import check_case
 
     def solver_failure(case: object) -> None:
         raise SolverError("integration failed at crank angle 12.000 deg: state ...")
@@ -320,10 +320,10 @@ def test_a_failing_case_is_a_row(monkeypatch: pytest.MonkeyPatch) -> None:
         raise ZeroDivisionError("float division by zero")
 
     expect_failure = Expectation(expected="failed", message=r"crank angle \d+")
-    monkeypatch.setattr(recipsim.simulate, "simulate_case", solver_failure)
+    monkeypatch.setattr(recipsim.results.run, "simulate_case", solver_failure)
     row = check_case(REFERENCE, expect_failure)
     assert (row.outcome, row.matches) == ("failed", True)
-    monkeypatch.setattr(recipsim.simulate, "simulate_case", bug)
+    monkeypatch.setattr(recipsim.results.run, "simulate_case", bug)
     row = check_case(REFERENCE, Expectation())
     assert row.outcome == "failed" and not row.matches
     assert row.message.startswith("internal error ZeroDivisionError")

@@ -19,7 +19,7 @@ import pytest
 
 from helpers import CASES, REFERENCE
 from recipsim.atomic import MARKER
-from recipsim.cli import main
+from recipsim.cli.main import main
 
 FAST = ["--no-plots", "--quiet"]
 
@@ -374,7 +374,7 @@ def _leaf_keys() -> list[str]:
     """Dotted keys of every value of the reference case (and its tables) but the solver's."""
     global _LEAVES
     if _LEAVES is None:
-        from recipsim.case import load_case
+        from recipsim.case.load import load_case
 
         raw = load_case(REFERENCE).raw
         keys: list[str] = []

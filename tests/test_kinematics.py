@@ -5,7 +5,7 @@ import math
 import numpy as np
 import pytest
 
-from recipsim.kinematics import (
+from recipsim.physics.kinematics import (
     inertia_torque,
     piston_displacement,
     piston_displacement_array,

@@ -4,7 +4,7 @@ import CoolProp.CoolProp as CP
 import numpy as np
 import pytest
 
-from recipsim.thermo.properties import (
+from recipsim.physics.thermo.properties import (
     PROP_CV,
     PROP_DPDRHO,
     PROP_DPDT,
@@ -77,8 +77,8 @@ def test_ctrl_c_inside_the_property_callback_stops_the_solve():
     import time
 
     from helpers import REFERENCE
-    from recipsim.case import load_case
-    from recipsim.model import build_model
+    from recipsim.case.load import load_case
+    from recipsim.model.build import build_model
     from recipsim.solve.periodic import solve_periodic
 
     # HEOS: the compiled code calls the CoolProp callback at every evaluation

@@ -17,26 +17,26 @@ import numpy as np
 import pytest
 
 from helpers import REFERENCE, solve_case
-from recipsim.case import load_case
-from recipsim.model import build_model
-from recipsim.results import summary
-from recipsim.solve import scenes
-from recipsim.thermo import cylinder as cyl
-from recipsim.thermo.properties import (
+from recipsim.case.load import load_case
+from recipsim.model import scenes
+from recipsim.model.build import build_model
+from recipsim.physics.thermo import cylinder as cyl
+from recipsim.physics.thermo.properties import (
     N_PROPS,
     PROP_PRESSURE,
     STATUS_DOMAIN,
     STATUS_OK,
     HeosProperties,
 )
-from recipsim.thermo.property_table import (
+from recipsim.physics.thermo.property_table import (
     STATUS_FALLBACK,
     THERMO_SLOTS,
     TableResolution,
     table_props,
 )
-from recipsim.thermo.property_table_build import measure_error
-from recipsim.thermo.property_table_cache import cache_path, load_property_table
+from recipsim.physics.thermo.property_table_build import measure_error
+from recipsim.physics.thermo.property_table_cache import cache_path, load_property_table
+from recipsim.results.tables import summary
 
 # R134a limits of refrigerants/R134a.toml (-60 C .. 180 C)
 R134A = ("R134a", 213.15, 453.15)

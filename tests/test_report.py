@@ -8,8 +8,8 @@ import pytest
 
 from helpers import REFERENCE, ROOT
 from recipsim.atomic import swap_in
-from recipsim.cli import main
-from recipsim.mechanics.layout import BEARING_NAMES
+from recipsim.cli.main import main
+from recipsim.physics.mechanics.layout import BEARING_NAMES
 
 SUMMARY_REQUIRED = [
     "refrigerant",

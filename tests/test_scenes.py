@@ -18,11 +18,13 @@ import numpy as np
 import pytest
 
 from helpers import CASES, REFERENCE, solve_case
-from recipsim.bearing_results import mechanism_summary
-from recipsim.case import load_case
-from recipsim.mechanics import BEARING_NAMES, pinned_loads, simulate_mechanism
-from recipsim.model import case_mechanism_parameters, crank_geometry
-from recipsim.results import cycle_table, pinned_tabulated_cycle, summary
+from recipsim.case.load import load_case
+from recipsim.model.build import case_mechanism_parameters, crank_geometry
+from recipsim.model.pinned import pinned_loads
+from recipsim.physics.mechanics.layout import BEARING_NAMES
+from recipsim.results.bearings import mechanism_summary
+from recipsim.results.tables import cycle_table, pinned_tabulated_cycle, summary
+from recipsim.solve.mechanism_ivp import simulate_mechanism
 
 PAPER = CASES / "paper_tabulated.toml"
 CONSTANT = ['options.drive="constant_speed"']
@@ -92,7 +94,7 @@ def test_pinned_tabulated_case_is_the_library_inverse_dynamics():
 def test_pinned_torque_equals_the_rigid_cylinder_torque():
     """Inverse dynamics of all bodies vs the cylinder model's slider-crank torque."""
     cycle = cycle_table(solve_case(REFERENCE))
-    from recipsim.bearing_results import pinned_columns
+    from recipsim.results.bearings import pinned_columns
 
     case = load_case(REFERENCE)
     op = case.operating_point
@@ -134,7 +136,7 @@ def test_paper_command_writes_table1_with_the_paper_pattern(tmp_path):
     """`recipsim paper`: undamped flexible loads above pinned, damped ones close to pinned."""
     import pandas as pd
 
-    from recipsim.cli import main
+    from recipsim.cli.main import main
 
     out = tmp_path / "paper"
     status = main(

@@ -20,12 +20,12 @@ import pytest
 from scipy.integrate import solve_ivp
 
 from helpers import CASES, REFERENCE
-from recipsim.case import load_case
+from recipsim.case.load import load_case
 from recipsim.errors import CaseError
-from recipsim.mechanics import BEARING_NAMES
-from recipsim.mechanics import layout as mlay
-from recipsim.model import build_model
-from recipsim.results import cycle_table, summary
+from recipsim.model.build import build_model
+from recipsim.physics.mechanics import layout as mlay
+from recipsim.physics.mechanics.layout import BEARING_NAMES
+from recipsim.results.tables import cycle_table, summary
 from recipsim.solve.periodic import (
     cycle_residual,
     integrate_revolution,

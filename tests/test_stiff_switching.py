@@ -9,9 +9,10 @@ import numpy as np
 import pytest
 
 from helpers import REFERENCE
-from recipsim.case import load_case
-from recipsim.model import build_model
-from recipsim.results import cycle_table, summary
+from recipsim.case.load import load_case
+from recipsim.model.build import build_model
+from recipsim.physics.thermo import cylinder as cyl
+from recipsim.results.tables import cycle_table, summary
 from recipsim.solve import periodic
 from recipsim.solve.integrator import (
     METHOD_AUTO,
@@ -25,7 +26,6 @@ from recipsim.solve.integrator import (
     integrate,
 )
 from recipsim.solve.stiff import _lu_factor, _lu_solve
-from recipsim.thermo import cylinder as cyl
 
 TABLE = ["options.properties=table"]
 

@@ -19,10 +19,10 @@ import pandas as pd
 import pytest
 
 from helpers import CASES, REFERENCE, ROOT, solve_case
-from recipsim.cli import main
+from recipsim.cli.main import main
 from recipsim.errors import RecipsimError
-from recipsim.results import summary
-from recipsim.sweep.engine import TIMING_COLUMNS, SweepInterrupted, run_sweep
+from recipsim.results.tables import summary
+from recipsim.studies.sweep.engine import TIMING_COLUMNS, SweepInterrupted, run_sweep
 
 EVAPORATING = "evaporating_temperature [K]"
 
@@ -207,7 +207,7 @@ operating_point.evaporating_temperature = [
     points = out / "killed" / "points"
     env = dict(os.environ)
     env["PYTHONPATH"] = os.pathsep.join(filter(None, [str(ROOT / "src"), env.get("PYTHONPATH")]))
-    cmd = [sys.executable, "-m", "recipsim.cli", "sweep", str(sweep), "--out", str(out)]
+    cmd = [sys.executable, "-m", "recipsim.cli.main", "sweep", str(sweep), "--out", str(out)]
     proc = subprocess.Popen(
         [*cmd, "--jobs", "2", "--quiet", "--no-plots"],
         env=env,
@@ -303,7 +303,7 @@ operating_point.evaporating_temperature = ["-30 degC", "-20 degC", "80 degC"]
 
 
 def test_unreachable_scheduler_is_a_clear_error(tmp_path):
-    from recipsim.sweep.runner import run_dask
+    from recipsim.studies.sweep.runner import run_dask
 
     with pytest.raises(RecipsimError, match="cannot reach the Dask scheduler"):
         run_dask([], "tcp://127.0.0.1:9", lambda task, result: None, connect_timeout=0.5)

@@ -17,10 +17,10 @@ import pytest
 
 from helpers import REFERENCE
 from recipsim.atomic import MARKER
-from recipsim.cli import main
-from recipsim.sweep.engine import TIMING_COLUMNS
-from recipsim.sweep.spec import load_sweep
-from recipsim.sweep.store import record_checksum
+from recipsim.cli.main import main
+from recipsim.studies.sweep.engine import TIMING_COLUMNS
+from recipsim.studies.sweep.spec import load_sweep
+from recipsim.studies.sweep.store import record_checksum
 
 SMALL = """
 [set]
@@ -98,7 +98,7 @@ def test_the_limit_is_configurable_in_the_file_and_on_the_command_line(tmp_path,
 
 def test_a_large_sweep_starts_without_validating_every_point(tmp_path, monkeypatch):
     """Planning 20 000 points builds one case (for the keys), not 20 000."""
-    import recipsim.sweep.plan as plan
+    import recipsim.studies.sweep.plan as plan
 
     calls = []
     real = plan.load_case

@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-from recipsim.sweep.plots import (
+from recipsim.studies.sweep.plots import (
     bearing_columns,
     group_columns,
     plot_map,

@@ -8,12 +8,12 @@ from pathlib import Path
 import pytest
 
 from helpers import CASES, REFERENCE
-from recipsim.case import load_case
-from recipsim.cli import main
+from recipsim.case.load import load_case
+from recipsim.cli.main import main
 from recipsim.errors import CaseError
-from recipsim.sweep.engine import run_sweep
-from recipsim.sweep.plan import axis_column_names, plan_sweep
-from recipsim.sweep.spec import load_sweep
+from recipsim.studies.sweep.engine import run_sweep
+from recipsim.studies.sweep.plan import axis_column_names, plan_sweep
+from recipsim.studies.sweep.spec import load_sweep
 
 SWEEPS = CASES / "sweeps"
 

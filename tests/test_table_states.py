@@ -19,10 +19,11 @@ import sys
 import pytest
 
 from helpers import ROOT
-from recipsim.refrigerant import Fluid, load_refrigerant
-from recipsim.thermo.coolprop_info import coolprop_version, fluid_constants
-from recipsim.thermo.property_table_cache import load_property_table
-from recipsim.thermo.table_states import TableFluid
+from recipsim.case.refrigerant import load_refrigerant
+from recipsim.physics.thermo.coolprop_info import coolprop_version, fluid_constants
+from recipsim.physics.thermo.fluid import Fluid
+from recipsim.physics.thermo.property_table_cache import load_property_table
+from recipsim.physics.thermo.table_states import TableFluid
 
 C = 273.15
 
@@ -113,8 +114,8 @@ def test_run_with_table_properties_does_not_import_coolprop(tmp_path):
     """
     script = f"""
 import json, sys
-from recipsim.simulate import simulate_case
-from recipsim.case import load_case
+from recipsim.results.run import simulate_case
+from recipsim.case.load import load_case
 run = simulate_case(load_case({str(ROOT / "cases" / "reference_r134a_lbp.toml")!r}))
 print(json.dumps({{"coolprop": "CoolProp" in sys.modules,
                   "capacity": run.row["cooling_capacity [W]"],
@@ -128,8 +129,8 @@ print(json.dumps({{"coolprop": "CoolProp" in sys.modules,
         )
     table_run = json.loads(out.stdout.strip().splitlines()[-1])
     assert table_run["coolprop"] is False
-    from recipsim.case import load_case
-    from recipsim.simulate import simulate_case
+    from recipsim.case.load import load_case
+    from recipsim.results.run import simulate_case
 
     case = load_case(ROOT / "cases" / "reference_r134a_lbp.toml", ["options.properties=heos"])
     heos_run = simulate_case(case).row

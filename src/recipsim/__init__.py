@@ -15,7 +15,7 @@ from pathlib import Path
 __version__ = "0.1.0"
 
 #: Modules holding compiled code or the layout constants compiled code reads.
-_COMPILED_SOURCES = ("kinematics.py", "motor.py", "mechanics", "thermo", "solve")
+_COMPILED_SOURCES = ("physics", "model", "solve")
 
 
 def _compiled_sources_digest() -> str:
@@ -46,7 +46,7 @@ def _isolate_numba_cache() -> None:
     if base is not None and Path(base).name.startswith("recipsim-"):
         base = str(Path(base).parent)  # set by a parent recipsim process
     if base is None:
-        from .cache_dirs import cache_dir, private_dir
+        from recipsim.cache_dirs import cache_dir, private_dir
 
         base = str(cache_dir() / "numba")
         try:

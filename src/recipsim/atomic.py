@@ -20,7 +20,7 @@ from contextlib import contextmanager
 from pathlib import Path
 from typing import IO, Any
 
-from .errors import CaseError
+from recipsim.errors import CaseError
 
 #: File written into every directory recipsim creates as a whole (reports, comparisons,
 #: studies, sweeps, benches); a directory without it is never replaced or written into.

@@ -7,15 +7,14 @@ import math
 import numpy as np
 import pytest
 
-from recipsim.mechanics import (
+from recipsim.case.mechanism import (
     REFERENCE_SPEED,
     CrankGeometry,
     MechanismSpec,
-    PressureCurve,
-    ideal_cycle_pressure_curve,
     reference_geometry,
     reference_mechanism,
 )
+from recipsim.physics.mechanics.tabulated import PressureCurve, ideal_cycle_pressure_curve
 
 #: Shell (suction) pressure of the test cases [Pa]: R134a at -23.3 C evaporating.
 SHELL_PRESSURE = 1.15e5

@@ -15,16 +15,10 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from recipsim.mechanics import (
-    CrankGeometry,
-    MechanismSpec,
-    RotorSpec,
-    flexible_rhs,
-    initial_state,
-    mechanism_parameters,
-    with_damping,
-)
-from recipsim.mechanics import layout as lay
+from recipsim.case.mechanism import CrankGeometry, MechanismSpec, RotorSpec, with_damping
+from recipsim.model.mechanism_parameters import mechanism_parameters
+from recipsim.physics.mechanics import layout as lay
+from recipsim.physics.mechanics.flexible import flexible_rhs, initial_state
 
 ROTOR = [lay.Y_ROTOR_X, lay.Y_ROTOR_Y, lay.Y_ROTOR_TILT_X, lay.Y_ROTOR_TILT_Y]
 ROTOR_STATES = ROTOR + [lay.N_COORD + i for i in ROTOR]

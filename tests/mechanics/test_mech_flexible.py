@@ -12,25 +12,22 @@ from numba.core.runtime import _nrt_python as nrt
 from numba.core.runtime import rtsys
 from scipy.integrate import solve_ivp
 
-from recipsim.kinematics import piston_displacement
-from recipsim.mechanics import (
-    CrankGeometry,
-    MechanismSpec,
-    PressureCurve,
+from recipsim.case.mechanism import CrankGeometry, MechanismSpec, with_damping
+from recipsim.model.mechanism_parameters import mechanism_parameters
+from recipsim.physics.kinematics import piston_displacement
+from recipsim.physics.mechanics import layout as lay
+from recipsim.physics.mechanics.flexible import (
     flexible_outputs,
     flexible_rhs,
     flexible_rhs_tabulated,
     initial_state,
-    mechanism_parameters,
-    pinned_reactions,
     piston_axial_displacement,
     piston_lateral_offset,
     piston_tilt,
     state_scales,
-    with_damping,
 )
-from recipsim.mechanics import layout as lay
-from recipsim.mechanics.pinned import N_PIN_OUT
+from recipsim.physics.mechanics.pinned import N_PIN_OUT, pinned_reactions
+from recipsim.physics.mechanics.tabulated import PressureCurve
 
 NO_TABLE = np.zeros(1)
 

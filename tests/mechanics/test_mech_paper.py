@@ -14,19 +14,13 @@ import math
 import numpy as np
 import pytest
 
-from recipsim.mechanics import (
-    CrankGeometry,
-    MechanismResult,
-    MechanismSpec,
-    PinnedLoads,
-    PressureCurve,
-    initial_state,
-    mechanism_parameters,
-    pinned_loads,
-    scale_bearings,
-    simulate_mechanism,
-    with_damping,
-)
+from recipsim.case.mechanism import CrankGeometry, MechanismSpec, scale_bearings, with_damping
+from recipsim.model.mechanism_parameters import mechanism_parameters
+from recipsim.model.pinned import pinned_loads
+from recipsim.physics.mechanics.flexible import initial_state
+from recipsim.physics.mechanics.pinned import PinnedLoads
+from recipsim.physics.mechanics.tabulated import PressureCurve
+from recipsim.solve.mechanism_ivp import MechanismResult, simulate_mechanism
 
 
 @pytest.fixture(scope="module")

@@ -7,24 +7,27 @@ import math
 import numpy as np
 import pytest
 
-from recipsim.kinematics import (
+from recipsim.case.mechanism import CrankGeometry, MechanismSpec
+from recipsim.model.mechanism_parameters import mechanism_parameters
+from recipsim.model.pinned import pinned_loads
+from recipsim.physics.kinematics import (
     inertia_torque,
     piston_displacement,
     rod_angle,
     rod_centre_of_mass,
 )
-from recipsim.mechanics import (
-    BEARING_NAMES,
-    CrankGeometry,
-    MechanismSpec,
+from recipsim.physics.mechanics.layout import BEARING_NAMES
+from recipsim.physics.mechanics.pinned import (
+    N_PIN_OUT,
+    PIN_DRIVE_TORQUE,
+    PIN_GAS_TORQUE,
+    pinned_reactions,
+)
+from recipsim.physics.mechanics.tabulated import (
     PressureCurve,
     ideal_cycle_indicated_work,
     ideal_cycle_pressure_curve,
-    mechanism_parameters,
-    pinned_loads,
-    pinned_reactions,
 )
-from recipsim.mechanics.pinned import N_PIN_OUT, PIN_DRIVE_TORQUE, PIN_GAS_TORQUE
 
 SHELL_PRESSURE = 1.15e5  # [Pa], as the conftest's shell_pressure
 

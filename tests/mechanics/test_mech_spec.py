@@ -7,14 +7,14 @@ import math
 
 import pytest
 
-from recipsim.errors import CaseError
-from recipsim.mechanics import (
-    BEARING_NAMES,
+from recipsim.case.mechanism import (
     mechanism_from_dict,
     reference_mechanism_tables,
     scale_bearings,
+    solid_cylinder_transverse_inertia,
 )
-from recipsim.mechanics.spec import solid_cylinder_transverse_inertia
+from recipsim.errors import CaseError
+from recipsim.physics.mechanics.layout import BEARING_NAMES
 
 FILE = "cases/test.toml"
 

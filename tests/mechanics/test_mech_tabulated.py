@@ -8,12 +8,12 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from recipsim.case.pressure_curve import read_pressure_curve
 from recipsim.errors import CaseError
-from recipsim.kinematics import piston_displacement_array
-from recipsim.mechanics import (
+from recipsim.physics.kinematics import piston_displacement_array
+from recipsim.physics.mechanics.tabulated import (
     ideal_cycle_indicated_work,
     ideal_cycle_pressure_curve,
-    read_pressure_curve,
     tabulated_pressure,
     tabulated_pressure_curve_from_arrays,
 )

@@ -29,23 +29,20 @@ import pandas as pd
 import pytest
 from matplotlib.figure import Figure
 
-from recipsim import paper_study
 from recipsim.atomic import MARKER
-from recipsim.mechanics import (
-    BEARING_NAMES,
-    CrankGeometry,
-    MechanismSpec,
-    PressureCurve,
-    pinned_loads,
-)
-from recipsim.mechanics_plots import (
+from recipsim.case.mechanism import CrankGeometry, MechanismSpec
+from recipsim.model.pinned import pinned_loads
+from recipsim.physics.mechanics.layout import BEARING_NAMES
+from recipsim.physics.mechanics.tabulated import PressureCurve
+from recipsim.report.mechanics_plots import (
     has_orbits,
     plot_bearing_loads,
     plot_drive_torque,
     plot_orbits,
     save_mechanism_figures,
 )
-from recipsim.paper_study import (
+from recipsim.studies import paper as paper_study
+from recipsim.studies.paper import (
     CONFIGURATIONS,
     RUNS,
     PaperStudy,
@@ -385,7 +382,7 @@ def test_undamped_periodic_response_is_a_fixed_point(
     """Independent check: revolutions run on from the periodic state by the plain
     driver stay periodic (each revolution's change below the tolerance), and their
     RMS loads are those of the study (within 1e-3: the periodicity tolerance)."""
-    from recipsim.mechanics import with_damping
+    from recipsim.case.mechanism import with_damping
 
     periodic = periodic_study.flexible["gas_flexible"]
     result = paper_study.simulate_mechanism(

@@ -42,8 +42,8 @@ import math
 import numpy as np
 from numba import njit
 
-from .scenes import N_AUX, N_EVENTS, scene_event_action, scene_event_values, scene_rhs
-from .stiff import ERR_ORDER, jacobian_fd, spectral_bound, w_step
+from recipsim.model.scenes import N_AUX, N_EVENTS, scene_event_action, scene_event_values, scene_rhs
+from recipsim.solve.stiff import ERR_ORDER, jacobian_fd, spectral_bound, w_step
 
 ST_STATUS = 0
 ST_NFEV = 1

@@ -78,11 +78,11 @@ from typing import Any
 
 import numpy as np
 
-from ..errors import SolverError
-from ..mechanics import layout as mlay
-from ..model import Model
-from ..thermo import cylinder as cyl
-from .periodic import (
+from recipsim.errors import SolverError
+from recipsim.model.build import Model
+from recipsim.physics.mechanics import layout as mlay
+from recipsim.physics.thermo import cylinder as cyl
+from recipsim.solve.revolution import (
     PeriodicSolution,
     Revolution,
     _Tally,

@@ -37,7 +37,7 @@ import math
 import numpy as np
 from numba import njit
 
-from .scenes import scene_rhs
+from recipsim.model.scenes import scene_rhs
 
 # ---- ROS34PW2: alpha (stage abscissae), Gamma (lower triangular, gamma on the diagonal),
 # ---- b (order 3) and bhat (order 2)

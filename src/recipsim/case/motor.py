@@ -1,0 +1,90 @@
+"""The ``[motor]`` table of a case: nameplate values of the induction motor, validated,
+and the breakdown slip fitted so that the torque curve
+(:func:`recipsim.physics.motor.induction_motor_torque`) passes through the rated point.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+from recipsim.case.schema import Field, Spec, read_table
+from recipsim.errors import CaseError
+from recipsim.physics.motor import MotorSpec, kloss
+
+MOTOR_SPEC: Spec = {
+    "line_frequency": Field("Hz", 50.0, lo=1.0, hi=1000.0, doc="supply frequency"),
+    "poles": Field("dimensionless", 2, lo=2, hi=24, integer=True, doc="even"),
+    "rated_speed": Field("rad/s", lo=0.0, open_lo=True, doc="e.g. '2900 rpm'"),
+    "rated_torque": Field("N*m", lo=0.0, open_lo=True),
+    "breakdown_torque": Field("N*m", lo=0.0, open_lo=True, doc="peak of the forward field"),
+    "backward_field_ratio": Field(
+        "dimensionless", 0.0, lo=0.0, hi=1.0, doc="0 balanced capacitor motor, 1 main winding"
+    ),
+}
+
+
+def motor_from_table(raw: Any, file: str) -> MotorSpec:
+    """Validate the ``[motor]`` table and fit the breakdown slip to the rated point.
+
+    Raises
+    ------
+    CaseError
+        Naming the file and key: a rated speed at or above synchronous speed, a
+        breakdown torque not above the rated torque, or a curve that cannot pass
+        through the rated point.
+    """
+    v = read_table(raw, MOTOR_SPEC, file, "motor")
+    poles = int(v["poles"])
+    if poles % 2:
+        raise CaseError(file, "motor.poles", f"{poles} is odd; a motor has pole pairs")
+    sync = 4.0 * math.pi * v["line_frequency"] / poles
+    rated_speed, rated_torque = v["rated_speed"], v["rated_torque"]
+    t_k, u = v["breakdown_torque"], v["backward_field_ratio"]
+    if rated_speed >= sync:
+        raise CaseError(
+            file,
+            "motor.rated_speed",
+            f"{rated_speed * 30 / math.pi:.1f} rpm is not below the synchronous speed "
+            f"{sync * 30 / math.pi:.1f} rpm ({v['line_frequency']:g} Hz, {poles} poles)",
+        )
+    if t_k <= rated_torque:
+        raise CaseError(
+            file,
+            "motor.breakdown_torque",
+            f"{t_k:g} N m must exceed the rated torque {rated_torque:g} N m",
+        )
+    s_r = (sync - rated_speed) / sync
+
+    def excess(s_k: float) -> float:  # decreasing in s_k on (s_r, inf)
+        return t_k * (kloss(s_r, s_k) - u * kloss(2.0 - s_r, s_k)) - rated_torque
+
+    s_hi = 1e3
+    if excess(s_r) <= 0.0:
+        raise CaseError(
+            file,
+            "motor.backward_field_ratio",
+            f"{u:g} leaves no curve through the rated point with this breakdown torque; "
+            "lower it or raise motor.breakdown_torque",
+        )
+    # bisection on the bracket (importing scipy.optimize for brentq costs 0.25 s of
+    # start-up); 200 halvings reach adjacent floats
+    s_lo = s_r
+    for _ in range(200):
+        mid = 0.5 * (s_lo + s_hi)
+        if mid in (s_lo, s_hi):
+            break
+        if excess(mid) > 0.0:
+            s_lo = mid
+        else:
+            s_hi = mid
+    s_k = 0.5 * (s_lo + s_hi)
+    return MotorSpec(
+        line_frequency=float(v["line_frequency"]),
+        poles=poles,
+        rated_speed=rated_speed,
+        rated_torque=rated_torque,
+        breakdown_torque=t_k,
+        backward_field_ratio=u,
+        breakdown_slip=s_k,
+    )

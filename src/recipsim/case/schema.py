@@ -1,0 +1,153 @@
+"""Declarative validation of TOML tables: units, ranges, choices, unknown keys.
+
+A table is described by a mapping of key to :class:`Field` (or :class:`Choice`);
+:func:`read_table` converts every value to SI once and raises :class:`CaseError`
+naming the file, the dotted key and what is allowed.
+"""
+
+from __future__ import annotations
+
+import difflib
+import math
+from collections.abc import Mapping
+from dataclasses import dataclass
+from typing import Any
+
+from recipsim.case.units import to_si
+from recipsim.errors import CaseError
+
+REQUIRED = object()
+
+
+@dataclass(frozen=True)
+class Field:
+    """A numeric key: SI unit, default and allowed range.
+
+    Parameters
+    ----------
+    unit : str
+        SI unit of the key in pint syntax (``"dimensionless"`` for pure numbers).
+    default : float or REQUIRED or None
+        Value used when the key is absent; ``None`` means "not set".
+    lo, hi : float
+        Allowed range (inclusive unless ``open_lo``/``open_hi``).
+    doc : str
+        One line for error messages and documentation.
+    integer : bool
+        The value must be a whole number.
+    """
+
+    unit: str
+    default: Any = REQUIRED
+    lo: float = -math.inf
+    hi: float = math.inf
+    open_lo: bool = False
+    open_hi: bool = False
+    doc: str = ""
+    integer: bool = False
+
+    def allowed(self) -> str:
+        lo = "(" if self.open_lo else "["
+        hi = ")" if self.open_hi else "]"
+        unit = "" if self.unit == "dimensionless" else f" {self.unit}"
+        return f"{lo}{self.lo:g}, {self.hi:g}{hi}{unit}"
+
+    def check(self, value: float, file: str, key: str) -> float:
+        bad_lo = value <= self.lo if self.open_lo else value < self.lo
+        bad_hi = value >= self.hi if self.open_hi else value > self.hi
+        if not math.isfinite(value):
+            raise CaseError(
+                file, key, f"{value:g} is not a finite number; allowed {self.allowed()}"
+            )
+        if bad_lo or bad_hi:
+            raise CaseError(file, key, f"{value:g} is out of range; allowed {self.allowed()}")
+        if self.integer and value != int(value):
+            raise CaseError(file, key, f"{value:g} must be a whole number")
+        return value
+
+
+@dataclass(frozen=True)
+class Choice:
+    """A string key with a fixed set of allowed values."""
+
+    choices: tuple[str, ...]
+    default: Any = REQUIRED
+    doc: str = ""
+
+
+@dataclass(frozen=True)
+class Text:
+    """A free string key."""
+
+    default: Any = REQUIRED
+    doc: str = ""
+
+
+Spec = Mapping[str, Field | Choice | Text]
+
+
+def check_keys(raw: Mapping[str, Any], allowed: set[str] | Spec, file: str, prefix: str) -> None:
+    """Refuse keys that are not in ``allowed``, suggesting the closest one."""
+    for key in raw:
+        if key not in allowed:
+            close = difflib.get_close_matches(key, list(allowed), n=1)
+            hint = f"; did you mean {close[0]!r}?" if close else ""
+            names = ", ".join(sorted(allowed))
+            raise CaseError(file, _join(prefix, key), f"unknown key{hint} (allowed: {names})")
+
+
+def read_table(raw: Mapping[str, Any] | None, spec: Spec, file: str, prefix: str) -> dict[str, Any]:
+    """Validate one table and return its values in SI.
+
+    Parameters
+    ----------
+    raw : mapping or None
+        The table as read by ``tomllib`` (``None`` for a missing table).
+    spec : mapping of key to Field, Choice or Text
+        What the table may contain.
+    file, prefix : str
+        File path and dotted prefix of the table, for messages.
+
+    Returns
+    -------
+    dict
+        Every key of ``spec``: floats in SI, strings, or ``None`` where unset.
+    """
+    raw = {} if raw is None else raw
+    if not isinstance(raw, Mapping):
+        raise CaseError(file, prefix, "expected a table")
+    check_keys(raw, spec, file, prefix)
+    out: dict[str, Any] = {}
+    for key, field in spec.items():
+        dotted = _join(prefix, key)
+        if key not in raw:
+            if field.default is REQUIRED:
+                raise CaseError(file, dotted, f"missing required key ({_describe(field)})")
+            out[key] = field.default
+            continue
+        value = raw[key]
+        if isinstance(field, Field):
+            out[key] = field.check(to_si(value, field.unit, file, dotted), file, dotted)
+        elif isinstance(field, Choice):
+            if value not in field.choices:
+                raise CaseError(
+                    file, dotted, f"{value!r} is not allowed; choose one of {list(field.choices)}"
+                )
+            out[key] = value
+        else:
+            if not isinstance(value, str):
+                raise CaseError(file, dotted, f"expected a string, got {value!r}")
+            out[key] = value
+    return out
+
+
+def _describe(field: Field | Choice | Text) -> str:
+    if isinstance(field, Field):
+        return f"allowed {field.allowed()}" + (f"; {field.doc}" if field.doc else "")
+    if isinstance(field, Choice):
+        return f"one of {list(field.choices)}"
+    return "a string"
+
+
+def _join(prefix: str, key: str) -> str:
+    return f"{prefix}.{key}" if prefix else key

@@ -1,0 +1,324 @@
+"""``recipsim compare CASE_A CASE_B [--out DIR] [--set KEY=VALUE] [--no-plots]``.
+
+Runs two cases (e.g. the coupled cylinder + flexible mechanism run against the flexible
+mechanism under a tabulated pressure curve; two refrigerants; pinned against flexible)
+and writes one output directory, built beside its destination and swapped in whole::
+
+    <out>/comparison.csv     quantity, group, <A>, <B>, difference, relative_difference [-]
+    <out>/cases.csv          per case: file, overrides, refrigerant, options, converged
+    <out>/overlay_*.png      pressure, p-V, torque, bearing loads, orbits (one curve per case)
+    <out>/provenance.json    versions, command, the two case files and overrides
+    <out>/<A>/, <out>/<B>/   each case's full report (as ``recipsim run``)
+
+``--set`` applies to both cases, ``--set-a`` / ``--set-b`` to one (after ``--set``), so
+one file can be compared with itself at another setting. Labels are the case names,
+suffixed ``_a``/``_b`` when equal. Default ``--out``: ``reports/compare/<A>_vs_<B>``.
+
+Exit status: 0 success; 1 a simulation failed (the message names the case file, crank
+angle and state); 2 invalid input (missing file, bad ``--set``, an ``--out`` that exists and was not
+written by recipsim). Nothing is written unless both cases ran.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import sys
+import time
+from dataclasses import dataclass
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+from recipsim.cli.options import add_common_options, exit_status
+
+if TYPE_CHECKING:
+    import pandas as pd
+
+    from recipsim.results.run import CaseRun
+
+#: Rows printed to the console (the rest is in comparison.csv).
+_CONSOLE_ROWS = (
+    "discharge_mass_flow [kg/s]",
+    "cooling_capacity [W]",
+    "indicated_power [W]",
+    "shaft_power [W]",
+)
+
+
+@dataclass
+class Comparison:
+    """The result of :func:`run_comparison`.
+
+    Attributes
+    ----------
+    runs : tuple of CaseRun
+        Case A and case B as simulated.
+    labels : tuple of str
+        Their column labels in ``comparison.csv``.
+    table : pandas.DataFrame
+        The comparison table (:func:`recipsim.studies.compare.comparison_table`).
+    cases : pandas.DataFrame
+        The text columns per case (:func:`recipsim.studies.compare.cases_table`).
+    out : Path
+        The output directory.
+    wall_time : float
+        Wall time of the comparison (loading, both runs, writing) [s].
+    """
+
+    runs: tuple[CaseRun, CaseRun]
+    labels: tuple[str, str]
+    table: pd.DataFrame
+    cases: pd.DataFrame
+    out: Path
+    wall_time: float
+
+
+def add_compare_parser(sub: Any) -> argparse.ArgumentParser:
+    """Register the ``compare`` subcommand on the subparsers ``sub``."""
+    parser: argparse.ArgumentParser = sub.add_parser(
+        "compare",
+        help="run two cases and compare them (comparison.csv, overlay plots)",
+        description=(
+            "Run two cases and write comparison.csv (one row per summary quantity: both "
+            "values, B - A and (B - A)/|A|), cases.csv, overlay plots and each case's "
+            "report. See reports/README.md."
+        ),
+    )
+    parser.add_argument("case_a", type=Path, help="case A (TOML), the base of the differences")
+    parser.add_argument("case_b", type=Path, help="case B (TOML)")
+    add_common_options(
+        parser, None, "output directory (default: reports/compare/<A>_vs_<B>/), replaced whole"
+    )
+    for side in ("a", "b"):
+        parser.add_argument(
+            f"--set-{side}",
+            dest=f"overrides_{side}",
+            action="append",
+            default=[],
+            metavar="KEY=VALUE",
+            help=f"override a value of case {side.upper()} only (after --set); repeatable",
+        )
+    parser.add_argument("--quiet", action="store_true", help="print nothing but errors")
+    parser.set_defaults(handler=run_compare_command)
+    return parser
+
+
+def run_compare_command(args: argparse.Namespace, argv: list[str] | None) -> int:
+    """``recipsim compare``: returns the exit status (0, 1 or 2)."""
+
+    def action() -> int:
+        comparison = run_comparison(
+            args.case_a,
+            args.case_b,
+            overrides=args.overrides,
+            overrides_a=args.overrides_a,
+            overrides_b=args.overrides_b,
+            out=args.out,
+            plots=not args.no_plots,
+            argv=argv if argv is not None else sys.argv,
+            allow_external_paths=args.allow_external_paths,
+        )
+        if not args.quiet:
+            print(console_summary(comparison))
+        return 0
+
+    return exit_status(action)
+
+
+def _simulate(path: Path, case: Any, argv: list[str] | None) -> CaseRun:
+    """Run one case; a solver failure names the case file."""
+    from recipsim.errors import SolverError
+    from recipsim.results.run import simulate_case
+
+    try:
+        return simulate_case(case, argv)
+    except SolverError as exc:
+        raise SolverError(f"{path}: {exc}") from exc
+
+
+def run_comparison(
+    path_a: Path,
+    path_b: Path,
+    overrides: list[str] | None = None,
+    overrides_a: list[str] | None = None,
+    overrides_b: list[str] | None = None,
+    out: Path | None = None,
+    plots: bool = True,
+    argv: list[str] | None = None,
+    allow_external_paths: bool = False,
+) -> Comparison:
+    """Run two cases and write their comparison directory atomically.
+
+    Parameters
+    ----------
+    path_a, path_b : Path
+        Case files; A is the base of the differences.
+    overrides : list of str, optional
+        ``KEY=VALUE`` applied to both cases.
+    overrides_a, overrides_b : list of str, optional
+        ``KEY=VALUE`` applied to one case, after ``overrides``.
+    out : Path, optional
+        Output directory (replaced whole); default ``reports/compare/<A>_vs_<B>``.
+    plots : bool
+        Write the overlay figures and each report's figures.
+    argv : list of str, optional
+        Command line recorded in the provenance.
+    allow_external_paths : bool
+        See :func:`recipsim.case.load.load_case`.
+
+    Returns
+    -------
+    Comparison
+
+    Raises
+    ------
+    CaseError
+        A case file is missing or invalid, or ``out`` exists and is not a comparison
+        directory; raised before anything is simulated or written.
+    SolverError
+        A case failed (the message names its file); nothing is written.
+    """
+    from recipsim.atomic import check_replaceable
+    from recipsim.case.load import load_case
+    from recipsim.studies.compare import case_labels, cases_table, comparison_table
+
+    start = time.perf_counter()
+    paths = (Path(path_a), Path(path_b))
+    sets = [
+        [*(overrides or []), *(overrides_a or [])],
+        [*(overrides or []), *(overrides_b or [])],
+    ]
+    cases = [
+        load_case(p, s, allow_external_paths=allow_external_paths)
+        for p, s in zip(paths, sets, strict=True)
+    ]  # both before running
+    labels = case_labels(cases[0].name, cases[1].name)
+    target = Path(out) if out is not None else _default_out(cases[0].name, cases[1].name)
+    check_replaceable(target)  # before anything runs
+    runs = (_simulate(paths[0], cases[0], argv), _simulate(paths[1], cases[1], argv))
+    table = comparison_table(runs[0].row, runs[1].row, *labels)
+    extra = [
+        {"file": str(p), "overrides": "; ".join(s), "report": f"{label}/"}
+        for p, s, label in zip(paths, sets, labels, strict=True)
+    ]
+    case_rows = cases_table([r.row for r in runs], labels, extra)
+    _write(target, runs, labels, sets, table, case_rows, plots, argv, start)
+    return Comparison(runs, labels, table, case_rows, target, time.perf_counter() - start)
+
+
+def _default_out(name_a: str, name_b: str) -> Path:
+    return Path("reports") / "compare" / f"{name_a}_vs_{name_b}"
+
+
+def _write(
+    target: Path,
+    runs: tuple[CaseRun, CaseRun],
+    labels: tuple[str, str],
+    sets: list[list[str]],
+    table: pd.DataFrame,
+    case_rows: pd.DataFrame,
+    plots: bool,
+    argv: list[str] | None,
+    start: float,
+) -> None:
+    """Build the output directory beside ``target`` and swap it in."""
+    from recipsim.atomic import atomic_directory
+    from recipsim.report.case_report import write_case_report
+
+    with atomic_directory(target) as tmp:
+        for run, label, s in zip(runs, labels, sets, strict=True):
+            write_case_report(run, tmp / label, s, plots)
+        table.to_csv(tmp / "comparison.csv", index=False)
+        case_rows.to_csv(tmp / "cases.csv", index=False)
+        if plots:
+            from recipsim.report.compare_plots import save_overlay_figures
+
+            plenum = {
+                label: (
+                    run.case.operating_point.suction_pressure,
+                    run.case.operating_point.discharge_pressure,
+                )
+                for run, label in zip(runs, labels, strict=True)
+            }
+            save_overlay_figures(
+                {label: run.cycle for run, label in zip(runs, labels, strict=True)}, tmp, plenum
+            )
+        meta = _provenance(runs, labels, case_rows, argv)
+        meta["wall_time_s"] = time.perf_counter() - start
+        (tmp / "provenance.json").write_text(json.dumps(meta, indent=2, default=str))
+
+
+def _provenance(
+    runs: tuple[CaseRun, CaseRun],
+    labels: tuple[str, str],
+    case_rows: pd.DataFrame,
+    argv: list[str] | None,
+) -> dict[str, Any]:
+    """Versions and command (from case A's provenance) and, per case, file, overrides,
+    options and solver statistics."""
+    per_case = ("property_backend", "fluid", "options", "solver")
+    shared = {k: v for k, v in runs[0].meta.items() if k in _SHARED_KEYS}
+    shared["command"] = argv or sys.argv
+    shared["cases"] = {
+        label: {
+            "file": record["file"],
+            "overrides": record["overrides"],
+            "name": run.case.name,
+            "report": record["report"],
+            **{k: run.meta[k] for k in per_case if k in run.meta},
+            **{k: run.meta[k] for k in _SOLVER_KEYS if k in run.meta},
+        }
+        for run, label, record in zip(
+            runs, labels, case_rows.to_dict(orient="records"), strict=True
+        )
+    }
+    return shared
+
+
+_SHARED_KEYS = (
+    "recipsim",
+    "git_commit",
+    "python",
+    "platform",
+    "CoolProp",
+    "numpy",
+    "scipy",
+    "numba",
+    "pandas",
+    "created",
+)
+_SOLVER_KEYS = ("revolutions", "cycle_residual", "rhs_evaluations", "steps", "wall_time_s")
+
+
+def console_summary(comparison: Comparison) -> str:
+    """A few key rows of the comparison as text: mass flow, capacity, powers and the
+    RMS load of every bearing, with the relative difference in percent."""
+    label_a, label_b = comparison.labels
+    table = comparison.table
+    keep = table["quantity"].isin(_CONSOLE_ROWS) | table["quantity"].str.startswith("bearing_rms_")
+    rows = table[keep]
+    width = max(len(q) for q in rows["quantity"])
+    cols = [max(len(label_a), 10), max(len(label_b), 10)]
+    lines = []
+    for k, run in enumerate(comparison.runs):
+        row = run.row
+        conv = "" if row.get("converged [-]", True) else ", NOT converged"
+        lines.append(
+            f"{'AB'[k]} {comparison.labels[k]}: {row['refrigerant']}, "
+            f"{row['shaft_speed [rpm]']:.0f} rpm, pressure {row['pressure']}, "
+            f"mechanics {row['mechanics']}, drive {row['drive']}{conv}"
+        )
+    lines.append(
+        f"  {'quantity':<{width}}  {label_a:>{cols[0]}}  {label_b:>{cols[1]}}  {'B-A [%]':>8}"
+    )
+    for rec in rows.itertuples(index=False):
+        a, b, rel = float(rec[2]), float(rec[3]), float(rec[5])
+        pct = "-" if math.isnan(rel) else f"{100.0 * rel:+.2f}"
+        lines.append(f"  {rec[0]:<{width}}  {_fmt(a):>{cols[0]}}  {_fmt(b):>{cols[1]}}  {pct:>8}")
+    lines.append(f"-> {comparison.out} ({comparison.wall_time:.1f} s)")
+    return "\n".join(lines)
+
+
+def _fmt(value: float) -> str:
+    return "-" if math.isnan(value) else f"{value:.5g}"

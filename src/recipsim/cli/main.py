@@ -1,0 +1,148 @@
+"""Command line: ``recipsim run CASE... [--out DIR] [--set KEY=VALUE ...]``,
+``recipsim sweep SWEEP [--jobs N] [--scheduler ADDRESS] [--out DIR]`` (see
+:mod:`recipsim.cli.sweep`).
+
+Exit status: 0 success; 1 a simulation failed (message names crank angle and state), a
+case did not reach its periodic state within ``solver.max_revolutions`` (its report is
+written and says so) or the file system failed (disk full, read-only, no permission);
+2 invalid input (message names file, key and what is allowed), no traceback.
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from pathlib import Path
+from typing import Any
+
+from recipsim.cli.bench import add_bench_parser
+from recipsim.cli.check import add_check_parser
+from recipsim.cli.compare import add_compare_parser
+from recipsim.cli.options import add_common_options, exit_status
+from recipsim.cli.paper import add_paper_parser
+from recipsim.cli.sweep import add_sweep_parser
+
+# Each registers its subparser and sets ``handler(args, argv) -> exit status`` on it.
+_SUBCOMMANDS = (
+    add_sweep_parser,
+    add_paper_parser,
+    add_compare_parser,
+    add_bench_parser,
+    add_check_parser,
+)
+
+
+def _parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(
+        prog="recipsim",
+        description="Reciprocating refrigeration compressor simulator (CoolProp cylinder + crank).",
+    )
+    sub = parser.add_subparsers(dest="command", required=True)
+    run = sub.add_parser("run", help="simulate cases and write a report per case")
+    run.add_argument("cases", nargs="+", type=Path, help="case files (TOML)")
+    add_common_options(run, Path("reports"), "parent directory of the reports (default: reports/)")
+    run.add_argument("--quiet", action="store_true", help="print nothing but errors")
+    run.set_defaults(handler=_run_command)
+    for register in _SUBCOMMANDS:
+        register(sub)
+    return parser
+
+
+def run_case(
+    path: Path,
+    overrides: list[str],
+    out: Path,
+    plots: bool = True,
+    argv: list[str] | None = None,
+    allow_external_paths: bool = False,
+) -> dict[str, Any]:
+    """Load, simulate and report one case into ``out/<case name>``; returns its summary row.
+
+    The report directory is checked before the simulation (it must be new, empty or a
+    recipsim report), so a refused ``--out`` costs nothing.
+    """
+    from recipsim.atomic import output_dir
+    from recipsim.case.load import load_case
+    from recipsim.report.case_report import write_case_report
+    from recipsim.results.run import simulate_case
+
+    case = load_case(path, overrides, allow_external_paths=allow_external_paths)
+    target = output_dir(out, case.name)
+    run = simulate_case(case, argv)
+    write_case_report(run, target, overrides, plots)
+    return run.row
+
+
+def _run_command(args: argparse.Namespace, argv: list[str] | None) -> int:
+    """``recipsim run``: every case is attempted; the status is the worst of them."""
+    status = 0
+    for path in args.cases:
+
+        def one(path: Path = path) -> int:
+            row = run_case(
+                path,
+                args.overrides,
+                args.out,
+                not args.no_plots,
+                argv if argv is not None else sys.argv,
+                args.allow_external_paths,
+            )
+            if not args.quiet:
+                _print_summary(row, args.out / row["case"])
+            if not row["converged [-]"]:
+                print(
+                    f"recipsim: {path}: did not reach its periodic state in "
+                    f"{row['revolutions [-]']} revolutions (cycle residual "
+                    f"{row['cycle_residual [-]']:.1e}, tolerance in solver.cycle_tolerance); "
+                    f"the report says so: {args.out / row['case']}",
+                    file=sys.stderr,
+                )
+                return 1
+            return 0
+
+        status = max(status, exit_status(one, str(path)))
+    return status
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Entry point of the ``recipsim`` command."""
+    args = _parser().parse_args(argv)
+    status: int = args.handler(args, argv)
+    return status
+
+
+def _print_summary(row: dict[str, Any], where: Path) -> None:
+    conv = "converged" if row["converged [-]"] else "NOT converged"
+    lines = [
+        f"{row['case']}: {row['refrigerant']}, {row['shaft_speed [rpm]']:.0f} rpm, "
+        f"PR {row['pressure_ratio [-]']:.2f}, pressure {row['pressure']}, "
+        f"mechanics {row['mechanics']}, drive {row['drive']}"
+    ]
+    if row["pressure"] == "cylinder":
+        lines += [
+            f"  mass flow {row['discharge_mass_flow [kg/s]'] * 3600:.3f} kg/h, "
+            f"capacity {row['cooling_capacity [W]']:.1f} W, "
+            f"shaft power {row['shaft_power [W]']:.1f} W, COP {row['COP [-]']:.3f}",
+            f"  volumetric eff. {row['volumetric_efficiency [-]']:.3f}, "
+            f"isentropic eff. {row['isentropic_efficiency [-]']:.3f}, "
+            f"discharge {row['discharge_temperature [K]'] - 273.15:.1f} C",
+        ]
+    else:
+        lines.append(
+            f"  indicated power {row['indicated_power [W]']:.1f} W, "
+            f"shaft power {row['shaft_power [W]']:.1f} W"
+        )
+    rms = ", ".join(
+        f"{name} {row[f'bearing_rms_{name} [N]']:.0f}"
+        for name in ("primary", "secondary", "eccentric", "pin", "piston_top", "piston_skirt")
+    )
+    lines.append(f"  bearing RMS [N]: {rms}")
+    lines.append(
+        f"  {conv} in {row['revolutions [-]']} revolutions "
+        f"(residual {row['cycle_residual [-]']:.1e}), {row['wall_time [s]']:.3f} s -> {where}"
+    )
+    print("\n".join(lines))
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

@@ -1,0 +1,107 @@
+"""``recipsim paper CASE [--out DIR]``: the paper's pinned-against-flexible study.
+
+Runs, for the mechanism, geometry, operating point and pressure curve of a case,
+the pinned and the flexible crank train under (a) inertia only, (b) the gas load,
+(c) the gas load with the case's bearing damping, and writes ``table1.csv`` (the
+layout of the paper's Table 1) with the figures (:mod:`recipsim.studies.paper`).
+The undamped flexible runs (a), (b) are their periodic response at constant speed,
+found by shooting (``--undamped-start periodic``, the default), or a transient of
+``--undamped-revolutions`` from the unloaded (or quasi-static) pose.
+
+The pressure curve is the case's table (``options.pressure = "tabulated"``) or, for a
+cylinder case, the cylinder pressure of its rigid-crank run.
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from recipsim.cli.options import add_common_options, exit_status
+
+
+def add_paper_parser(sub: Any) -> None:
+    """Register the ``paper`` subcommand."""
+    p = sub.add_parser(
+        "paper",
+        help="the paper's study: pinned vs flexible bearing loads (table1.csv, figures)",
+    )
+    p.add_argument("case", type=Path, help="case file (TOML), e.g. cases/paper_tabulated.toml")
+    add_common_options(p, None, "output directory (default reports/paper/<case>)")
+    p.set_defaults(
+        handler=lambda args, argv: exit_status(lambda: run_paper_command(args), str(args.case))
+    )
+    p.add_argument(
+        "--undamped-start",
+        choices=("periodic", "unloaded", "quasi_static"),
+        default=None,
+        help=(
+            "undamped runs: their periodic response at constant speed, by shooting "
+            "(default), or a transient from the unloaded or quasi-static pose (default "
+            "unloaded when --undamped-revolutions is given)"
+        ),
+    )
+    p.add_argument(
+        "--undamped-revolutions",
+        type=int,
+        default=None,
+        help="revolutions of an undamped transient, the last one reported (default 8)",
+    )
+
+
+def run_paper_command(args: argparse.Namespace) -> int:
+    """Run the study for ``args.case``; returns the exit status."""
+    from recipsim.atomic import check_replaceable
+    from recipsim.case.load import load_case
+    from recipsim.model.build import build_model, crank_geometry
+    from recipsim.physics.mechanics.tabulated import PressureCurve
+    from recipsim.results.tables import cycle_table
+    from recipsim.solve.periodic import solve_periodic
+    from recipsim.studies.paper import run_paper_study
+
+    external = args.allow_external_paths
+    case = load_case(args.case, args.overrides, allow_external_paths=external)
+    op = case.operating_point
+    if case.pressure_curve is not None:
+        curve = case.pressure_curve
+        source = "the case's tabulated curve"
+    else:
+        rigid = load_case(
+            args.case,
+            [*args.overrides, 'options.mechanics="pinned"', 'options.drive="constant_speed"'],
+            allow_external_paths=external,
+        )
+        cycle = cycle_table(solve_periodic(build_model(rigid)))
+        curve = PressureCurve(
+            np.radians(cycle["crank_angle [deg]"].to_numpy()),
+            cycle["cylinder_pressure [Pa]"].to_numpy(),
+        )
+        source = "the cylinder pressure of the case on the rigid crank"
+    out = args.out or Path("reports") / "paper" / case.name
+    check_replaceable(out)  # before the study runs
+    drive = case.options.drive if case.options.mechanics == "flexible" else "torque_profile"
+    start = args.undamped_start or ("periodic" if args.undamped_revolutions is None else "unloaded")
+    study = run_paper_study(
+        case.mechanism,
+        crank_geometry(case),
+        curve,
+        op.shell_pressure,
+        op.shaft_speed,
+        out,
+        drive=drive,
+        undamped_revolutions=8 if args.undamped_revolutions is None else args.undamped_revolutions,
+        undamped_start=start,
+        plots=not args.no_plots,
+    )
+    rpm = op.shaft_speed * 60.0 / (2.0 * math.pi)
+    print(f"{case.name}: paper study at {rpm:.0f} rpm, drive {drive}, pressure from {source}")
+    print(f"undamped runs: {study.settings['undamped_runs']}")
+    rms = [c for c in study.table1.columns if c == "bearing" or c.endswith("_rms [N]")]
+    print("RMS bearing loads [N] (the layout of the paper's Table 1):")
+    print(study.table1[rms].round(1).to_string(index=False))
+    print(f"-> {out}")
+    return 0

@@ -1,0 +1,161 @@
+"""``recipsim sweep SWEEP [--jobs N] [--scheduler ADDRESS] [--out DIR] ...``.
+
+Exit status: 0 every point converged; 1 some point did not (the table is written and
+says which), a worker died or the Dask cluster failed; 2 invalid sweep file or
+option; 130 interrupted with Ctrl-C (finished points are kept: rerun to resume).
+
+This module imports nothing heavy at module level: ``recipsim.cli.main`` imports it for
+every command.
+"""
+
+from __future__ import annotations
+
+import argparse
+import shlex
+import sys
+import time
+from pathlib import Path
+from typing import Any
+
+from recipsim.cli.options import add_common_options, exit_status, positive_float, positive_int
+
+_MAX_LISTED = 8
+
+_SWITCHES = (
+    ("--reports", "also write a full report for every point"),
+    ("--parquet", "also write summary.parquet (needs pyarrow)"),
+    ("--retry-failed", "recompute points recorded as not ok (by default they are kept)"),
+    ("--fresh", "forget finished points and compute every point"),
+    ("--quiet", "no progress bar and no summary, errors only"),
+)
+
+
+def add_sweep_parser(sub: Any) -> argparse.ArgumentParser:
+    """Add the ``sweep`` subcommand to the subparsers ``sub`` of the ``recipsim`` parser."""
+    parser: argparse.ArgumentParser = sub.add_parser(
+        "sweep",
+        help="run an operating map (a sweep file) in parallel, resumable",
+        description=(
+            "Run every point of a sweep file (a base case, axes combined as a grid, "
+            "explicit points) and write <out>/<name>/summary.csv and map plots. Each "
+            "finished point is kept on disk: rerunning an interrupted sweep computes "
+            "only the missing points. See docs/sweeps.md."
+        ),
+    )
+    parser.add_argument(
+        "sweep", type=Path, help="sweep file (TOML), e.g. cases/sweeps/lbp_map.toml"
+    )
+    parser.add_argument(
+        "-j",
+        "--jobs",
+        type=positive_int,
+        default=None,
+        metavar="N",
+        help="worker processes (default: the number of CPUs); 1 runs in this process",
+    )
+    parser.add_argument(
+        "--scheduler",
+        metavar="ADDRESS",
+        help="run on an existing Dask distributed cluster, e.g. tcp://127.0.0.1:8786",
+    )
+    parser.add_argument(
+        "--scheduler-timeout",
+        type=positive_float,
+        default=10.0,
+        metavar="SECONDS",
+        help="give up on a Dask scheduler that does not answer within this time (default 10)",
+    )
+    parser.add_argument(
+        "--max-points",
+        type=positive_int,
+        default=None,
+        metavar="N",
+        help="refuse sweeps of more points (default: the sweep file's max_points, else 100000)",
+    )
+    add_common_options(
+        parser,
+        Path("reports/sweeps"),
+        "parent directory of the sweep's output directory (default: reports/sweeps/)",
+    )
+    for flag, help_text in _SWITCHES:
+        parser.add_argument(flag, action="store_true", help=help_text)
+    parser.set_defaults(handler=run_sweep_command)
+    return parser
+
+
+def _command_line(argv: list[str] | None) -> str:
+    args = argv if argv is not None else sys.argv[1:]
+    return " ".join(shlex.quote(a) for a in ["recipsim", *args])
+
+
+def run_sweep_command(args: argparse.Namespace, argv: list[str] | None = None) -> int:
+    """Run the ``sweep`` subcommand; returns the exit status."""
+    return exit_status(lambda: _run_sweep(args, argv, time.perf_counter()), str(args.sweep))
+
+
+def _run_sweep(args: argparse.Namespace, argv: list[str] | None, started: float) -> int:
+    from recipsim.studies.sweep.engine import SweepInterrupted, run_sweep
+    from recipsim.studies.sweep.runner import WorkerLost
+
+    resume = f"rerun `{_command_line(argv)}` to resume (finished points are not recomputed)"
+    try:
+        outcome = run_sweep(
+            args.sweep,
+            jobs=args.jobs,
+            scheduler=args.scheduler,
+            out=args.out,
+            overrides=args.overrides,
+            reports=args.reports,
+            plots=not args.no_plots,
+            parquet=args.parquet,
+            retry_failed=args.retry_failed,
+            fresh=args.fresh,
+            progress=not args.quiet,
+            argv=["recipsim", *(argv if argv is not None else sys.argv[1:])],
+            started=started,
+            max_points=args.max_points,
+            scheduler_timeout=args.scheduler_timeout,
+            allow_external_paths=args.allow_external_paths,
+        )
+    except (SweepInterrupted, WorkerLost) as exc:
+        print(f"recipsim: {exc}; {resume}", file=sys.stderr)
+        return 130 if isinstance(exc, SweepInterrupted) else 1
+    if not args.quiet:
+        print(format_outcome(outcome))
+    return 0 if outcome.n_failed == 0 else 1
+
+
+def format_outcome(outcome: Any) -> str:
+    """The closing lines: counts, timing and the points that did not converge."""
+    table = outcome.table
+    counts = outcome.counts
+    bad = {k: v for k, v in sorted(counts.items()) if k != "ok"}
+    detail = f" ({', '.join(f'{v} {k}' for k, v in bad.items())})" if bad else ""
+    computed = len(outcome.computed)
+    rate = f", {computed / outcome.wall_time:.1f} points/s" if computed else ""
+    if outcome.scheduler:
+        where = f", Dask cluster {outcome.scheduler}"
+    elif outcome.jobs:
+        where = f", {outcome.jobs} process{'es' if outcome.jobs > 1 else ''}"
+    else:
+        where = ""
+    lines = [
+        f"{outcome.spec.name}: {len(table)} points: {outcome.n_ok} ok, {outcome.n_failed} "
+        f"failed{detail}; {computed} computed, {len(outcome.reused)} reused; "
+        f"{outcome.wall_time:.1f} s{rate}{where}",
+        f"  -> {outcome.directory / 'summary.csv'}",
+    ]
+    failed = table[table["status"] != "ok"]
+    for _, row in failed.head(_MAX_LISTED).iterrows():
+        values = ", ".join(f"{c}={_short(row[c])}" for c in outcome.axes)
+        message = str(row["message"])
+        if len(message) > 200:
+            message = message[:197] + "..."
+        lines.append(f"  point {row['point']} [{row['status']}] {values}: {message}")
+    if len(failed) > _MAX_LISTED:
+        lines.append(f"  ... and {len(failed) - _MAX_LISTED} more (see the status column)")
+    return "\n".join(lines)
+
+
+def _short(value: Any) -> str:
+    return f"{value:.6g}" if isinstance(value, float) else str(value)

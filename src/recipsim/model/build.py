@@ -1,0 +1,409 @@
+"""Pick one submodel per slot and lay out the compiled scene: states, parameters, scales.
+
+:func:`build_model` turns a validated :class:`~recipsim.case.load.Case` into a
+:class:`Model`: the float and integer parameter arrays of the compiled right-hand
+side, the property callback, the plenum states, the initial state and the state
+scales used by the error control.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from recipsim.case.load import Case
+from recipsim.case.mechanism import CrankGeometry
+from recipsim.case.refrigerant import case_fluid
+from recipsim.model import scenes
+from recipsim.model.mechanism_parameters import mechanism_parameters
+from recipsim.model.pinned import pinned_torque_profile
+from recipsim.physics.kinematics import piston_displacement
+from recipsim.physics.mechanics import layout as mlay
+from recipsim.physics.mechanics.flexible import initial_state, state_scales
+from recipsim.physics.mechanics.tabulated import tabulated_pressure
+from recipsim.physics.thermo import cylinder as cyl
+from recipsim.physics.thermo.heat_transfer import (
+    DEFAULT_COEFFICIENT,
+    HT_ADAIR,
+    HT_ADIABATIC,
+    HT_ANNAND,
+)
+from recipsim.physics.thermo.properties import HeosProperties
+from recipsim.physics.thermo.table_states import TableFluid
+
+if TYPE_CHECKING:
+    from recipsim.case.refrigerant import AnyFluid
+
+START_ANGLE = 1.5 * math.pi  # crank angle at which every revolution starts [rad]
+
+_VALVE_CODES = {
+    "ideal": cyl.VALVES_IDEAL,
+    "quasi_static": cyl.VALVES_QUASI_STATIC,
+    "reed": cyl.VALVES_REED,
+}
+_HT_CODES = {"adiabatic": HT_ADIABATIC, "annand": HT_ANNAND, "adair": HT_ADAIR}
+_FLOW_CODES = {"real_gas": cyl.FLOW_REAL_GAS, "ideal_gas": cyl.FLOW_IDEAL_GAS}
+
+
+@dataclass
+class PlenumState:
+    """A constant boundary state [SI]."""
+
+    pressure: float
+    temperature: float
+    density: float
+    enthalpy: float
+    entropy: float
+    kappa: float
+    k0: float
+    viscosity: float
+
+
+@dataclass
+class Model:
+    """A compiled scene ready to integrate.
+
+    Attributes
+    ----------
+    par, ipar : ndarray
+        Float and integer parameters (layouts in :mod:`recipsim.physics.thermo.cylinder`).
+    props : HeosProperties
+        Property callback passed to the compiled code.
+    y0 : ndarray
+        Initial state at :data:`START_ANGLE` (suction gas compressed isentropically
+        from bottom dead centre).
+    mode0 : ndarray
+        Initial discrete modes.
+    scale : ndarray
+        Typical magnitude of each state for the absolute tolerance.
+    period : float
+        One revolution [s].
+    """
+
+    case: Case
+    fluid: AnyFluid
+    par: np.ndarray
+    ipar: np.ndarray
+    props: HeosProperties
+    y0: np.ndarray
+    mode0: np.ndarray
+    scale: np.ndarray
+    period: float
+    suction: PlenumState
+    discharge: PlenumState
+    shell: PlenumState
+    n_err: int = cyl.N_ERR
+    scene: int = scenes.SCENE_CYLINDER
+    #: indices of the quadrature states (reset at the start of every revolution)
+    quadratures: np.ndarray = field(default_factory=lambda: np.arange(cyl.N_ERR, cyl.N_STATE))
+    #: the crank speed is free (a revolution ends on the crank-angle event)
+    free_speed: bool = False
+
+    @property
+    def has_gas(self) -> bool:
+        """Whether the scene integrates the cylinder gas (else the pressure is tabulated)."""
+        return self.scene != scenes.SCENE_MECHANISM
+
+    @property
+    def mechanism_offset(self) -> int:
+        """Index of the first mechanism state (flexible scenes)."""
+        return scenes.mechanism_state_offset(self.scene)
+
+    @property
+    def mechanism_par(self) -> np.ndarray:
+        """The mechanism block of ``par`` (layout :mod:`recipsim.physics.mechanics.layout`)."""
+        return self.par[scenes.P_MECH : scenes.P_MECH + mlay.N_PAR]
+
+    def set_discharge_enthalpy(self, enthalpy: float) -> None:
+        """Move the discharge plenum (the source of back-flow) to ``enthalpy`` [J/kg]."""
+        state = _plenum(self.fluid, self.discharge.pressure, enthalpy=enthalpy)
+        self.discharge = state
+        _write_plenum(
+            self.par, state, cyl.C_PD, cyl.C_RHOD, cyl.C_HD, cyl.C_KAPPAD, cyl.C_K0D, cyl.C_TD
+        )
+
+
+def _plenum(
+    fluid: AnyFluid,
+    pressure: float,
+    temperature: float | None = None,
+    enthalpy: float | None = None,
+) -> PlenumState:
+    if temperature is not None:
+        st = fluid.state_pt(pressure, temperature)
+    else:
+        assert enthalpy is not None
+        st = fluid.state_ph(pressure, enthalpy)
+    if st["quality"] >= 0.0:
+        # a wet plenum (adiabatic compression of a dry fluid from near saturation ends in
+        # the dome): same conventions as the property callback inside the dome
+        vapour = fluid.saturated_vapour(st["T"])
+        kappa, k0, mu = 1.0, vapour["k0"], vapour["viscosity"]
+    else:
+        kappa, k0 = st["kappa"], st["k0"]
+        mu = fluid.transport(pressure, st["T"])["viscosity"]
+    return PlenumState(
+        pressure=pressure,
+        temperature=st["T"],
+        density=st["rho"],
+        enthalpy=st["h"],
+        entropy=st["s"],
+        kappa=kappa,
+        k0=k0,
+        viscosity=mu,
+    )
+
+
+def _write_plenum(
+    par: np.ndarray, st: PlenumState, ip: int, irho: int, ih: int, ikappa: int, ik0: int, itemp: int
+) -> None:
+    par[ip] = st.pressure
+    par[irho] = st.density
+    par[ih] = st.enthalpy
+    par[ikappa] = st.kappa
+    par[ik0] = st.k0
+    par[itemp] = st.temperature
+
+
+def cylinder_model(case: Case) -> Model:
+    """Lay out the compiled cylinder-on-rigid-crank scene for ``case``."""
+    op = case.operating_point
+    geo = case.geometry
+    opts = case.options
+    fluid = case_fluid(case.refrigerant, opts.properties)
+    suction = _plenum(fluid, op.suction_pressure, temperature=op.suction_temperature)
+    isentropic = fluid.state_ps(op.discharge_pressure, suction.entropy)
+    discharge = _plenum(fluid, op.discharge_pressure, enthalpy=isentropic["h"])
+    shell = _plenum(fluid, op.shell_pressure, temperature=op.suction_temperature)
+
+    par = np.zeros(scenes.P_TABLES)
+    ipar = np.zeros(scenes.N_IPAR, dtype=np.int64)
+    omega = op.shaft_speed
+    par[cyl.C_OMEGA] = omega
+    # revolutions start a quarter turn before top dead centre, where both valves are shut
+    par[cyl.C_THETA0] = START_ANGLE
+    par[cyl.C_R] = geo.crank_radius
+    par[cyl.C_L] = geo.connecting_rod_length
+    par[cyl.C_AP] = geo.piston_area
+    par[cyl.C_VC] = geo.clearance_volume
+    par[cyl.C_BORE] = geo.bore
+    par[cyl.C_STROKE] = geo.stroke
+    par[cyl.C_PISTON_LEN] = case.mechanism.piston.length
+    par[cyl.C_LINER_LEN] = geo.liner_length
+    _write_plenum(par, suction, cyl.C_PS, cyl.C_RHOS, cyl.C_HS, cyl.C_KAPPAS, cyl.C_K0S, cyl.C_TS)
+    _write_plenum(par, discharge, cyl.C_PD, cyl.C_RHOD, cyl.C_HD, cyl.C_KAPPAD, cyl.C_K0D, cyl.C_TD)
+    par[cyl.C_PSHELL] = shell.pressure
+    par[cyl.C_RHOSHELL] = shell.density
+    par[cyl.C_HSHELL] = shell.enthalpy
+    par[cyl.C_MUSHELL] = shell.viscosity
+    par[cyl.C_RGAS] = fluid.gas_constant
+    par[cyl.C_DPLAM] = case.valves.laminar_pressure_difference
+    par[cyl.C_VSTICK] = case.valves.stick_velocity
+    par[cyl.C_LEAK_DELTA] = case.leakage.radial_clearance
+    par[cyl.C_LEAK_ECC] = case.leakage.eccentricity_ratio
+    ht_code = _HT_CODES[opts.heat_transfer]
+    coef = case.heat_transfer.coefficient
+    par[cyl.C_HT_COEF] = DEFAULT_COEFFICIENT[ht_code] if math.isnan(coef) else coef
+    par[cyl.C_TWALL] = case.heat_transfer.wall_temperature
+    mech = case.mechanism
+    par[cyl.C_MPISTON] = mech.piston.mass
+    par[cyl.C_MROD] = mech.connecting_rod.mass
+    par[cyl.C_AROD] = mech.connecting_rod.centre_of_mass_fraction
+    par[cyl.C_IROD] = mech.connecting_rod.inertia
+    par[cyl.C_BAUMGARTE] = 200.0 * omega  # pressure drift of the ideal valves decays in ~1 deg
+    for i, valve in enumerate((case.valves.suction, case.valves.discharge)):
+        base = cyl.C_VALVE0 + i * cyl.VALVE_BLOCK
+        par[base + cyl.V_PORT_D] = valve.port_diameter
+        par[base + cyl.V_CFLOW] = valve.flow_coefficient
+        par[base + cyl.V_AFORCE] = valve.force_coefficient * valve.port_area
+        par[base + cyl.V_MASS] = valve.mass
+        par[base + cyl.V_STIFF] = valve.stiffness
+        par[base + cyl.V_DAMP] = 2.0 * valve.damping_ratio * math.sqrt(valve.stiffness * valve.mass)
+        par[base + cyl.V_STOP] = valve.stop_height
+        par[base + cyl.V_REST] = valve.restitution
+        par[base + cyl.V_PRELOAD] = valve.preload
+    ipar[cyl.I_SCENE] = 0
+    ipar[cyl.I_VALVES] = _VALVE_CODES[opts.valves]
+    ipar[cyl.I_FLOW] = _FLOW_CODES[case.valves.flow_model]
+    ipar[cyl.I_HT] = ht_code
+    ipar[cyl.I_LEAK] = 0 if opts.leakage == "none" else 1
+
+    transport = opts.heat_transfer != "adiabatic" or opts.leakage != "none"
+    ref = case.refrigerant
+    # properties = "table": the compiled code interpolates a cached table that follows the
+    # outputs in the callback's buffer, and calls HEOS only where the table has no data
+    table = fluid.table if isinstance(fluid, TableFluid) else None
+    props = HeosProperties(
+        ref.coolprop_name,
+        transport=transport,
+        t_min=ref.min_temperature,
+        t_max=ref.max_temperature,
+        tail=None if table is None else table.buffer_tail(transport),
+    )
+    props.table = table
+    ipar[cyl.I_PROPS] = cyl.PROPS_HEOS if table is None else cyl.PROPS_TABLE
+    # initial guess: suction gas filling the cylinder at BDC, compressed isentropically
+    y0 = np.zeros(cyl.N_STATE)
+    x_start, _, _ = piston_displacement(START_ANGLE, geo.crank_radius, geo.connecting_rod_length)
+    v_start = geo.clearance_volume + geo.piston_area * x_start
+    rho_start = suction.density * (geo.clearance_volume + geo.swept_volume) / v_start
+    start = fluid.state_rhos(rho_start, suction.entropy)
+    y0[cyl.Y_T] = start["T"]
+    y0[cyl.Y_RHO] = rho_start
+    mode0 = np.zeros(cyl.N_MODES, dtype=np.int64)
+    scale = np.ones(cyl.N_STATE)
+    scale[cyl.Y_T] = suction.temperature
+    scale[cyl.Y_RHO] = suction.density
+    for i, valve in enumerate((case.valves.suction, case.valves.discharge)):
+        w_n = math.sqrt(valve.stiffness / valve.mass)
+        scale[cyl.Y_XS + 2 * i] = valve.stop_height
+        scale[cyl.Y_VS + 2 * i] = valve.stop_height * w_n
+    return Model(
+        case=case,
+        fluid=fluid,
+        par=par,
+        ipar=ipar,
+        props=props,
+        y0=y0,
+        mode0=mode0,
+        scale=scale,
+        period=2.0 * math.pi / omega,
+        suction=suction,
+        discharge=discharge,
+        shell=shell,
+    )
+
+
+def crank_geometry(case: Case) -> CrankGeometry:
+    """The slider-crank geometry of ``case`` for the mechanism library."""
+    geo = case.geometry
+    return CrankGeometry(
+        bore=geo.bore, crank_radius=geo.crank_radius, rod_length=geo.connecting_rod_length
+    )
+
+
+def case_mechanism_parameters(case: Case) -> np.ndarray:
+    """Mechanism parameter array (:mod:`recipsim.physics.mechanics.layout`) of ``case``: its
+    mechanism, crank geometry, shell pressure, shaft speed and drive."""
+    op = case.operating_point
+    return mechanism_parameters(
+        case.mechanism,
+        crank_geometry(case),
+        shell_pressure=op.shell_pressure,
+        speed=op.shaft_speed,
+        drive=case.options.drive,
+        motor=case.motor,
+    )
+
+
+def build_model(case: Case, drive_pressure: tuple[np.ndarray, np.ndarray] | None = None) -> Model:
+    """Lay out the compiled scene that ``case`` asks for.
+
+    ``drive_pressure`` (crank angles [rad], pressures [Pa]) is the cylinder pressure on
+    the rigid crank, which the coupled scene's ``torque_profile`` drive needs (the
+    paper's driving torque is the pinned mechanism's under it); it comes from a solve of
+    the cylinder scene, which this layer does not run:
+    :func:`recipsim.solve.drive.build_model_for` provides it.
+
+    ============  ===========  =====================================================
+    pressure      mechanics    scene
+    ============  ===========  =====================================================
+    cylinder      pinned       cylinder on the rigid crank (bearing loads afterwards
+                               by inverse dynamics)
+    cylinder      flexible     coupled: cylinder + flexible crank train
+    tabulated     pinned       no integration: inverse dynamics of the table
+                               (:mod:`recipsim.physics.mechanics.pinned`); the model holds
+                               the table and the mechanism parameters
+    tabulated     flexible     flexible crank train under the table
+    ============  ===========  =====================================================
+    """
+    model = cylinder_model(case)
+    opts = case.options
+    if opts.mechanics == "pinned" and opts.pressure == "cylinder":
+        return model
+    op = case.operating_point
+    omega = op.shaft_speed
+    mpar = case_mechanism_parameters(case)
+    if opts.pressure == "tabulated":
+        assert case.pressure_curve is not None
+        p_angles, p_values = case.pressure_curve.crank_angle, case.pressure_curve.pressure
+        scene = scenes.SCENE_MECHANISM
+    else:
+        p_angles, p_values = np.zeros(1), np.zeros(1)
+        scene = scenes.SCENE_COUPLED
+    if opts.drive == "torque_profile":
+        d_angles, d_torques = _drive_table(case, p_angles, p_values, drive_pressure)
+    else:
+        d_angles, d_torques = np.zeros(1), np.zeros(1)
+
+    par = np.concatenate([model.par[: scenes.P_TABLES], p_angles, p_values, d_angles, d_torques])
+    par[scenes.P_MECH : scenes.P_MECH + mlay.N_PAR] = mpar
+    par[scenes.P_LEAK_CLEARANCE] = case.leakage.radial_clearance
+    ipar = model.ipar.copy()
+    ipar[cyl.I_SCENE] = scene
+    ipar[scenes.I_PTAB] = scenes.P_TABLES
+    ipar[scenes.I_PTAB_N] = p_angles.size
+    ipar[scenes.I_DTAB] = scenes.P_TABLES + 2 * p_angles.size
+    ipar[scenes.I_DTAB_N] = d_angles.size
+    free = opts.drive != "constant_speed"
+    ipar[scenes.I_STOP_ON_ANGLE] = 1 if free else 0
+
+    m0 = scenes.mechanism_state_offset(scene)
+    n = scenes.state_size(scene)
+    y0 = np.zeros(n)
+    scale = np.zeros(n)  # zero scale: a quadrature, outside error control
+    if scene == scenes.SCENE_COUPLED:
+        y0[: cyl.N_STATE] = model.y0
+        scale[: cyl.N_ERR] = model.scale[: cyl.N_ERR]
+        model.props(model.y0[cyl.Y_T], model.y0[cyl.Y_RHO])
+        p_start = float(model.props.buffer[0])
+        quads = np.concatenate([np.arange(cyl.N_ERR, cyl.N_STATE), _mech_quads(m0)])
+    else:
+        p_start = tabulated_pressure(START_ANGLE, p_angles, p_values)
+        quads = _mech_quads(m0)
+    y0[m0 : m0 + mlay.N_STATE] = initial_state(mpar, START_ANGLE, omega, p_start)
+    scale[m0 : m0 + mlay.N_STATE] = state_scales(mpar)
+    model.par = par
+    model.ipar = ipar
+    model.y0 = y0
+    model.scale = scale
+    model.n_err = n
+    model.scene = scene
+    model.quadratures = quads
+    model.free_speed = free
+    return model
+
+
+def _mech_quads(m0: int) -> np.ndarray:
+    start = m0 + mlay.N_STATE
+    return np.arange(start, start + scenes.N_MECH_QUAD)
+
+
+def _drive_table(
+    case: Case,
+    p_angles: np.ndarray,
+    p_values: np.ndarray,
+    drive_pressure: tuple[np.ndarray, np.ndarray] | None,
+) -> tuple[np.ndarray, np.ndarray]:
+    """Torque of the pinned mechanism at constant speed under the same pressure (the
+    paper's ``torque_profile`` drive); for the coupled scene the pressure is that of
+    the cylinder on the rigid crank (``drive_pressure``)."""
+    op = case.operating_point
+    if case.options.pressure == "cylinder":
+        if drive_pressure is None:
+            raise ValueError(
+                "the coupled torque_profile drive needs the rigid crank's cylinder pressure: "
+                "build the model with recipsim.solve.drive.build_model_for(case)"
+            )
+        p_angles, p_values = drive_pressure
+    return pinned_torque_profile(
+        case.mechanism,
+        crank_geometry(case),
+        p_angles,
+        p_values,
+        op.shell_pressure,
+        op.shaft_speed,
+    )

@@ -1,0 +1,97 @@
+"""Pack a :class:`MechanismSpec` and the slider-crank geometry into the float64
+parameter array read by the compiled functions (layout: :mod:`.layout`)."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from recipsim.case.mechanism import CrankGeometry, MechanismSpec
+from recipsim.physics.mechanics import layout as lay
+from recipsim.physics.motor import MotorSpec
+
+#: Axis of each bearing (the linear law acts normal to it): rotor, eccentric and pin
+#: journals turn about Z; the piston slides along X.
+_BEARING_AXES = (lay.AXIS_Z, lay.AXIS_Z, lay.AXIS_Z, lay.AXIS_Z, lay.AXIS_X, lay.AXIS_X)
+
+
+def mechanism_parameters(
+    spec: MechanismSpec,
+    geometry: CrankGeometry,
+    *,
+    shell_pressure: float = 0.0,
+    speed: float = 0.0,
+    drive: str = "constant_speed",
+    motor: MotorSpec | None = None,
+) -> np.ndarray:
+    """Parameter array of the pinned and flexible models.
+
+    Parameters
+    ----------
+    spec : MechanismSpec
+    geometry : CrankGeometry
+    shell_pressure : float
+        Pressure acting under the piston [Pa].
+    speed : float
+        Crank speed of the ``constant_speed`` drive [rad/s] (ignored by other drives).
+    drive : {"constant_speed", "torque_profile", "induction_motor"}
+    motor : MotorSpec, optional
+        The torque-speed curve; required by the ``induction_motor`` drive.
+
+    Returns
+    -------
+    numpy.ndarray
+        Shape ``(layout.N_PAR,)``.
+    """
+    if drive not in lay.DRIVE_CODES:
+        raise ValueError(f"unknown drive {drive!r}; allowed: {', '.join(lay.DRIVE_CODES)}")
+    par = np.zeros(lay.N_PAR)
+    par[lay.P_CRANK_RADIUS] = geometry.crank_radius
+    par[lay.P_ROD_LENGTH] = geometry.rod_length
+    par[lay.P_PISTON_AREA] = geometry.piston_area
+    par[lay.P_SHELL_PRESSURE] = shell_pressure
+    par[lay.P_SPEED] = speed
+    par[lay.P_DRIVE] = lay.DRIVE_CODES[drive]
+    if drive == "induction_motor":
+        if motor is None:
+            raise ValueError("the induction_motor drive needs a MotorSpec")
+        par[lay.P_MOTOR_SYNC_SPEED] = motor.synchronous_speed
+        par[lay.P_MOTOR_BREAKDOWN_TORQUE] = motor.breakdown_torque
+        par[lay.P_MOTOR_BREAKDOWN_SLIP] = motor.breakdown_slip
+        par[lay.P_MOTOR_BACKWARD_RATIO] = motor.backward_field_ratio
+
+    rotor = spec.rotor
+    par[lay.P_ROTOR_MASS] = rotor.mass
+    par[lay.P_ROTOR_POLAR_INERTIA] = rotor.polar_inertia
+    par[lay.P_ROTOR_TRANSVERSE_INERTIA] = rotor.transverse_inertia
+    par[lay.P_ROTOR_COM_Z] = rotor.centre_of_mass_z
+    par[lay.P_PRIMARY_Z] = rotor.primary_z
+    par[lay.P_SECONDARY_Z] = rotor.secondary_z
+
+    rod = spec.connecting_rod
+    par[lay.P_ROD_MASS] = rod.mass
+    par[lay.P_ROD_COM_FRACTION] = rod.centre_of_mass_fraction
+    par[lay.P_ROD_INERTIA] = rod.inertia
+
+    piston = spec.piston
+    com = piston.centre_of_mass_from_crown
+    par[lay.P_PISTON_MASS] = piston.mass
+    par[lay.P_PISTON_INERTIA] = piston.transverse_inertia
+    par[lay.P_PISTON_PIN_U] = com - piston.pin_offset_from_crown
+    par[lay.P_PISTON_CROWN_U] = com
+    top = spec.bearings[lay.B_PISTON_TOP].position_from_crown
+    skirt = spec.bearings[lay.B_PISTON_SKIRT].position_from_crown
+    if top is None or skirt is None:
+        raise ValueError("piston_top and piston_skirt need position_from_crown")
+    par[lay.P_PISTON_TOP_U] = com - top
+    par[lay.P_PISTON_SKIRT_U] = com - skirt
+    par[lay.P_PIN_FROM_CROWN] = piston.pin_offset_from_crown
+
+    for i, (bearing, axis) in enumerate(zip(spec.bearings, _BEARING_AXES, strict=True)):
+        row = lay.P_BEARINGS + i * lay.N_BEARING_PAR
+        if bearing.law not in lay.LAW_CODES:
+            raise ValueError(f"unknown bearing law {bearing.law!r}")
+        par[row + lay.BP_LAW] = lay.LAW_CODES[bearing.law]
+        par[row + lay.BP_AXIS] = axis
+        par[row + lay.BP_STIFFNESS] = bearing.stiffness
+        par[row + lay.BP_DAMPING] = bearing.damping
+    return par

@@ -1,0 +1,253 @@
+"""Scenes the compiled integrator can run, and the one layout they share.
+
+A scene is a right-hand side, its event functions and its event actions. Three exist:
+
+- ``SCENE_CYLINDER``: the CoolProp cylinder on the rigid crank at constant speed
+  (:mod:`recipsim.physics.thermo.cylinder`);
+- ``SCENE_MECHANISM``: the flexible crank train driven by a tabulated cylinder
+  pressure p(theta) (:mod:`recipsim.physics.mechanics.flexible`);
+- ``SCENE_COUPLED``: both in one state vector: the cylinder volume comes from the
+  flexible piston's position, the mechanism feels the cylinder's pressure. The
+  pressure is a function of the gas state only, so there is no algebraic loop.
+
+One layout for all scenes (built once from the case by :func:`recipsim.model.build.build_model`):
+
+- ``par`` = [cylinder block (``cylinder.N_PAR``) | mechanism block (``layout.N_PAR``) |
+  scene scalars (``N_SCENE_PAR``) | tables: pressure angles, pressures, drive angles,
+  drive torques]; offsets and lengths of the tables in ``ipar``;
+- ``y`` = [cylinder states (coupled only) | mechanism states | mechanism quadratures];
+- ``aux`` = [cylinder outputs (``cylinder.N_AUX``) | mechanism outputs
+  (``layout.N_AUX``)]: every scene fills the cylinder block (pressure, volume,
+  piston displacement, torques) so reports read one place.
+
+Events: the cylinder's valve events (``cylinder.N_EVENTS``) and one terminal event,
+the crank angle reaching ``par[P_THETA_END]`` (ends a revolution when the speed is
+free).
+"""
+
+from __future__ import annotations
+
+import math
+
+from numba import njit
+
+from recipsim.physics.mechanics import layout as lay
+from recipsim.physics.mechanics.flexible import (
+    flexible_rhs,
+    piston_axial_displacement,
+    piston_lateral_offset,
+)
+from recipsim.physics.mechanics.tabulated import tabulated_pressure
+from recipsim.physics.thermo import cylinder as cyl
+from recipsim.physics.thermo.property_slots import STATUS_OK
+
+SCENE_CYLINDER = 0
+SCENE_MECHANISM = 1
+SCENE_COUPLED = 2
+
+# ---- integer parameters (after the cylinder's own) -----------------------------------
+I_PTAB = cyl.N_IPAR  # offset of the pressure table in par
+I_PTAB_N = cyl.N_IPAR + 1  # its length
+I_DTAB = cyl.N_IPAR + 2  # offset of the drive torque table
+I_DTAB_N = cyl.N_IPAR + 3
+I_STOP_ON_ANGLE = cyl.N_IPAR + 4  # 1: the terminal crank-angle event is armed
+N_IPAR = cyl.N_IPAR + 5
+
+# ---- float parameters ----------------------------------------------------------------
+P_MECH = cyl.N_PAR  # first entry of the mechanism block
+P_SCENE = P_MECH + lay.N_PAR  # first scene scalar
+P_THETA_END = P_SCENE  # crank angle that ends a revolution [rad]
+P_LEAK_CLEARANCE = P_SCENE + 1  # radial piston clearance for the eccentricity [m]
+N_SCENE_PAR = 4
+P_TABLES = P_SCENE + N_SCENE_PAR
+
+# ---- states --------------------------------------------------------------------------
+#: Mechanism quadratures, after the mechanism states: work of the drive, energy
+#: dissipated in the bearings, work of the gas on the piston [J].
+MQ_DRIVE = 0
+MQ_BEARINGS = 1
+MQ_GAS = 2
+N_MECH_QUAD = 3
+#: Offsets of the mechanism block in the state vector of each scene.
+MECH_Y = (0, 0, cyl.N_STATE)  # indexed by scene code (cylinder scene: unused)
+
+
+def mechanism_state_offset(scene: int) -> int:
+    """Index of the first mechanism state in the scene's state vector."""
+    return MECH_Y[scene]
+
+
+def state_size(scene: int) -> int:
+    """Length of the state vector of ``scene``."""
+    if scene == SCENE_CYLINDER:
+        return cyl.N_STATE
+    return MECH_Y[scene] + lay.N_STATE + N_MECH_QUAD
+
+
+# ---- outputs -------------------------------------------------------------------------
+A_MECH = cyl.N_AUX  # first mechanism output
+N_AUX = cyl.N_AUX + lay.N_AUX
+
+N_EVENTS = cyl.N_EVENTS + 1
+EV_THETA_END = cyl.N_EVENTS
+
+
+@njit(cache=True)
+def _tables(par, ipar):
+    p0 = ipar[I_PTAB]
+    pn = ipar[I_PTAB_N]
+    d0 = ipar[I_DTAB]
+    dn = ipar[I_DTAB_N]
+    return (
+        par[p0 : p0 + pn],
+        par[p0 + pn : p0 + 2 * pn],
+        par[d0 : d0 + dn],
+        par[d0 + dn : d0 + 2 * dn],
+    )
+
+
+@njit(cache=True)
+def leakage_eccentricity(ym, mpar, piston_length: float, clearance: float) -> float:
+    """Effective eccentricity ratio of a tilted, offset piston in the bore [-].
+
+    The gap flow per unit pressure drop goes as ``(1 + 1.5 eps^2)`` locally; along the
+    land the resistances add in series, so the effective ``eps`` follows from the mean
+    of ``1 / (1 + 1.5 eps(s)^2)`` over the length (:func:`series_eccentricity`, exact
+    for the linear eps(s) of a rigid tilted piston). The end offsets are clipped at
+    +-0.95 of the clearance: the linear bearing law of the piston does not know it.
+    """
+    if clearance <= 0.0:
+        return 0.0
+    e_crown = piston_lateral_offset(ym, mpar, 0.0) / clearance
+    e_skirt = piston_lateral_offset(ym, mpar, piston_length) / clearance
+    return series_eccentricity(min(max(e_crown, -0.95), 0.95), min(max(e_skirt, -0.95), 0.95))
+
+
+@njit(cache=True)
+def series_eccentricity(e0: float, e1: float) -> float:
+    """Uniform eccentricity ratio with the leakage of a gap whose eccentricity ratio
+    varies linearly from ``e0`` to ``e1`` along the land [-].
+
+    ``1 / (1 + 1.5 eps_eff^2) = mean over s of 1 / (1 + 1.5 eps(s)^2)``; for linear
+    eps(s) the mean is ``(atan(k e1) - atan(k e0)) / (k (e1 - e0))``, ``k = sqrt(1.5)``.
+    """
+    k = math.sqrt(1.5)
+    de = e1 - e0
+    if abs(de) < 1e-6:
+        em = 0.5 * (e0 + e1)
+        mean = 1.0 / (1.0 + 1.5 * em * em)  # error O(de^2) < 1e-12
+    else:
+        mean = (math.atan(k * e1) - math.atan(k * e0)) / (k * de)
+    return math.sqrt(max((1.0 / mean - 1.0) / 1.5, 0.0))
+
+
+@njit(cache=True)
+def _mechanism_part(t, y, m0, par, ipar, dydt, aux, p_gas) -> None:
+    """Mechanism block of a scene: states at ``m0``, quadratures after them."""
+    mpar = par[P_MECH : P_MECH + lay.N_PAR]
+    _, _, da, dt = _tables(par, ipar)
+    ym = y[m0 : m0 + lay.N_STATE]
+    flexible_rhs(t, ym, dydt[m0 : m0 + lay.N_STATE], aux[A_MECH:N_AUX], mpar, p_gas, da, dt)
+    q = m0 + lay.N_STATE
+    dydt[q + MQ_DRIVE] = aux[A_MECH + lay.A_DRIVE_POWER]
+    dydt[q + MQ_BEARINGS] = aux[A_MECH + lay.A_BEARING_POWER]
+    dydt[q + MQ_GAS] = aux[A_MECH + lay.A_GAS_POWER]
+    # torques in the cylinder block, so every scene reports them in one place
+    omega = ym[lay.Y_CRANK_SPEED]
+    torque = aux[A_MECH + lay.A_DRIVE_TORQUE]
+    gas_torque = -aux[A_MECH + lay.A_GAS_POWER] / omega if omega != 0.0 else 0.0
+    aux[cyl.A_TORQUE_SHAFT] = torque
+    aux[cyl.A_TORQUE_GAS] = gas_torque
+    aux[cyl.A_TORQUE_INERTIA] = torque + gas_torque
+
+
+@njit(cache=True)
+def mechanism_rhs(t, y, mode, par, ipar, props, pbuf, dydt, aux) -> int:
+    """Flexible mechanism under a tabulated cylinder pressure (no gas state)."""
+    mpar = par[P_MECH : P_MECH + lay.N_PAR]
+    pa, pp, _, _ = _tables(par, ipar)
+    theta = y[lay.Y_CRANK_ANGLE]
+    p = tabulated_pressure(theta, pa, pp)
+    for i in range(cyl.N_AUX):
+        aux[i] = 0.0
+    _mechanism_part(t, y, 0, par, ipar, dydt, aux, p)
+    x, xdot = piston_axial_displacement(y, mpar)
+    aux[cyl.A_THETA] = theta
+    aux[cyl.A_PRESSURE] = p
+    aux[cyl.A_VOLUME] = par[cyl.C_VC] + par[cyl.C_AP] * x
+    aux[cyl.A_DVDT] = par[cyl.C_AP] * xdot
+    aux[cyl.A_DISPLACEMENT] = x
+    aux[cyl.A_PISTON_VELOCITY] = xdot
+    aux[cyl.A_FORCE_GAS] = (p - par[cyl.C_PSHELL]) * par[cyl.C_AP]
+    aux[cyl.A_QUALITY] = -1.0
+    return STATUS_OK
+
+
+@njit(cache=True)
+def coupled_rhs(t, y, mode, par, ipar, props, pbuf, dydt, aux) -> int:
+    """Cylinder gas and flexible mechanism in one state vector."""
+    m0 = cyl.N_STATE
+    mpar = par[P_MECH : P_MECH + lay.N_PAR]
+    ym = y[m0 : m0 + lay.N_STATE]
+    x, xdot = piston_axial_displacement(ym, mpar)
+    ecc = leakage_eccentricity(ym, mpar, par[cyl.C_PISTON_LEN], par[P_LEAK_CLEARANCE])
+    status = cyl.cylinder_gas_rhs(
+        ym[lay.Y_CRANK_ANGLE],
+        ym[lay.Y_CRANK_SPEED],
+        x,
+        xdot,
+        ecc,
+        y[:m0],
+        mode,
+        par,
+        ipar,
+        props,
+        pbuf,
+        dydt[:m0],
+        aux,
+    )
+    if status != STATUS_OK:
+        return status
+    _mechanism_part(t, y, m0, par, ipar, dydt, aux, aux[cyl.A_PRESSURE])
+    dydt[cyl.Q_SHAFT] = aux[A_MECH + lay.A_DRIVE_POWER]
+    return STATUS_OK
+
+
+@njit(cache=True)
+def scene_rhs(t, y, mode, par, ipar, props, pbuf, dydt, aux) -> int:
+    """Dispatch to the right-hand side of the scene in ``ipar[I_SCENE]``."""
+    scene = ipar[cyl.I_SCENE]
+    if scene == SCENE_MECHANISM:
+        return mechanism_rhs(t, y, mode, par, ipar, props, pbuf, dydt, aux)
+    if scene == SCENE_COUPLED:
+        return coupled_rhs(t, y, mode, par, ipar, props, pbuf, dydt, aux)
+    return cyl.cylinder_rhs(t, y, mode, par, ipar, props, pbuf, dydt, aux)
+
+
+@njit(cache=True)
+def scene_event_values(y, mode, par, ipar, aux, g) -> None:
+    """Event functions of the scene; an event fires when g goes from <= 0 to > 0."""
+    scene = ipar[cyl.I_SCENE]
+    if scene == SCENE_MECHANISM:
+        for k in range(cyl.N_EVENTS):
+            g[k] = -1.0
+    elif scene == SCENE_COUPLED:
+        cyl.cylinder_event_values(y[: cyl.N_STATE], mode, par, ipar, aux, g)
+    else:
+        cyl.cylinder_event_values(y, mode, par, ipar, aux, g)
+    g[EV_THETA_END] = -1.0
+    if ipar[I_STOP_ON_ANGLE] != 0 and scene != SCENE_CYLINDER:
+        g[EV_THETA_END] = y[MECH_Y[scene] + lay.Y_CRANK_ANGLE] - par[P_THETA_END]
+
+
+@njit(cache=True)
+def scene_event_action(k, y, mode, par, ipar, aux) -> bool:
+    """Apply event ``k``; returns True when the event ends the integration."""
+    if k == EV_THETA_END:
+        return True
+    scene = ipar[cyl.I_SCENE]
+    if scene == SCENE_COUPLED:
+        cyl.cylinder_event_action(k, y[: cyl.N_STATE], mode, par, ipar, aux)
+    else:
+        cyl.cylinder_event_action(k, y, mode, par, ipar, aux)
+    return False

@@ -1,0 +1,124 @@
+"""Figures a compressor engineer expects; the only module that imports matplotlib.
+
+Every function takes the cycle table of :func:`recipsim.results.tables.cycle_table` and an
+optional ``ax`` and returns the figure.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import pandas as pd  # noqa: E402
+from matplotlib.figure import Figure  # noqa: E402
+
+
+def _axes(ax: Any) -> tuple[Figure, Any]:
+    if ax is None:
+        fig, ax = plt.subplots(figsize=(6.4, 4.4), layout="constrained")
+        return fig, ax
+    return ax.figure, ax
+
+
+def plot_pv(cycle: pd.DataFrame, ax: Any = None, log: bool = False, label: str = "") -> Figure:
+    """Indicator diagram, cylinder pressure against volume (log-log with ``log``)."""
+    fig, ax = _axes(ax)
+    v = cycle["cylinder_volume [m3]"].to_numpy() * 1e6
+    p = cycle["cylinder_pressure [Pa]"].to_numpy() / 1e5
+    ax.plot(list(v) + [v[0]], list(p) + [p[0]], label=label or None)
+    ax.set_xlabel("cylinder volume [cm3]")
+    ax.set_ylabel("cylinder pressure [bar]")
+    if log:
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_title("p-V diagram (log-log)")
+    else:
+        ax.set_title("p-V diagram")
+    ax.grid(True, which="both", alpha=0.3)
+    return fig
+
+
+def plot_pressure(
+    cycle: pd.DataFrame, ax: Any = None, label: str = "", plenum: tuple[float, float] | None = None
+) -> Figure:
+    """Cylinder pressure against crank angle (plenum pressures dashed)."""
+    fig, ax = _axes(ax)
+    theta = cycle["crank_angle [deg]"]
+    ax.plot(theta, cycle["cylinder_pressure [Pa]"] / 1e5, label=label or "cylinder")
+    if plenum is not None:
+        ax.axhline(plenum[0] / 1e5, ls="--", lw=0.8, color="tab:blue", label="suction")
+        ax.axhline(plenum[1] / 1e5, ls="--", lw=0.8, color="tab:red", label="discharge")
+    ax.set_xlabel("crank angle from TDC [deg]")
+    ax.set_ylabel("pressure [bar]")
+    ax.set_xlim(0, 360)
+    ax.set_title("cylinder pressure")
+    ax.grid(True, alpha=0.3)
+    ax.legend()
+    return fig
+
+
+def plot_valves(cycle: pd.DataFrame, ax: Any = None) -> Figure:
+    """Reed lifts (and mass flows on a second axis) against crank angle."""
+    fig, ax = _axes(ax)
+    theta = cycle["crank_angle [deg]"]
+    ax.plot(theta, cycle["suction_valve_lift [m]"] * 1e3, label="suction lift")
+    ax.plot(theta, cycle["discharge_valve_lift [m]"] * 1e3, label="discharge lift")
+    ax.set_xlabel("crank angle from TDC [deg]")
+    ax.set_ylabel("valve lift [mm]")
+    ax.set_xlim(0, 360)
+    ax2 = ax.twinx()
+    ax2.plot(theta, cycle["suction_mass_flow [kg/s]"] * 1e3, ":", color="tab:blue")
+    ax2.plot(theta, cycle["discharge_mass_flow [kg/s]"] * 1e3, ":", color="tab:orange")
+    ax2.set_ylabel("mass flow [g/s] (dotted)")
+    ax.set_title("valves")
+    ax.grid(True, alpha=0.3)
+    ax.legend(loc="upper left")
+    return fig
+
+
+def plot_torque(cycle: pd.DataFrame, ax: Any = None, label: str = "") -> Figure:
+    """Driving torque and its gas and inertia parts against crank angle."""
+    fig, ax = _axes(ax)
+    theta = cycle["crank_angle [deg]"]
+    ax.plot(theta, cycle["shaft_torque [N m]"], label=label or "driving torque")
+    if not label:
+        ax.plot(theta, -cycle["gas_torque [N m]"], "--", lw=0.9, label="- gas torque")
+        ax.plot(theta, cycle["inertia_torque [N m]"], ":", lw=0.9, label="inertia torque")
+    ax.set_xlabel("crank angle from TDC [deg]")
+    ax.set_ylabel("torque [N m]")
+    ax.set_xlim(0, 360)
+    ax.set_title("shaft torque at constant speed")
+    ax.grid(True, alpha=0.3)
+    ax.legend()
+    return fig
+
+
+def save_cycle_figures(
+    cycle: pd.DataFrame, directory: Any, plenum: tuple[float, float] | None = None
+) -> list[str]:
+    """Write the standard figures of one case as PNG files; returns the file names."""
+    from pathlib import Path
+
+    directory = Path(directory)
+    figures = {
+        "p_V.png": plot_pv(cycle),
+        "p_V_loglog.png": plot_pv(cycle, log=True),
+        "p_theta.png": plot_pressure(cycle, plenum=plenum),
+        "torque.png": plot_torque(cycle),
+    }
+    if "suction_valve_lift [m]" in cycle:  # the gas is simulated (not a tabulated pressure)
+        figures["valves.png"] = plot_valves(cycle)
+    if "bearing_force_primary [N]" in cycle:
+        from recipsim.report.mechanics_plots import has_orbits, plot_bearing_loads, plot_orbits
+
+        label = "flexible" if has_orbits(cycle) else "pinned"
+        figures["bearing_loads.png"] = plot_bearing_loads({label: cycle})
+        if label == "flexible":
+            figures["orbits.png"] = plot_orbits({label: cycle})
+    for name, fig in figures.items():
+        fig.savefig(directory / name, dpi=110)
+        plt.close(fig)
+    return list(figures)

@@ -1,0 +1,95 @@
+"""Bearing loads, orbits and crank speed for the report: cycle columns and summary metrics.
+
+Forces are those on the journal-side body (rotor for primary, secondary and
+eccentric; piston for pin, piston_top and piston_skirt), inertial X, Y, Z [N];
+displacements are journal minus bushing marker normal to the bearing axis [m] (zero
+for the pinned mechanism). Every column name carries its unit; the meaning of each
+column is documented in ``reports/README.md``.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+import pandas as pd
+
+from recipsim.physics.mechanics import layout as lay
+from recipsim.physics.mechanics.pinned import N_PIN_OUT, PIN_DRIVE_TORQUE, pinned_reactions_array
+
+#: Displacement components reported for every bearing (normal to the Z journal axis;
+#: the piston bearings, axis X, report X as 0).
+_DISPLACEMENT_AXES = "xy"
+
+
+def bearing_columns(forces: np.ndarray, displacements: np.ndarray) -> dict[str, np.ndarray]:
+    """Report columns from (n, 6, 3) force [N] and displacement [m] arrays."""
+    cols: dict[str, np.ndarray] = {}
+    for i, name in enumerate(lay.BEARING_NAMES):
+        for k, ax in enumerate("xyz"):
+            cols[f"bearing_force_{name}_{ax} [N]"] = forces[:, i, k]
+        cols[f"bearing_force_{name} [N]"] = np.linalg.norm(forces[:, i], axis=1)
+        for ax in _DISPLACEMENT_AXES:
+            cols[f"bearing_displacement_{name}_{ax} [m]"] = displacements[:, i, "xyz".index(ax)]
+    return cols
+
+
+def flexible_columns(mech_aux: np.ndarray) -> dict[str, np.ndarray]:
+    """Columns of the flexible mechanism from its outputs, shape (n, ``layout.N_AUX``)."""
+    nb = lay.N_BEARINGS
+    f = mech_aux[:, lay.A_BEARING_FORCE : lay.A_BEARING_FORCE + 3 * nb].reshape(-1, nb, 3)
+    d = mech_aux[:, lay.A_BEARING_DISPLACEMENT : lay.A_BEARING_DISPLACEMENT + 3 * nb]
+    cols = bearing_columns(f, d.reshape(-1, nb, 3))
+    cols["crank_speed [rad/s]"] = mech_aux[:, lay.A_CRANK_SPEED]
+    cols["piston_lateral_displacement [m]"] = mech_aux[:, lay.A_PISTON_LATERAL]
+    cols["piston_tilt [rad]"] = mech_aux[:, lay.A_PISTON_TILT]
+    cols["bearing_power_loss [W]"] = mech_aux[:, lay.A_BEARING_POWER]
+    return cols
+
+
+def pinned_columns(
+    theta: np.ndarray, pressure: np.ndarray, omega: float, mech_par: np.ndarray
+) -> tuple[dict[str, np.ndarray], np.ndarray]:
+    """Columns of the pinned mechanism by inverse dynamics at constant speed.
+
+    Returns the columns and the driving torque [N m] (which includes the inertia of
+    every body, as the flexible model's does).
+    """
+    out = np.zeros((theta.shape[0], N_PIN_OUT))
+    pinned_reactions_array(
+        np.ascontiguousarray(theta), omega, np.ascontiguousarray(pressure), mech_par, out
+    )
+    nb = lay.N_BEARINGS
+    forces = out[:, : 3 * nb].reshape(-1, nb, 3)
+    cols = bearing_columns(forces, np.zeros_like(forces))
+    cols["crank_speed [rad/s]"] = np.full(theta.shape, omega)
+    cols["piston_lateral_displacement [m]"] = np.zeros(theta.shape)
+    cols["piston_tilt [rad]"] = np.zeros(theta.shape)
+    cols["bearing_power_loss [W]"] = np.zeros(theta.shape)
+    return cols, out[:, PIN_DRIVE_TORQUE].copy()
+
+
+def mechanism_summary(cycle: pd.DataFrame) -> dict[str, Any]:
+    """Per-bearing RMS and peak load, largest orbit radius; crank speed and its ripple.
+
+    Statistics over the uniform crank-angle samples of the cycle table (an RMS over
+    crank angle; at constant speed the same as over time).
+    """
+    row: dict[str, Any] = {}
+    for name in lay.BEARING_NAMES:
+        f = cycle[f"bearing_force_{name} [N]"].to_numpy()
+        row[f"bearing_rms_{name} [N]"] = float(np.sqrt(np.mean(f * f)))
+        row[f"bearing_max_{name} [N]"] = float(f.max())
+    for name in lay.BEARING_NAMES:
+        r2 = sum(
+            cycle[f"bearing_displacement_{name}_{ax} [m]"].to_numpy() ** 2
+            for ax in _DISPLACEMENT_AXES
+        )
+        row[f"orbit_radius_max_{name} [m]"] = float(np.sqrt(np.max(r2)))
+    speed = cycle["crank_speed [rad/s]"].to_numpy()
+    # time mean (revolutions per second): the harmonic mean over uniform crank angles
+    mean = float(1.0 / np.mean(1.0 / speed))
+    row["mean_crank_speed [rpm]"] = mean * 60.0 / (2.0 * math.pi)
+    row["crank_speed_ripple [-]"] = float((speed.max() - speed.min()) / mean)
+    return row

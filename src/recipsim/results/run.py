@@ -1,0 +1,60 @@
+"""One case from file to report: the path shared by ``recipsim run``, sweeps and comparisons."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:
+    import pandas as pd
+
+    from recipsim.case.load import Case
+    from recipsim.solve.periodic import PeriodicSolution
+
+
+@dataclass
+class CaseRun:
+    """A simulated case.
+
+    Attributes
+    ----------
+    case : Case
+    solution : PeriodicSolution or None
+        None for the pinned mechanism under a tabulated pressure (inverse dynamics only).
+    cycle : pandas.DataFrame
+        The converged revolution (:func:`recipsim.results.tables.cycle_table`).
+    row : dict
+        The summary row (:func:`recipsim.results.tables.summary`), units in the keys.
+    meta : dict
+        Provenance (versions, options, solver statistics).
+    """
+
+    case: Case
+    solution: PeriodicSolution | None
+    cycle: pd.DataFrame
+    row: dict[str, Any]
+    meta: dict[str, Any]
+
+
+def simulate_case(case: Case, argv: list[str] | None = None) -> CaseRun:
+    """Solve ``case`` to its periodic steady state and tabulate the converged revolution.
+
+    Raises
+    ------
+    SolverError
+        Naming the crank angle and the state where the integration failed.
+    """
+    from recipsim.results.provenance import case_provenance, provenance
+    from recipsim.results.tables import cycle_table, pinned_tabulated_cycle, summary
+    from recipsim.solve.drive import build_model_for
+    from recipsim.solve.periodic import solve_periodic
+
+    solution = None
+    if case.options.pressure == "tabulated" and case.options.mechanics == "pinned":
+        cycle = pinned_tabulated_cycle(case)  # inverse dynamics only, nothing to integrate
+        meta = case_provenance(case, argv)
+    else:
+        solution = solve_periodic(build_model_for(case))
+        cycle = cycle_table(solution)
+        meta = provenance(solution, argv)
+    return CaseRun(case, solution, cycle, summary(solution, cycle, case), meta)

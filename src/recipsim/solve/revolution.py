@@ -1,0 +1,366 @@
+"""One revolution of any scene and what is measured on it: integration from 270 deg
+with the compiled integrator, the cycle residual against the previous revolution, the
+discharge-plenum enthalpy for the next one, statistics, and the outputs at the samples.
+Shared by the revolution iteration (:mod:`.periodic`) and shooting (:mod:`.shooting`).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+from numba import njit
+
+from recipsim.errors import SolverError
+from recipsim.model.build import Model, scenes
+from recipsim.model.scenes import N_AUX
+from recipsim.physics.mechanics import layout as mlay
+from recipsim.physics.thermo import cylinder as cyl
+from recipsim.solve.integrator import (
+    CHATTERING,
+    METHOD_AUTO,
+    METHOD_DOPRI5,
+    METHOD_ROSW,
+    N_STATS,
+    PROPERTY_FAILURE,
+    ST_NACCEPT,
+    ST_NEVENTS,
+    ST_NFEV,
+    ST_NREJECT,
+    ST_NSAMPLES,
+    ST_STATUS,
+    ST_T,
+    STEP_UNDERFLOW,
+    integrate,
+    scene_rhs,
+)
+
+_FAILURES = {
+    STEP_UNDERFLOW: "the step size fell below its floor",
+    PROPERTY_FAILURE: (
+        "the gas state left the property model's range (the refrigerant file's limits or the "
+        "equation of state's domain) and smaller steps did not help"
+    ),
+    CHATTERING: "more than 50 events at one instant (valve chattering)",
+}
+
+
+@dataclass
+class Revolution:
+    """One integrated revolution.
+
+    Attributes
+    ----------
+    y_start, y_end : ndarray
+        State at the start and end (quadratures of this revolution in ``y_end``).
+    times : ndarray
+        Sample times from the start of the revolution [s], sorted by crank angle.
+    samples, sample_modes : ndarray
+        State and modes at the sample times.
+    stats : ndarray
+        Integrator counters.
+    """
+
+    y_start: np.ndarray
+    y_end: np.ndarray
+    mode_start: np.ndarray
+    mode_end: np.ndarray
+    times: np.ndarray
+    samples: np.ndarray
+    sample_modes: np.ndarray
+    stats: np.ndarray
+    duration: float = 0.0
+
+
+@dataclass
+class PeriodicSolution:
+    """The converged revolution and how it was reached.
+
+    ``revolutions`` counts every integrated revolution, including the finite-difference
+    Jacobian columns and trial steps of shooting; ``residual_history`` holds the cycle
+    residual of every revolution that was not a Jacobian column.
+    """
+
+    model: Model
+    final: Revolution
+    revolutions: int
+    residual: float
+    converged: bool
+    residual_history: list[float] = field(default_factory=list)
+    nfev: int = 0
+    steps: int = 0
+    rejected: int = 0
+    events: int = 0
+    wall_time: float = 0.0
+    #: how the periodic state was found: "revolutions" or "shooting"
+    method: str = "revolutions"
+    #: shooting only: Newton steps taken, Jacobians built by finite differences and the
+    #: revolutions they cost (included in ``revolutions``)
+    newton_iterations: int = 0
+    jacobians: int = 0
+    jacobian_revolutions: int = 0
+
+
+def sample_times(model: Model, n: int) -> tuple[np.ndarray, np.ndarray]:
+    """Times within a revolution at the uniform crank angles 0, 360/n, ... deg.
+
+    Returns
+    -------
+    times : ndarray
+        Sorted in time [s].
+    order : ndarray
+        Index that sorts the samples by crank angle.
+    """
+    omega = model.par[cyl.C_OMEGA]
+    theta0 = model.par[cyl.C_THETA0]
+    angles = 2.0 * math.pi * np.arange(n) / n
+    times = np.mod(angles - theta0, 2.0 * math.pi) / omega
+    order_time = np.argsort(times, kind="stable")
+    times_sorted = times[order_time]
+    # position in the time-sorted array of each crank-angle sample
+    order = np.empty(n, dtype=np.int64)
+    order[order_time] = np.arange(n)
+    return times_sorted, order
+
+
+def revolution_setup(
+    model: Model, y: np.ndarray, mode: np.ndarray, n_samples: int
+) -> tuple[np.ndarray, np.ndarray, float, np.ndarray, np.ndarray, np.ndarray]:
+    """What any integrator needs to run one revolution from ``y``, ``mode``.
+
+    Returns the state copy with the quadratures reset, the mode copy, the end time
+    (three nominal periods when the speed is free: the crank-angle event ends the
+    revolution, armed here in ``model.par``), the sample times and the sample buffers.
+    """
+    y_run = y.copy()
+    y_run[model.quadratures] = 0.0
+    mode_run = mode.copy()
+    t_end = model.period
+    if model.free_speed:
+        theta = y_run[model.mechanism_offset + mlay.Y_CRANK_ANGLE]
+        model.par[scenes.P_THETA_END] = theta + 2.0 * math.pi
+        t_end = 3.0 * model.period
+        times = model.period * np.arange(n_samples) / n_samples
+    else:
+        times, _ = sample_times(model, n_samples)
+    samples = np.zeros((n_samples, y.shape[0]))
+    sample_modes = np.zeros((n_samples, mode.shape[0]), dtype=np.int64)
+    return y_run, mode_run, t_end, times, samples, sample_modes
+
+
+#: ``solver.method`` -> ``method`` of the compiled integrator. ``"dopri5"`` stays pure
+#: DOPRI5; ``"dopri5_stiff"`` switches to the Rosenbrock-W step where DOPRI5's stability
+#: limits the step (30 % fewer right-hand sides on the reference case at rtol 1e-6);
+#: ``"ros34pw2"`` uses the W-step throughout. The bench runs ``"dopri5_stiff"`` as its own
+#: rung; a case selects it once the case loader offers the name.
+INTEGRATOR_METHODS = {
+    "dopri5": METHOD_DOPRI5,
+    "dopri5_stiff": METHOD_AUTO,
+    "ros34pw2": METHOD_ROSW,
+}
+
+
+def integrator_method(model: Model) -> int:
+    """The compiled integrator's ``method`` code for the case's ``solver.method``."""
+    return INTEGRATOR_METHODS[model.case.solver.method]
+
+
+def integrate_revolution(
+    model: Model, y: np.ndarray, mode: np.ndarray, h: float, n_samples: int
+) -> tuple[Revolution, float]:
+    """Integrate one revolution from ``y`` (modified copy returned in the result).
+
+    With a free crank speed the revolution ends on the crank-angle event at the start
+    angle plus 2 pi (at most three nominal periods); samples are then taken at equal
+    time steps of the nominal period and :func:`recipsim.results.tables.cycle_table`
+    resamples them at equal crank angles.
+    """
+    s = model.case.solver
+    y_run, mode_run, t_end, times, samples, sample_modes = revolution_setup(
+        model, y, mode, n_samples
+    )
+    y_start = y.copy()
+    mode_start = mode.copy()
+    stats = np.zeros(N_STATS)
+    omega = model.par[cyl.C_OMEGA]
+    integrate(
+        0.0,
+        t_end,
+        y_run,
+        mode_run,
+        model.par,
+        model.ipar,
+        model.props,
+        model.props.buffer,
+        s.rtol,
+        s.atol,
+        model.scale,
+        model.n_err,
+        h,
+        s.max_step / omega,
+        times,
+        samples,
+        sample_modes,
+        stats,
+        integrator_method(model),
+    )
+    model.props.raise_if_interrupted()  # a Ctrl-C caught inside the property callback
+    status = int(stats[ST_STATUS])
+    if status != 0:
+        _raise_failure(model, status, stats[ST_T], y_run, mode_run)
+    if model.free_speed:
+        n_done = int(stats[ST_NSAMPLES])
+        if stats[ST_T] >= t_end:
+            raise SolverError(
+                "the crank did not complete a revolution in three nominal periods "
+                f"(crank speed at the end {y_run[model.mechanism_offset + mlay.Y_CRANK_SPEED]:.4g}"
+                " rad/s): the drive torque cannot keep the mechanism turning"
+            )
+        times, samples, sample_modes = times[:n_done], samples[:n_done], sample_modes[:n_done]
+    if model.scene != scenes.SCENE_CYLINDER:
+        # the model is 2 pi-periodic in the crank angle: keep the state near the start angle
+        y_run[model.mechanism_offset + mlay.Y_CRANK_ANGLE] -= 2.0 * math.pi
+    rev = Revolution(y_start, y_run, mode_start, mode_run, times, samples, sample_modes, stats)
+    rev.duration = float(stats[ST_T])
+    return rev, float(stats[6])
+
+
+def _raise_failure(model: Model, status: int, t: float, y: np.ndarray, mode: np.ndarray) -> None:
+    if model.scene == scenes.SCENE_CYLINDER:
+        theta_rad = model.par[cyl.C_THETA0] + model.par[cyl.C_OMEGA] * t
+    else:
+        theta_rad = y[model.mechanism_offset + mlay.Y_CRANK_ANGLE]
+    theta = math.degrees(theta_rad % (2 * math.pi))
+    parts = []
+    if model.has_gas:
+        parts.append(
+            f"T = {y[cyl.Y_T]:.6g} K, rho = {y[cyl.Y_RHO]:.6g} kg/m3, suction lift = "
+            f"{y[cyl.Y_XS]:.4g} m (mode {mode[0]}), discharge lift = {y[cyl.Y_XD]:.4g} m "
+            f"(mode {mode[1]})"
+        )
+    if model.scene != scenes.SCENE_CYLINDER:
+        m0 = model.mechanism_offset
+        parts.append(
+            f"crank speed = {y[m0 + mlay.Y_CRANK_SPEED]:.6g} rad/s, rotor at "
+            f"({y[m0 + mlay.Y_ROTOR_X]:.4g}, {y[m0 + mlay.Y_ROTOR_Y]:.4g}) m, piston lateral "
+            f"{y[m0 + mlay.Y_PISTON_Y]:.4g} m"
+        )
+    raise SolverError(
+        f"integration failed at crank angle {theta:.3f} deg (t = {t:.6g} s into the revolution): "
+        f"{_FAILURES.get(status, 'unknown failure')}; state: " + "; ".join(parts)
+    )
+
+
+def residual_reference(model: Model, rev: Revolution) -> np.ndarray:
+    """Size against which each error-controlled state's change over ``rev`` is judged.
+
+    T and rho: their values at the start; reed lift and velocity: their scales;
+    mechanism states: their largest magnitude over the revolution (at least their
+    scale). Shape ``(model.n_err,)``; entries of zero scale are quadratures.
+    """
+    ref = model.scale[: model.n_err].copy()
+    if model.has_gas:
+        ref[cyl.Y_T] = rev.y_start[cyl.Y_T]
+        ref[cyl.Y_RHO] = rev.y_start[cyl.Y_RHO]
+    if model.scene != scenes.SCENE_CYLINDER:
+        m0 = model.mechanism_offset
+        # mechanism states relative to their size over the revolution (at least their scale)
+        size = np.abs(rev.samples[:, m0 : m0 + mlay.N_STATE]).max(axis=0)
+        ref[m0 : m0 + mlay.N_STATE] = np.maximum(size, ref[m0 : m0 + mlay.N_STATE])
+    return ref
+
+
+def state_change(model: Model, rev: Revolution) -> float:
+    """Largest change of an error-controlled state over ``rev`` relative to
+    :func:`residual_reference`; at least 1 if the discrete modes differ at its ends."""
+    controlled = model.scale[: model.n_err] > 0.0
+    d = np.abs(rev.y_end[: model.n_err] - rev.y_start[: model.n_err])
+    ref = residual_reference(model, rev)
+    res = float(np.max(d[controlled] / ref[controlled]))
+    if not np.array_equal(rev.mode_start, rev.mode_end):
+        res = max(res, 1.0)
+    return res
+
+
+def cycle_residual(model: Model, rev: Revolution, previous: Revolution | None) -> float:
+    """Largest relative change over one revolution (see module docstring).
+
+    :func:`state_change` of ``rev`` and the relative change of its suction mass,
+    indicated work, discharge enthalpy and drive work from ``previous`` (at least 1
+    without a previous revolution).
+    """
+    res = state_change(model, rev)
+    if previous is None:
+        return max(res, 1.0)
+    for q in _revolution_totals(model):
+        a, b = rev.y_end[q], previous.y_end[q]
+        res = max(res, abs(a - b) / max(abs(a), abs(b), 1e-300))
+    return res
+
+
+def _revolution_totals(model: Model) -> list[int]:
+    """Quadratures whose change between revolutions the cycle residual checks."""
+    checks = [cyl.Q_MSUC_IN, cyl.Q_WORK, cyl.Q_HDIS_OUT] if model.has_gas else []
+    if model.scene != scenes.SCENE_CYLINDER:
+        checks.append(model.mechanism_offset + mlay.N_STATE + scenes.MQ_DRIVE)
+    return checks
+
+
+def discharge_enthalpy(model: Model, rev: Revolution) -> float | None:
+    """Mass-weighted enthalpy of the gas discharged over ``rev`` [J/kg] (None without
+    gas or discharge)."""
+    if not model.has_gas:
+        return None
+    m_out = rev.y_end[cyl.Q_MDIS_OUT]
+    return float(rev.y_end[cyl.Q_HDIS_OUT] / m_out) if m_out > 0.0 else None
+
+
+class _Tally:
+    """Integrator counters over every revolution of a solve."""
+
+    def __init__(self) -> None:
+        self.revolutions = 0
+        self.nfev = 0
+        self.steps = 0
+        self.rejected = 0
+        self.events = 0
+
+    def add(self, rev: Revolution) -> None:
+        self.revolutions += 1
+        self.nfev += int(rev.stats[ST_NFEV])
+        self.steps += int(rev.stats[ST_NACCEPT])
+        self.rejected += int(rev.stats[ST_NREJECT])
+        self.events += int(rev.stats[ST_NEVENTS])
+
+
+#: ``solver.periodic = "auto"``: revolutions hand over to shooting when the residual's
+#: decay over the last ``_RATE_WINDOW`` revolutions predicts more revolutions to the
+#: tolerance than shooting needs (one per unknown for the Jacobian plus
+#: ``_SHOOTING_OVERHEAD``), and not before ``_AUTO_MIN_REVOLUTIONS`` revolutions.
+@njit(cache=True)
+def _evaluate_samples(times, samples, sample_modes, par, ipar, props, pbuf, out):
+    n = samples.shape[1]
+    dydt = np.empty(n)
+    aux = np.empty(out.shape[1])
+    for k in range(times.shape[0]):
+        mode = sample_modes[k]
+        scene_rhs(times[k], samples[k], mode, par, ipar, props, pbuf, dydt, aux)
+        for j in range(aux.shape[0]):
+            out[k, j] = aux[j]
+
+
+def sample_outputs(model: Model, rev: Revolution) -> np.ndarray:
+    """Auxiliary outputs (layout ``A_*`` of the scene) at every sample, in time order."""
+    out = np.zeros((rev.times.shape[0], N_AUX))
+    _evaluate_samples(
+        rev.times,
+        rev.samples,
+        rev.sample_modes,
+        model.par,
+        model.ipar,
+        model.props,
+        model.props.buffer,
+        out,
+    )
+    return out

@@ -1,0 +1,213 @@
+"""Map plots of a sweep: performance against evaporating temperature, a line per group.
+
+The x axis is the evaporating temperature (in degrees Celsius on the plot) when it
+varies, otherwise the first numeric axis that varies. Every other axis that varies
+(refrigerant, condensing temperature, speed, ...) splits the points into lines:
+colour follows the first such axis, line style the others. Only ``ok`` points are
+drawn. Peak bearing loads are drawn when the summary has ``bearing_max_<name> [N]``
+columns (flexible mechanics).
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from collections.abc import Sequence
+from pathlib import Path
+from typing import Any
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import pandas as pd  # noqa: E402
+from matplotlib.figure import Figure  # noqa: E402
+
+from recipsim.atomic import atomic_write  # noqa: E402
+
+MAP_QUANTITIES: tuple[tuple[str, str, str], ...] = (
+    ("cooling_capacity [W]", "cooling capacity [W]", "map_cooling_capacity.png"),
+    ("shaft_power [W]", "shaft power [W]", "map_shaft_power.png"),
+    ("COP [-]", "COP [-]", "map_COP.png"),
+    ("volumetric_efficiency [-]", "volumetric efficiency [-]", "map_volumetric_efficiency.png"),
+    ("isentropic_efficiency [-]", "isentropic efficiency [-]", "map_isentropic_efficiency.png"),
+)
+BEARING_COLUMN = re.compile(r"^bearing_max_(\w+) \[N\]$")
+EVAPORATING = "evaporating_temperature [K]"
+_STYLES = ("-", "--", ":", "-.")
+_MARKERS = ("o", "s", "^", "D", "v", "P", "X", "*")
+
+
+def _split(column: str) -> tuple[str, str]:
+    """``"name [unit]"`` to (name, unit); no unit gives ``""``."""
+    match = re.match(r"^(.*) \[(.*)\]$", column)
+    return (match.group(1), match.group(2)) if match else (column, "")
+
+
+def _numeric(table: pd.DataFrame, column: str) -> bool:
+    return bool(pd.api.types.is_numeric_dtype(table[column]))
+
+
+def x_column(table: pd.DataFrame, axes: Sequence[str]) -> str | None:
+    """Column for the x axis: the evaporating temperature, else the first numeric axis."""
+    varying = [c for c in axes if c in table and table[c].nunique(dropna=True) > 1]
+    if EVAPORATING in varying:
+        return EVAPORATING
+    for column in varying:
+        if _numeric(table, column):
+            return column
+    if EVAPORATING in table and table[EVAPORATING].nunique(dropna=True) > 1:
+        return EVAPORATING
+    return None
+
+
+def group_columns(table: pd.DataFrame, axes: Sequence[str], x: str) -> list[str]:
+    """Axis columns other than ``x`` that vary: one line per combination of their values."""
+    return [c for c in axes if c != x and c in table and table[c].nunique(dropna=True) > 1]
+
+
+def _display(column: str, values: Any) -> tuple[Any, str]:
+    """Values and axis label for plotting (K as degC, rad/s as rpm)."""
+    name, unit = _split(column)
+    label = name.replace("_", " ")
+    if unit == "K":
+        return values - 273.15, f"{label} [°C]"
+    if unit == "rad/s":
+        return values * 60.0 / (2.0 * math.pi), f"{label} [rpm]"
+    return values, f"{label} [{unit}]" if unit else label
+
+
+def _value_label(column: str, value: Any) -> str:
+    name, unit = _split(column)
+    name = name.replace("_temperature", "").replace("_", " ")
+    if isinstance(value, str):
+        return value if column == "refrigerant" else f"{name} {value}"
+    if unit == "K":
+        return f"{name} {value - 273.15:g} °C"
+    if unit == "rad/s":
+        return f"{name} {value * 60.0 / (2.0 * math.pi):.0f} rpm"
+    return f"{name} {value:g}" + (f" {unit}" if unit and unit != "-" else "")
+
+
+def _lines(
+    table: pd.DataFrame, x: str, groups: list[str]
+) -> list[tuple[str, dict[str, Any], pd.DataFrame]]:
+    """(label, style, rows sorted by x) of each line."""
+    if not groups:
+        return [("", {"color": "C0", "ls": "-", "marker": "o"}, table.sort_values(x))]
+    first = list(dict.fromkeys(table[groups[0]]))
+    rest: list[tuple[Any, ...]] = []
+    out = []
+    for key, rows in table.groupby(groups, sort=False, dropna=False):
+        key = key if isinstance(key, tuple) else (key,)
+        if key[1:] not in rest:
+            rest.append(key[1:])
+        colour = first.index(key[0]) % 10
+        style_index = rest.index(key[1:])
+        style = {
+            "color": f"C{colour}",
+            "ls": _STYLES[style_index % len(_STYLES)],
+            "marker": _MARKERS[style_index % len(_MARKERS)],
+        }
+        label = ", ".join(_value_label(c, v) for c, v in zip(groups, key, strict=True))
+        out.append((label, style, rows.sort_values(x)))
+    return out
+
+
+def plot_map(
+    table: pd.DataFrame,
+    y: str,
+    x: str,
+    groups: list[str],
+    ylabel: str = "",
+    ax: Any = None,
+) -> Figure:
+    """One quantity against ``x``, a line per combination of the ``groups`` columns."""
+    if ax is None:
+        fig, ax = plt.subplots(figsize=(7.0, 4.8), layout="constrained")
+    else:
+        fig = ax.figure
+    xlabel = ""
+    for label, style, rows in _lines(table, x, groups):
+        xs, xlabel = _display(x, rows[x].to_numpy(dtype=float))
+        ax.plot(xs, rows[y].to_numpy(dtype=float), label=label or None, ms=4, lw=1.2, **style)
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel(ylabel or y)
+    ax.grid(True, alpha=0.3)
+    if groups:
+        ax.legend(fontsize=7, ncol=2 if len(ax.get_lines()) > 6 else 1)
+    return fig
+
+
+def bearing_columns(table: pd.DataFrame) -> list[str]:
+    """The ``bearing_max_<name> [N]`` columns of a summary table that hold a value."""
+    return [c for c in table.columns if BEARING_COLUMN.match(str(c)) and table[c].notna().any()]
+
+
+def plot_bearing_loads(table: pd.DataFrame, x: str, groups: list[str]) -> Figure | None:
+    """Peak load of every bearing against ``x``, a panel per bearing (``None`` if none)."""
+    columns = bearing_columns(table)
+    if not columns:
+        return None
+    ncols = min(3, len(columns))
+    nrows = math.ceil(len(columns) / ncols)
+    fig, axes = plt.subplots(
+        nrows, ncols, figsize=(4.2 * ncols, 3.4 * nrows), layout="constrained", squeeze=False
+    )
+    for ax, column in zip(axes.flat, columns, strict=False):
+        name = BEARING_COLUMN.match(column).group(1)  # type: ignore[union-attr]
+        plot_map(table, column, x, groups, ylabel="peak load [N]", ax=ax)
+        ax.set_title(name.replace("_", " "))
+        legend = ax.get_legend()
+        if legend is not None and ax is not axes.flat[0]:
+            legend.remove()
+    for ax in list(axes.flat)[len(columns) :]:
+        ax.set_visible(False)
+    fig.suptitle("peak bearing loads")
+    return fig
+
+
+def save_map_plots(table: pd.DataFrame, axes: Sequence[str], out_dir: Path) -> list[Path]:
+    """Draw the map plots of a summary table into ``out_dir`` (atomically).
+
+    Parameters
+    ----------
+    table : DataFrame
+        The sweep's summary table (all points; only ``ok`` ones are drawn).
+    axes : sequence of str
+        Its axis columns.
+    out_dir : Path
+        Where the PNG files go.
+
+    Returns
+    -------
+    list of Path
+        The files written (none when no point is ``ok`` or nothing numeric varies).
+    """
+    ok = table[table["status"] == "ok"] if "status" in table else table
+    if ok.empty:
+        return []
+    x = x_column(ok, axes)
+    if x is None:
+        return []
+    groups = group_columns(ok, axes, x)
+    figures: list[tuple[str, Figure]] = []
+    for column, label, name in MAP_QUANTITIES:
+        if column in ok:
+            fig = plot_map(ok, column, x, groups, ylabel=label)
+            fig.axes[0].set_title(label.rsplit(" [", 1)[0])
+            figures.append((name, fig))
+    bearings = plot_bearing_loads(ok, x, groups)
+    if bearings is not None:
+        figures.append(("map_bearing_loads.png", bearings))
+    written = []
+    for name, fig in figures:
+        path = Path(out_dir) / name
+
+        def save(tmp: Path, fig: Figure = fig) -> None:
+            fig.savefig(tmp, dpi=110, format="png")
+
+        atomic_write(path, save)
+        plt.close(fig)
+        written.append(path)
+    return written

@@ -1,0 +1,307 @@
+"""Run sweep points: in the calling process, in a local process pool or on Dask.
+
+Every runner calls ``on_result(task, result)`` in the calling process, once per
+point, as soon as that point is finished, so that the caller can write it to disk
+before the next one arrives. None of them distributes work by itself beyond the
+standard library's :class:`concurrent.futures.ProcessPoolExecutor` or an existing
+Dask cluster.
+
+Ctrl-C (:class:`KeyboardInterrupt`): no new point is started, pending points are
+cancelled, the points already running in local workers are collected (a second
+Ctrl-C abandons them) and the interrupt is raised again for the caller. The workers
+ignore Ctrl-C themselves. In the calling process (``--jobs 1``) Ctrl-C stops after
+the current point (a second one exits at once), because an interrupt raised inside
+the solver's CoolProp callback would be swallowed by ctypes with an undefined result.
+A local worker that dies (killed, crashed) stops the sweep with :class:`WorkerLost`;
+the finished points are on disk and a rerun resumes.
+"""
+
+from __future__ import annotations
+
+import multiprocessing
+import os
+import re
+import signal
+import sys
+import threading
+from collections.abc import Callable, Sequence
+from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, wait
+from concurrent.futures.process import BrokenProcessPool
+from typing import Any
+
+from recipsim.errors import CaseError, RecipsimError
+from recipsim.studies.sweep.worker import FAILED, PointTask, init_worker, run_point, worker_version
+
+ResultCallback = Callable[[PointTask, dict[str, Any]], None]
+StartCallback = Callable[[], None]
+
+
+class WorkerLost(RecipsimError):
+    """A worker process died, or the Dask cluster went away, during a sweep."""
+
+
+def _nothing() -> None:
+    return None
+
+
+class _DeferredInterrupt:
+    """Turn Ctrl-C into a request to stop between two points (main thread only).
+
+    The solver calls CoolProp through a ctypes callback; a :class:`KeyboardInterrupt`
+    raised inside it is swallowed by ctypes and the callback's result is then
+    undefined, which could corrupt the point being solved. So in ``--jobs 1`` the
+    first Ctrl-C only asks to stop after the current point; a second one ends the
+    process at once (every file on disk is whole: they are written atomically).
+    """
+
+    def __init__(self) -> None:
+        self.requested = False
+        self._previous: Any = None
+        self._installed = False
+
+    def _handle(self, signum: int, frame: Any) -> None:
+        if self.requested:
+            print("recipsim: interrupted again; stopping now", file=sys.stderr, flush=True)
+            os._exit(130)
+        self.requested = True
+        print(
+            "recipsim: interrupted; finishing the current point (Ctrl-C again to stop at once)",
+            file=sys.stderr,
+            flush=True,
+        )
+
+    def __enter__(self) -> _DeferredInterrupt:
+        if threading.current_thread() is threading.main_thread():
+            self._previous = signal.signal(signal.SIGINT, self._handle)
+            self._installed = True
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        if self._installed:
+            signal.signal(signal.SIGINT, self._previous)
+
+
+def run_inline(
+    tasks: Sequence[PointTask], on_result: ResultCallback, on_start: StartCallback = _nothing
+) -> None:
+    """Run the points one after the other in this process (``--jobs 1``)."""
+    on_start()
+    with _DeferredInterrupt() as interrupt:
+        for task in tasks:
+            result = run_point(task)
+            on_result(task, result)
+            if interrupt.requested:
+                raise KeyboardInterrupt
+
+
+def _context() -> Any:
+    # fork after the parent imported CoolProp and the solver: a worker starts in
+    # milliseconds instead of seconds. Elsewhere the platform's default (spawn).
+    if sys.platform == "linux":
+        return multiprocessing.get_context("fork")
+    return multiprocessing.get_context()
+
+
+def run_pool(
+    tasks: Sequence[PointTask],
+    jobs: int,
+    on_result: ResultCallback,
+    on_start: StartCallback = _nothing,
+) -> None:
+    """Run the points on ``jobs`` persistent local worker processes.
+
+    At most a few points per worker are queued at a time, so that an interrupt has
+    little to cancel.
+    """
+    window = max(2 * jobs, jobs + 2)
+    queue = list(reversed(tasks))
+    running: dict[Future[dict[str, Any]], PointTask] = {}
+    executor = ProcessPoolExecutor(max_workers=jobs, mp_context=_context(), initializer=init_worker)
+    started = False
+    try:
+        try:
+            while queue or running:
+                while queue and len(running) < window:
+                    task = queue.pop()
+                    running[executor.submit(run_point, task)] = task
+                if not started:  # the workers exist once the first point was submitted
+                    started = True
+                    on_start()
+                done, _ = wait(list(running), return_when=FIRST_COMPLETED)
+                for future in done:
+                    task = running.pop(future)
+                    on_result(task, future.result())
+        except KeyboardInterrupt:
+            _drain(running, on_result)
+            raise
+        except BrokenProcessPool:
+            raise WorkerLost(
+                "a worker process died (killed or crashed) while computing a point"
+            ) from None
+    finally:
+        executor.shutdown(wait=False, cancel_futures=True)
+
+
+def _drain(running: dict[Future[dict[str, Any]], PointTask], on_result: ResultCallback) -> None:
+    """After Ctrl-C: cancel what has not started, collect what is running."""
+    for future in list(running):
+        if future.cancel():
+            del running[future]
+    if not running:
+        return
+    print(
+        f"recipsim: interrupted; finishing {len(running)} point(s) in progress "
+        "(Ctrl-C again to abandon them)",
+        file=sys.stderr,
+    )
+    try:
+        for future in list(running):
+            try:
+                result = future.result()
+            except (BrokenProcessPool, Exception):
+                continue
+            on_result(running.pop(future), result)
+    except KeyboardInterrupt:
+        pass
+
+
+_SCHEDULER_ADDRESS = re.compile(r"(tcp|tls|ws|wss|inproc|ucx)://[^\s/]+(:\d+)?/?")
+
+
+def check_scheduler_address(address: str) -> None:
+    """Refuse an address that is not ``PROTOCOL://HOST[:PORT]`` before connecting.
+
+    Raises
+    ------
+    CaseError
+        Naming ``--scheduler`` and the allowed form.
+    """
+    if not _SCHEDULER_ADDRESS.fullmatch(address):
+        raise CaseError(
+            "--scheduler",
+            "",
+            f"{address!r} is not a scheduler address; expected PROTOCOL://HOST:PORT, e.g. "
+            "tcp://127.0.0.1:8786",
+        )
+
+
+def probe_scheduler(address: str, timeout: float) -> None:
+    """Check that a ``tcp://`` address answers like a Dask scheduler within ``timeout``.
+
+    A Dask scheduler sends its handshake as soon as a connection opens; a server that
+    accepts the connection and stays silent (not Dask) would leave ``Client`` waiting
+    for minutes. Other protocols are left to ``Client``'s own timeout.
+
+    Raises
+    ------
+    RecipsimError
+        Nothing listens there, or what listens sends nothing within ``timeout`` [s].
+    """
+    import socket
+
+    protocol, _, location = address.partition("://")
+    if protocol != "tcp":
+        return
+    host, _, port = location.rstrip("/").rpartition(":")
+    if not port.isdigit():
+        host, port = location.rstrip("/"), "8786"
+    try:
+        with socket.create_connection((host.strip("[]"), int(port)), timeout=timeout) as sock:
+            sock.settimeout(timeout)
+            if not sock.recv(1):
+                raise RecipsimError(f"the server at {address} closed the connection: not Dask")
+    except TimeoutError:
+        raise RecipsimError(
+            f"no Dask scheduler answers at {address} within {timeout:g} s (--scheduler-timeout)"
+        ) from None
+    except OSError as exc:
+        raise RecipsimError(
+            f"cannot reach the Dask scheduler at {address}: {exc.strerror or exc}"
+        ) from None
+
+
+def run_dask(
+    tasks: Sequence[PointTask],
+    address: str,
+    on_result: ResultCallback,
+    on_start: StartCallback = _nothing,
+    connect_timeout: float = 10.0,
+) -> None:
+    """Run the points on an existing Dask distributed cluster.
+
+    Parameters
+    ----------
+    tasks : sequence of PointTask
+    address : str
+        Scheduler address, e.g. ``tcp://127.0.0.1:8786``.
+    on_result, on_start : callable
+        See the module docstring.
+    connect_timeout : float
+        Seconds to wait for the scheduler [s].
+
+    Raises
+    ------
+    RecipsimError
+        When Dask is not installed, the scheduler cannot be reached, or the workers
+        cannot import this version of recipsim.
+    WorkerLost
+        When the cluster goes away during the sweep.
+    """
+    try:
+        from dask.distributed import Client, as_completed
+        from distributed.scheduler import KilledWorker
+    except ImportError:
+        raise RecipsimError(
+            "--scheduler needs Dask distributed: pip install 'dask[distributed]' "
+            "(or pip install 'recipsim[dask]')"
+        ) from None
+    check_scheduler_address(address)
+    probe_scheduler(address, connect_timeout)
+    try:
+        client = Client(address, timeout=connect_timeout, set_as_default=False)
+    except Exception as exc:  # OSError on a timeout, ValueError on a malformed address
+        reason = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
+        raise RecipsimError(
+            f"cannot reach the Dask scheduler at {address} within {connect_timeout:g} s: {reason}"
+        ) from None
+    try:
+        from recipsim import __version__
+
+        try:
+            remote = client.submit(worker_version, pure=False).result(timeout=120)
+        except Exception as exc:
+            raise RecipsimError(
+                f"the Dask workers at {address} cannot run recipsim ({type(exc).__name__}: "
+                f"{exc}); install recipsim {__version__} in the workers' environment"
+            ) from None
+        if remote != __version__:
+            raise RecipsimError(
+                f"the Dask workers run recipsim {remote}, this is {__version__}; results "
+                "would not be comparable"
+            )
+        futures = {
+            client.submit(run_point, task, key=f"recipsim-point-{task.point_id}", pure=False): task
+            for task in tasks
+        }
+        on_start()
+        try:
+            for future in as_completed(futures, loop=client.loop):
+                task = futures[future]
+                try:
+                    result = future.result()
+                except KilledWorker as exc:
+                    result = {
+                        "status": FAILED,
+                        "message": f"the point killed its Dask worker repeatedly ({exc})",
+                        "summary": {},
+                    }
+                except Exception as exc:
+                    raise WorkerLost(
+                        f"the Dask cluster failed during the sweep ({type(exc).__name__}: {exc})"
+                    ) from None
+                on_result(task, result)
+        except BaseException:
+            client.cancel([f for f in futures if not f.done()])
+            raise
+    finally:
+        client.close()

@@ -1,0 +1,114 @@
+"""Finished points on disk and the sweep's tables, all written atomically.
+
+Layout of a sweep's output directory ``<out>/<name>/``::
+
+    points/<point_id>.json   one file per finished point (status, message, summary)
+    reports/<point_id>/      per-point reports (with --reports)
+    summary.csv              one row per point, in sweep order
+    summary.parquet          the same table (with --parquet)
+    map_*.png                map plots
+    sweep.toml               the sweep file as run
+    provenance.json          versions, command, counts and timings
+
+Every file is written to a temporary file in the same directory and renamed over its
+destination (:func:`os.replace`), so a killed sweep leaves either the old file or the
+new one, never half of one. Each point file carries the point's inputs (its
+overrides, whose case its id hashes) and a SHA-256 checksum of its content: a file
+that cannot be read, whose checksum does not match (a hand edit, an injected column)
+or whose inputs are not the planned point's counts as missing and the point is
+computed again. Nothing on disk is trusted that recipsim did not write for this point.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+from collections.abc import Sequence
+from pathlib import Path
+from typing import Any
+
+from recipsim.atomic import atomic_file
+from recipsim.studies.sweep.worker import STATUSES
+
+#: A point file larger than this is not read (it was not written by recipsim) [bytes].
+_MAX_RECORD_BYTES = 10_000_000
+
+FORMAT = 2
+
+
+def record_checksum(record: dict[str, Any]) -> str:
+    """SHA-256 of a point record's canonical JSON, its ``checksum`` field left out."""
+    body = {k: v for k, v in record.items() if k != "checksum"}
+    blob = json.dumps(body, sort_keys=True, allow_nan=True, default=str, ensure_ascii=True)
+    return hashlib.sha256(blob.encode()).hexdigest()
+
+
+class PointStore:
+    """The ``points/`` directory of one sweep.
+
+    Parameters
+    ----------
+    root : Path
+        The sweep's output directory ``<out>/<name>``.
+    """
+
+    def __init__(self, root: Path) -> None:
+        self.root = Path(root)
+        self.points = self.root / "points"
+        self.reports = self.root / "reports"
+
+    def path(self, point_id: str) -> Path:
+        """Result file of a point."""
+        return self.points / f"{point_id}.json"
+
+    def report_dir(self, point_id: str) -> Path:
+        """Per-point report directory."""
+        return self.reports / point_id
+
+    def clean_temporaries(self) -> None:
+        """Remove temporary files left by a sweep killed while writing."""
+        if self.points.is_dir():
+            for tmp in self.points.glob(".*.tmp"):
+                tmp.unlink(missing_ok=True)
+
+    def clear(self) -> None:
+        """Forget every finished point (``--fresh``)."""
+        if self.points.is_dir():
+            for path in self.points.glob("*.json"):
+                path.unlink(missing_ok=True)
+
+    def load(self, point_id: str, overrides: Sequence[str]) -> dict[str, Any] | None:
+        """The stored record of a point, or ``None`` if it is not finished.
+
+        Parameters
+        ----------
+        point_id : str
+        overrides : sequence of str
+            The planned point's overrides: a record made for other inputs is ignored.
+        """
+        path = self.path(point_id)
+        try:
+            if path.stat().st_size > _MAX_RECORD_BYTES:
+                return None
+            record = json.loads(path.read_text(encoding="utf-8"))
+        except (OSError, ValueError):
+            return None
+        if (
+            not isinstance(record, dict)
+            or record.get("format") != FORMAT
+            or record.get("checksum") != record_checksum(record)
+            or record.get("point_id") != point_id
+            or record.get("overrides") != list(overrides)
+            or record.get("status") not in STATUSES
+            or not isinstance(record.get("summary"), dict)
+        ):
+            return None
+        return record
+
+    def save(self, point_id: str, record: dict[str, Any]) -> None:
+        """Write a point's record atomically (``format``, ``point_id`` and ``checksum``
+        are added)."""
+        data = {"format": FORMAT, "point_id": point_id, **record}
+        data["checksum"] = record_checksum(data)
+        with atomic_file(self.path(point_id)) as handle:
+            json.dump(data, handle, indent=1, allow_nan=True)

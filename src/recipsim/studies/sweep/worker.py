@@ -1,0 +1,143 @@
+"""Solve one sweep point; this is the function that runs in the worker processes.
+
+:func:`run_point` is a top-level function of an importable module taking and
+returning plain picklable data, so it runs unchanged in a local process pool, in the
+calling process and on Dask workers (which need recipsim installed). It never raises
+for a point that goes wrong: the error becomes the point's ``status`` and
+``message``.
+
+Statuses: ``ok`` (converged), ``not_converged`` (the periodic iteration stopped at
+``solver.max_revolutions``; the row holds the last revolution's values), ``invalid``
+(the case cannot be built: :class:`~recipsim.errors.CaseError`), ``failed`` (the
+integration failed: :class:`~recipsim.errors.SolverError` or another
+:class:`~recipsim.errors.RecipsimError`) and ``error`` (any other exception, a bug).
+"""
+
+from __future__ import annotations
+
+import os
+import signal
+import threading
+import time
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+OK = "ok"
+NOT_CONVERGED = "not_converged"
+INVALID = "invalid"
+FAILED = "failed"
+ERROR = "error"
+STATUSES = (OK, NOT_CONVERGED, INVALID, FAILED, ERROR)
+
+
+@dataclass(frozen=True)
+class PointTask:
+    """What a worker needs to solve one point.
+
+    Attributes
+    ----------
+    index : int
+        Position of the point in the sweep.
+    point_id : str
+        Stable identifier of the point.
+    case : str
+        Absolute path of the base case file.
+    overrides : tuple of str
+        ``KEY=VALUE`` overrides applied to the base case.
+    report_dir : str or None
+        Write the point's report (as ``recipsim run`` does) into this directory.
+    plots : bool
+        With ``report_dir``: also draw the report's figures.
+    allow_external_paths : bool
+        See :func:`recipsim.case.load.load_case`.
+    """
+
+    index: int
+    point_id: str
+    case: str
+    overrides: tuple[str, ...]
+    report_dir: str | None = None
+    plots: bool = False
+    allow_external_paths: bool = False
+
+
+def _plain(value: Any) -> Any:
+    """numpy scalars to Python ones, so that a row pickles small and writes as JSON."""
+    item = getattr(value, "item", None)
+    if item is not None and not isinstance(value, (str, bytes)):
+        try:
+            return item()
+        except (TypeError, ValueError):
+            return value
+    return value
+
+
+def run_point(task: PointTask) -> dict[str, Any]:
+    """Solve one point.
+
+    Parameters
+    ----------
+    task : PointTask
+
+    Returns
+    -------
+    dict
+        ``status`` (see the module docstring), ``message`` (``""`` when ``ok``) and
+        ``summary``, the summary row of :func:`recipsim.results.tables.summary` (units in
+        the keys; empty when the point could not be solved).
+    """
+    from recipsim.case.load import load_case
+    from recipsim.errors import CaseError, RecipsimError
+    from recipsim.report.case_report import write_case_report
+    from recipsim.results.run import simulate_case
+
+    try:
+        argv = ["recipsim", "sweep", f"point {task.point_id}"]
+        case = load_case(
+            task.case, list(task.overrides), allow_external_paths=task.allow_external_paths
+        )
+        run = simulate_case(case, argv)
+        row = {k: _plain(v) for k, v in run.row.items()}
+        if task.report_dir is not None:
+            write_case_report(run, Path(task.report_dir), list(task.overrides), task.plots)
+    except CaseError as exc:
+        return {"status": INVALID, "message": str(exc), "summary": {}}
+    except RecipsimError as exc:
+        return {"status": FAILED, "message": str(exc), "summary": {}}
+    except Exception as exc:  # a bug: keep the sweep going, say what it was
+        return {"status": ERROR, "message": f"{type(exc).__name__}: {exc}", "summary": {}}
+    if row.get("converged [-]"):
+        return {"status": OK, "message": "", "summary": row}
+    message = (
+        f"not converged after {row.get('revolutions [-]')} revolutions "
+        f"(cycle residual {row.get('cycle_residual [-]', float('nan')):.2e}); "
+        "try a larger solver.max_revolutions"
+    )
+    return {"status": NOT_CONVERGED, "message": message, "summary": row}
+
+
+def worker_version() -> str:
+    """recipsim version of a (remote) worker, checked before a Dask sweep starts."""
+    from recipsim import __version__
+
+    return __version__
+
+
+def init_worker() -> None:
+    """Initializer of the local worker processes.
+
+    Ctrl-C is left to the parent (which stops submitting and collects the points in
+    progress); a worker whose parent died (killed sweep) exits by itself within a
+    second instead of lingering.
+    """
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    parent = os.getppid()
+
+    def watch() -> None:
+        while True:
+            time.sleep(0.5)
+            if os.getppid() != parent:
+                os._exit(1)
+
+    threading.Thread(target=watch, name="recipsim-parent-watch", daemon=True).start()
