@@ -19,6 +19,9 @@ from __future__ import annotations
 
 import math
 import time
+from collections.abc import Callable
+
+import numpy as np
 
 from recipsim.model.build import Model
 from recipsim.solve.revolution import (
@@ -37,6 +40,11 @@ from recipsim.solve.revolution import (
     state_change,
 )
 from recipsim.solve.shooting import shooting_cost, solve_shooting
+
+#: ``integrate(model, y, mode, h, samples) -> (revolution, next first step [s])``
+RevolutionIntegrator = Callable[
+    [Model, np.ndarray, np.ndarray, float, int], tuple[Revolution, float]
+]
 
 #: The revolution machinery is defined in :mod:`.revolution`; the names are re-exported
 #: here, where callers look for a periodic solution.
@@ -104,7 +112,11 @@ def solve_periodic(model: Model) -> PeriodicSolution:
     return solve_revolutions(model, hand_over=method == "auto")
 
 
-def solve_revolutions(model: Model, hand_over: bool = False) -> PeriodicSolution:
+def solve_revolutions(
+    model: Model,
+    hand_over: bool = False,
+    integrate: RevolutionIntegrator = integrate_revolution,
+) -> PeriodicSolution:
     """Iterate revolutions until the cycle residual is below the case's tolerance.
 
     Parameters
@@ -112,6 +124,11 @@ def solve_revolutions(model: Model, hand_over: bool = False) -> PeriodicSolution
     model : Model
     hand_over : bool
         Hand over to shooting when revolutions converge too slowly (``"auto"``).
+    integrate : callable
+        ``integrate(model, y, mode, h, samples) -> (revolution, next first step)``:
+        :func:`~recipsim.solve.revolution.integrate_revolution` (the compiled
+        integrator) or another driver of the same scene, e.g. the benchmark's
+        ``solve_ivp`` one (:mod:`recipsim.studies.bench.ivp`).
 
     Raises
     ------
@@ -130,7 +147,7 @@ def solve_revolutions(model: Model, hand_over: bool = False) -> PeriodicSolution
     residual = math.inf
     converged = False
     for count in range(1, s.max_revolutions + 1):
-        rev, h = integrate_revolution(model, y, mode, h, s.samples_per_revolution)
+        rev, h = integrate(model, y, mode, h, s.samples_per_revolution)
         tally.add(rev)
         enthalpy = discharge_enthalpy(model, rev)
         if enthalpy is not None:

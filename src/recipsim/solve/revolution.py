@@ -327,11 +327,15 @@ class _Tally:
         self.events = 0
 
     def add(self, rev: Revolution) -> None:
+        """Count one revolution; a negative step count (an integrator that does not
+        report it) makes the total unknown (-1)."""
         self.revolutions += 1
         self.nfev += int(rev.stats[ST_NFEV])
-        self.steps += int(rev.stats[ST_NACCEPT])
-        self.rejected += int(rev.stats[ST_NREJECT])
         self.events += int(rev.stats[ST_NEVENTS])
+        for name, slot in (("steps", ST_NACCEPT), ("rejected", ST_NREJECT)):
+            count = int(rev.stats[slot])
+            total = getattr(self, name)
+            setattr(self, name, total + count if total >= 0 and count >= 0 else -1)
 
 
 #: ``solver.periodic = "auto"``: revolutions hand over to shooting when the residual's

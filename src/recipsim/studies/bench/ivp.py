@@ -25,7 +25,6 @@ not mean equal error: the benchmark compares at equal measured error.
 from __future__ import annotations
 
 import math
-import time
 import warnings
 from typing import Any
 
@@ -35,17 +34,25 @@ from numba.experimental import jitclass
 from scipy.integrate import solve_ivp
 
 from recipsim.errors import SolverError
-from recipsim.model.build import Model, scenes
+from recipsim.model import scenes
+from recipsim.model.build import Model
 from recipsim.physics.mechanics import layout as mlay
 from recipsim.physics.thermo import cylinder as cyl
 from recipsim.physics.thermo.properties import PROPS_SIGNATURE
-from recipsim.solve.integrator import N_STATS, ST_NACCEPT, ST_NEVENTS, ST_NFEV, ST_NSAMPLES, ST_T
+from recipsim.solve.integrator import (
+    N_STATS,
+    ST_NACCEPT,
+    ST_NEVENTS,
+    ST_NFEV,
+    ST_NREJECT,
+    ST_NSAMPLES,
+    ST_T,
+)
 from recipsim.solve.periodic import (
     PeriodicSolution,
     Revolution,
-    cycle_residual,
-    discharge_enthalpy,
     revolution_setup,
+    solve_revolutions,
 )
 
 #: scipy methods the benchmark drives
@@ -272,6 +279,7 @@ def integrate_revolution_ivp(
     stats = np.zeros(N_STATS)
     stats[ST_NFEV] = nfev
     stats[ST_NACCEPT] = -1  # solve_ivp does not report its steps with t_eval
+    stats[ST_NREJECT] = -1
     stats[ST_NEVENTS] = n_events
     stats[ST_T] = t
     stats[ST_NSAMPLES] = i_sample
@@ -285,8 +293,9 @@ def integrate_revolution_ivp(
 def solve_periodic_ivp(model: Model, method: str) -> PeriodicSolution:
     """Iterate revolutions with ``solve_ivp`` until the cycle residual is below tolerance.
 
-    Mirrors :func:`recipsim.solve.periodic.solve_periodic` (same residual, same plenum
-    update, same stopping rule); ``steps`` is -1 (unknown).
+    The revolution loop is :func:`recipsim.solve.periodic.solve_revolutions` itself
+    (same residual, same plenum update, same stopping rule); only the integrator of a
+    revolution is ``solve_ivp``'s. ``steps`` and ``rejected`` are -1 (not reported).
 
     Raises
     ------
@@ -295,46 +304,13 @@ def solve_periodic_ivp(model: Model, method: str) -> PeriodicSolution:
     """
     if method not in METHODS:
         raise ValueError(f"unknown solve_ivp method {method!r}; expected one of {METHODS}")
-    s = model.case.solver
-    start = time.perf_counter()
-    y = model.y0.copy()
-    mode = model.mode0.copy()
-    previous: Revolution | None = None
-    history: list[float] = []
-    nfev = events = 0
-    rev: Revolution | None = None
-    residual = math.inf
-    converged = False
-    count = 0
-    for count in range(1, s.max_revolutions + 1):
+
+    def integrate(
+        model: Model, y: np.ndarray, mode: np.ndarray, h: float, samples: int
+    ) -> tuple[Revolution, float]:
         with warnings.catch_warnings():
             # NaN derivatives of a failed property call are how a step is rejected here
             warnings.simplefilter("ignore", RuntimeWarning)
-            rev = integrate_revolution_ivp(model, y, mode, s.samples_per_revolution, method)
-        nfev += int(rev.stats[ST_NFEV])
-        events += int(rev.stats[ST_NEVENTS])
-        enthalpy = discharge_enthalpy(model, rev)
-        if enthalpy is not None:
-            model.set_discharge_enthalpy(enthalpy)
-        residual = cycle_residual(model, rev, previous)
-        history.append(residual)
-        y = rev.y_end.copy()
-        mode = rev.mode_end.copy()
-        previous = rev
-        if residual < s.cycle_tolerance and count >= s.min_revolutions:
-            converged = True
-            break
-    assert rev is not None
-    return PeriodicSolution(
-        model=model,
-        final=rev,
-        revolutions=count,
-        residual=residual,
-        converged=converged,
-        residual_history=history,
-        nfev=nfev,
-        steps=-1,
-        rejected=-1,
-        events=events,
-        wall_time=time.perf_counter() - start,
-    )
+            return integrate_revolution_ivp(model, y, mode, samples, method), h
+
+    return solve_revolutions(model, integrate=integrate)
