@@ -15,6 +15,7 @@ import sys
 from pathlib import Path
 from typing import Any
 
+from recipsim import __version__
 from recipsim.cli.bench import add_bench_parser
 from recipsim.cli.check import add_check_parser
 from recipsim.cli.compare import add_compare_parser
@@ -37,6 +38,7 @@ def _parser() -> argparse.ArgumentParser:
         prog="recipsim",
         description="Reciprocating refrigeration compressor simulator (CoolProp cylinder + crank).",
     )
+    parser.add_argument("--version", action="version", version=f"recipsim {__version__}")
     sub = parser.add_subparsers(dest="command", required=True)
     run = sub.add_parser("run", help="simulate cases and write a report per case")
     run.add_argument("cases", nargs="+", type=Path, help="case files (TOML)")

@@ -1,25 +1,23 @@
-"""Figures a compressor engineer expects; the only module that imports matplotlib.
+"""Figures a compressor engineer expects.
 
 Every function takes the cycle table of :func:`recipsim.results.tables.cycle_table` and an
-optional ``ax`` and returns the figure.
+optional ``ax`` and returns the figure. Figures are built with the object-oriented API
+(:class:`matplotlib.figure.Figure`, no pyplot): a library never chooses a backend, so a
+notebook's ``plt.show()`` keeps working; ``savefig`` renders without one.
 """
 
 from __future__ import annotations
 
 from typing import Any
 
-import matplotlib
-
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import pandas as pd  # noqa: E402
-from matplotlib.figure import Figure  # noqa: E402
+import pandas as pd
+from matplotlib.figure import Figure
 
 
 def _axes(ax: Any) -> tuple[Figure, Any]:
     if ax is None:
-        fig, ax = plt.subplots(figsize=(6.4, 4.4), layout="constrained")
-        return fig, ax
+        fig = Figure(figsize=(6.4, 4.4), layout="constrained")
+        return fig, fig.add_subplot()
     return ax.figure, ax
 
 
@@ -120,5 +118,4 @@ def save_cycle_figures(
             figures["orbits.png"] = plot_orbits({label: cycle})
     for name, fig in figures.items():
         fig.savefig(directory / name, dpi=110)
-        plt.close(fig)
     return list(figures)

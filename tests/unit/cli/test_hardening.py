@@ -458,3 +458,15 @@ def test_mutated_cases_exit_0_1_or_2_never_a_traceback_never_outside_out(tmp_pat
         assert box.unchanged()
 
     check()
+
+
+def test_python_m_recipsim_and_version():
+    import subprocess
+    import sys
+
+    from recipsim import __version__
+
+    out = subprocess.run(
+        [sys.executable, "-m", "recipsim", "--version"], capture_output=True, text=True
+    )
+    assert out.returncode == 0 and out.stdout.strip() == f"recipsim {__version__}"

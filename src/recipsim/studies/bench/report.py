@@ -161,9 +161,6 @@ _STYLE = {
 
 def plot(frame: pd.DataFrame, title: str, limit: float = ERROR_LIMIT, by: str = WALL) -> Any:
     """Max error against median time (column ``by``), log-log, one labelled marker per rung."""
-    import matplotlib
-
-    matplotlib.use("Agg")
     from matplotlib.figure import Figure
 
     fig = Figure(figsize=(11, 8))

@@ -16,14 +16,10 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
-import matplotlib
+import pandas as pd
+from matplotlib.figure import Figure
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import pandas as pd  # noqa: E402
-from matplotlib.figure import Figure  # noqa: E402
-
-from recipsim.atomic import atomic_write  # noqa: E402
+from recipsim.atomic import atomic_write
 
 MAP_QUANTITIES: tuple[tuple[str, str, str], ...] = (
     ("cooling_capacity [W]", "cooling capacity [W]", "map_cooling_capacity.png"),
@@ -124,7 +120,8 @@ def plot_map(
 ) -> Figure:
     """One quantity against ``x``, a line per combination of the ``groups`` columns."""
     if ax is None:
-        fig, ax = plt.subplots(figsize=(7.0, 4.8), layout="constrained")
+        fig = Figure(figsize=(7.0, 4.8), layout="constrained")
+        ax = fig.add_subplot()
     else:
         fig = ax.figure
     xlabel = ""
@@ -151,9 +148,8 @@ def plot_bearing_loads(table: pd.DataFrame, x: str, groups: list[str]) -> Figure
         return None
     ncols = min(3, len(columns))
     nrows = math.ceil(len(columns) / ncols)
-    fig, axes = plt.subplots(
-        nrows, ncols, figsize=(4.2 * ncols, 3.4 * nrows), layout="constrained", squeeze=False
-    )
+    fig = Figure(figsize=(4.2 * ncols, 3.4 * nrows), layout="constrained")
+    axes = fig.subplots(nrows, ncols, squeeze=False)
     for ax, column in zip(axes.flat, columns, strict=False):
         name = BEARING_COLUMN.match(column).group(1)  # type: ignore[union-attr]
         plot_map(table, column, x, groups, ylabel="peak load [N]", ax=ax)
@@ -208,6 +204,5 @@ def save_map_plots(table: pd.DataFrame, axes: Sequence[str], out_dir: Path) -> l
             fig.savefig(tmp, dpi=110, format="png")
 
         atomic_write(path, save)
-        plt.close(fig)
         written.append(path)
     return written
