@@ -1,8 +1,14 @@
 """recipsim: reciprocating refrigeration compressor simulator.
 
 The CoolProp real-gas cylinder model and the crank train are solved together, step
-by step, with a compiled integrator. See the README for the two commands a
-newcomer needs and ``docs`` in the repository for the physics.
+by step, with a compiled integrator. The public API (:mod:`recipsim.api`)::
+
+    import recipsim
+    case = recipsim.load_case("reference_r134a_lbp", {"operating_point.shaft_speed": "3000 rpm"})
+    result = recipsim.simulate(case)
+    result.summary["COP [-]"], result.plot_pv(), result.write("reports/run")
+
+The names are loaded on first use, so ``import recipsim`` stays cheap.
 """
 
 from __future__ import annotations
@@ -13,6 +19,27 @@ import sys
 from pathlib import Path
 
 __version__ = "0.1.0"
+
+__all__ = ["Case", "CaseError", "Result", "SolverError", "load_case", "simulate", "__version__"]
+
+_API = {
+    "Case": "recipsim.api",
+    "Result": "recipsim.api",
+    "load_case": "recipsim.api",
+    "simulate": "recipsim.api",
+    "CaseError": "recipsim.errors",
+    "SolverError": "recipsim.errors",
+}
+
+
+def __getattr__(name: str) -> object:
+    """The public API, imported when first asked for (PEP 562)."""
+    if name in _API:
+        import importlib
+
+        return getattr(importlib.import_module(_API[name]), name)
+    raise AttributeError(f"module 'recipsim' has no attribute {name!r}")
+
 
 #: Modules holding compiled code or the layout constants compiled code reads.
 _COMPILED_SOURCES = ("physics", "model", "solve")

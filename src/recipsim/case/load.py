@@ -12,14 +12,21 @@ below evaporating.
 from __future__ import annotations
 
 import copy
+import json
 import math
 import tomllib
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from recipsim.atomic import checked_name, name_from_stem
-from recipsim.case.files import MAX_EXTENDS_DEPTH, read_toml, resolve_reference
+from recipsim.case.files import (
+    MAX_EXTENDS_DEPTH,
+    read_toml,
+    resolve_reference,
+    shipped_case_dirs,
+)
 from recipsim.case.mechanism import MechanismSpec, mechanism_from_dict
 from recipsim.case.motor import motor_from_table
 from recipsim.case.pressure_curve import read_pressure_curve
@@ -292,6 +299,43 @@ class Case:
     motor: MotorSpec | None = None
     raw: dict[str, Any] = field(default_factory=dict, repr=False, compare=False)
     source_text: str = field(default="", repr=False, compare=False)
+    #: the ``KEY=VALUE`` overrides applied on top of the file, in order
+    overrides: tuple[str, ...] = field(default=(), compare=False)
+    allow_external_paths: bool = field(default=False, repr=False, compare=False)
+
+    def with_(self, overrides: Mapping[str, Any] | None = None, **keys: Any) -> Case:
+        """A new case with some values changed, validated exactly like the file.
+
+        Parameters
+        ----------
+        overrides : mapping, optional
+            Dotted case keys to values, e.g. ``{"operating_point.shaft_speed": "3000 rpm"}``
+            (a string with a unit, or a bare number in SI).
+        **keys
+            The same with ``__`` for the dots: ``operating_point__shaft_speed="3000 rpm"``.
+
+        Returns
+        -------
+        Case
+            This case is unchanged (cases are immutable).
+
+        Raises
+        ------
+        CaseError
+            Naming the key and what is allowed, as for the file.
+        """
+        changes = dict(overrides or {})
+        changes.update({key.replace("__", "."): value for key, value in keys.items()})
+        texts = override_texts(changes)
+        raw = apply_overrides(self.raw, texts, self.path)
+        case = case_from_dict(
+            raw, self.path, self.source_text, allow_external_paths=self.allow_external_paths
+        )
+        return replace(
+            case,
+            overrides=self.overrides + tuple(texts),
+            allow_external_paths=self.allow_external_paths,
+        )
 
 
 def parse_override(text: str) -> tuple[list[str], Any]:
@@ -313,6 +357,55 @@ def parse_override(text: str) -> tuple[list[str], Any]:
     return path, parsed
 
 
+def toml_literal(value: Any) -> str:
+    """Write a scalar as a TOML value, the right-hand side of a ``--set`` override."""
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, int):
+        return str(value)
+    if isinstance(value, float):
+        if math.isnan(value):
+            return "nan"
+        if math.isinf(value):
+            return "inf" if value > 0 else "-inf"
+        return repr(value)
+    if isinstance(value, str):
+        return json.dumps(value, ensure_ascii=False)
+    raise TypeError(f"not a TOML scalar: {value!r}")
+
+
+def override(key: str, value: Any) -> str:
+    """``KEY=VALUE`` text for one case value (checked to read back as ``value``).
+
+    Raises
+    ------
+    CaseError
+        Naming the key, if ``value`` is not a TOML scalar that reads back unchanged.
+    """
+    try:
+        literal = toml_literal(value)
+    except TypeError:
+        raise CaseError(
+            "overrides", key, f"{value!r} is not allowed; a number, a string or a boolean"
+        ) from None
+    text = f"{key}={literal}"
+    _, parsed = parse_override(text)
+    if parsed != value and not (isinstance(value, float) and math.isnan(value)):
+        raise CaseError("--set", key, f"{value!r} cannot be written as an override")
+    return text
+
+
+def override_texts(overrides: Mapping[str, Any] | Sequence[str] | None) -> list[str]:
+    """``KEY=VALUE`` texts from a mapping of dotted keys to values, or from such texts."""
+    if overrides is None:
+        return []
+    if isinstance(overrides, Mapping):
+        return [override(str(key), value) for key, value in overrides.items()]
+    if isinstance(overrides, str):
+        return [overrides]
+    return [str(text) for text in overrides]
+
+
 def apply_overrides(raw: dict[str, Any], overrides: list[str], file: str) -> dict[str, Any]:
     """Return a copy of ``raw`` with ``--set`` overrides applied."""
     data = copy.deepcopy(raw)
@@ -329,16 +422,21 @@ def apply_overrides(raw: dict[str, Any], overrides: list[str], file: str) -> dic
 
 
 def load_case(
-    path: str | Path, overrides: list[str] | None = None, *, allow_external_paths: bool = False
+    path: str | Path,
+    overrides: Mapping[str, Any] | Sequence[str] | None = None,
+    *,
+    allow_external_paths: bool = False,
 ) -> Case:
     """Read, override and validate a case file.
 
     Parameters
     ----------
     path : str or Path
-        The TOML case file.
-    overrides : list of str
-        ``KEY=VALUE`` strings, KEY a dotted path into the file.
+        The TOML case file, or the name of a shipped case (``"reference_r134a_lbp"``).
+    overrides : mapping or list of str, optional
+        Dotted case keys to values (``{"operating_point.shaft_speed": "3000 rpm"}``), or
+        ``KEY=VALUE`` strings as on the command line (``--set``); validated exactly like
+        the file.
     allow_external_paths : bool
         Let ``extends`` and ``pressure_curve.file`` name files outside the case file's
         directory (absolute paths, ``..``); by default only files beside the case, below
@@ -353,12 +451,26 @@ def load_case(
     CaseError
         With the file, the key and what is allowed.
     """
-    path = Path(path)
+    path = shipped_case(path)
     file = str(path)
+    texts = override_texts(overrides)
     raw, text = read_toml(path, "case")
     raw = resolve_extends(raw, path, [path.resolve()], allow_external_paths)
-    raw = apply_overrides(raw, overrides or [], file)
-    return case_from_dict(raw, file, text, allow_external_paths=allow_external_paths)
+    raw = apply_overrides(raw, texts, file)
+    case = case_from_dict(raw, file, text, allow_external_paths=allow_external_paths)
+    return replace(case, overrides=tuple(texts), allow_external_paths=allow_external_paths)
+
+
+def shipped_case(path: str | Path) -> Path:
+    """``path`` itself, or the shipped case it names (a bare name that is not a file)."""
+    text = str(path)
+    if Path(text).exists() or any(c in text for c in "/\\") or text.endswith(".toml"):
+        return Path(path)
+    for directory in shipped_case_dirs():
+        candidate = directory / f"{text}.toml"
+        if candidate.is_file():
+            return candidate
+    return Path(path)  # read_toml reports it missing
 
 
 def _deep_merge(base: dict[str, Any], child: dict[str, Any]) -> dict[str, Any]:

@@ -38,6 +38,7 @@ from recipsim.case.load import (
     VALVES_TOP_SPEC,
     apply_overrides,
     load_case,
+    override,
     parse_override,
     resolve_extends,
 )
@@ -104,32 +105,6 @@ class PlannedPoint:
     point_id: str
     overrides: tuple[str, ...]
     columns: dict[str, Any] = field(default_factory=dict)
-
-
-def toml_literal(value: Any) -> str:
-    """Write a scalar as a TOML value, the right-hand side of a ``--set`` override."""
-    if isinstance(value, bool):
-        return "true" if value else "false"
-    if isinstance(value, int):
-        return str(value)
-    if isinstance(value, float):
-        if math.isnan(value):
-            return "nan"
-        if math.isinf(value):
-            return "inf" if value > 0 else "-inf"
-        return repr(value)
-    if isinstance(value, str):
-        return json.dumps(value, ensure_ascii=False)
-    raise TypeError(f"not a TOML scalar: {value!r}")
-
-
-def override(key: str, value: Any) -> str:
-    """``KEY=VALUE`` text for one case value (checked to read back as ``value``)."""
-    text = f"{key}={toml_literal(value)}"
-    _, parsed = parse_override(text)
-    if parsed != value and not (isinstance(value, float) and math.isnan(value)):
-        raise CaseError("--set", key, f"{value!r} cannot be written as an override")
-    return text
 
 
 def _field_for(key: str) -> Field | Choice | Text | None:

@@ -1,0 +1,64 @@
+"""The public API: load a shipped case by name, change it, simulate, plot, write; the
+same numbers as the command line, the same validation as the file."""
+
+from __future__ import annotations
+
+import dataclasses
+
+import pandas as pd
+import pytest
+from matplotlib.figure import Figure
+
+import recipsim
+from helpers import REFERENCE
+from recipsim.cli import main
+
+FAST = {"solver.max_revolutions": 3, "solver.min_revolutions": 1, "solver.cycle_tolerance": 0.05}
+
+
+def test_round_trip_by_name_equals_the_command_line(tmp_path, capsys):
+    case = recipsim.load_case("reference_r134a_lbp", {"operating_point.shaft_speed": "3000 rpm"})
+    case = case.with_(FAST)
+    assert case.path == str(REFERENCE)
+    assert case.operating_point.shaft_speed == pytest.approx(3000 * 2 * 3.141592653589793 / 60)
+    result = recipsim.simulate(case)
+    assert isinstance(result.summary, pd.Series) and result.converged
+    cop = result.summary["COP [-]"]
+    assert 1.0 < cop < 5.0
+    fig = Figure()
+    ax = fig.add_subplot()
+    assert result.plot_pv(ax=ax) is ax and ax.lines
+    assert result.plot_pressure().figure is not fig
+    report = result.write(tmp_path / "api" / "reference")
+    assert (report / "summary.csv").is_file()
+    sets = ['operating_point.shaft_speed="3000 rpm"'] + [f"{k}={v}" for k, v in FAST.items()]
+    argv = ["run", str(REFERENCE), "--out", str(tmp_path / "cli"), "--no-plots", "--quiet"]
+    assert main([*argv, *[a for s in sets for a in ("--set", s)]]) == 0
+    cli = pd.read_csv(tmp_path / "cli" / "reference_r134a_lbp" / "summary.csv")
+    api = pd.read_csv(report / "summary.csv")
+    for column in ("COP [-]", "cooling_capacity [W]", "shaft_power [W]", "revolutions [-]"):
+        assert api[column].iloc[0] == cli[column].iloc[0], column
+    header = (report / "case.toml").read_text().splitlines()[:4]
+    assert any("shaft_speed" in line for line in header)
+
+
+def test_with_validates_like_the_file_and_keeps_cases_immutable():
+    case = recipsim.load_case("reference_r134a_lbp")
+    with pytest.raises(recipsim.CaseError) as api:
+        case.with_(solver__rtol=-1)
+    with pytest.raises(recipsim.CaseError) as cli:
+        recipsim.load_case(REFERENCE, ["solver.rtol=-1"])
+    assert api.value.key == cli.value.key == "solver.rtol"
+    assert api.value.message == cli.value.message
+    slower = case.with_({"operating_point.shaft_speed": "2000 rpm"})
+    assert slower.operating_point.shaft_speed < case.operating_point.shaft_speed
+    assert case.overrides == () and slower.overrides == ('operating_point.shaft_speed="2000 rpm"',)
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        case.name = "x"  # type: ignore[misc]
+    with pytest.raises(recipsim.CaseError, match="not allowed"):
+        case.with_({"geometry.bore": [1, 2]})
+
+
+def test_an_unknown_name_is_a_clear_error():
+    with pytest.raises(recipsim.CaseError, match="no such case file"):
+        recipsim.load_case("no_such_case")
