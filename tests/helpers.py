@@ -6,7 +6,7 @@ import tomllib
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
-CASES = ROOT / "cases"
+CASES = ROOT / "src" / "recipsim" / "data" / "cases"
 REFERENCE = CASES / "reference_r134a_lbp.toml"
 ALL_CASES = sorted(CASES.glob("*.toml"))
 

@@ -1,8 +1,8 @@
-"""``recipsim check cases/hard --fast``: every hard case meets its expectation; the check's
+"""``recipsim check hard --fast``: every hard case meets its expectation; the check's
 table logic (reed openings, judging, expectations file, CSV, exit status).
 
 The suite run (one module-scoped fixture, about 20 s on one core) is the CI run of the
-stability suite: each case must end as cases/hard/expectations.toml says, converged
+stability suite: each case must end as the hard cases' expectations.toml says, converged
 cases with finite results and closures within the tolerances of recipsim.studies.check
 (mass 1e-3, energy 5e-3 of the swept mass and its isentropic work; drive 5e-3). The
 unit tests use synthetic rows and refused cases only (nothing is integrated).
@@ -54,7 +54,7 @@ REQUIRED = {
 
 @pytest.fixture(scope="module")
 def suite(tmp_path_factory: pytest.TempPathFactory) -> dict[str, CheckRow]:
-    """``recipsim check cases/hard --fast`` through the Python API, rows by case."""
+    """``recipsim check hard --fast`` through the Python API, rows by case."""
     rows = run_check([HARD], fast=True)
     write_check_csv(rows, tmp_path_factory.mktemp("check"))
     return {r.case: r for r in rows}

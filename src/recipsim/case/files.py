@@ -11,6 +11,7 @@ from __future__ import annotations
 import os
 import stat
 import tomllib
+from importlib import resources
 from pathlib import Path
 from typing import Any
 
@@ -25,12 +26,33 @@ MAX_EXTENDS_DEPTH = 16
 #: Deepest nesting of tables or arrays inside one TOML file.
 MAX_TOML_NESTING = 12
 
-_SHIPPED_CASES = Path(__file__).resolve().parents[3] / "cases"
+
+def package_data(*parts: str) -> Path:
+    """A folder of the data shipped inside the package (``recipsim/data/...``)."""
+    return Path(str(resources.files("recipsim").joinpath("data", *parts)))
+
+
+def shipped_path(path: str | Path, folder: str = "") -> Path:
+    """``path`` itself if it exists, else the shipped case file or folder it names.
+
+    A bare name (no separator) is looked up among the shipped cases (``folder``:
+    ``""`` for cases, ``"sweeps"`` for sweep files, ``""`` also finds the ``hard``
+    folder), with ``.toml`` added for a file; anything else is returned unchanged, so
+    that reading it reports it missing.
+    """
+    text = str(path)
+    if Path(text).exists() or any(c in text for c in "/\\"):
+        return Path(path)
+    base = package_data("cases", folder) if folder else package_data("cases")
+    for candidate in (base / text, base / f"{text}.toml"):
+        if candidate.exists():
+            return candidate
+    return Path(path)
 
 
 def shipped_case_dirs() -> list[Path]:
     """Directories holding the shipped cases, searched for a case given by name."""
-    return [d for d in (_SHIPPED_CASES,) if d.is_dir()]
+    return [d for d in (package_data("cases"),) if d.is_dir()]
 
 
 def read_input_bytes(path: Path, kind: str, limit: int, file: str = "", key: str = "") -> bytes:

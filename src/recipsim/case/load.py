@@ -25,7 +25,7 @@ from recipsim.case.files import (
     MAX_EXTENDS_DEPTH,
     read_toml,
     resolve_reference,
-    shipped_case_dirs,
+    shipped_path,
 )
 from recipsim.case.mechanism import MechanismSpec, mechanism_from_dict
 from recipsim.case.motor import motor_from_table
@@ -463,14 +463,8 @@ def load_case(
 
 def shipped_case(path: str | Path) -> Path:
     """``path`` itself, or the shipped case it names (a bare name that is not a file)."""
-    text = str(path)
-    if Path(text).exists() or any(c in text for c in "/\\") or text.endswith(".toml"):
-        return Path(path)
-    for directory in shipped_case_dirs():
-        candidate = directory / f"{text}.toml"
-        if candidate.is_file():
-            return candidate
-    return Path(path)  # read_toml reports it missing
+    found = shipped_path(path)
+    return found if found.is_file() or not found.is_dir() else Path(path)
 
 
 def _deep_merge(base: dict[str, Any], child: dict[str, Any]) -> dict[str, Any]:

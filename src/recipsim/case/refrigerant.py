@@ -20,7 +20,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any, TypeAlias
 
 from recipsim.atomic import checked_name
-from recipsim.case.files import read_toml
+from recipsim.case.files import package_data, read_toml
 from recipsim.case.schema import Field, Spec, Text, check_keys, read_table
 from recipsim.errors import CaseError
 from recipsim.physics.thermo.coolprop_info import fluid_constants
@@ -81,7 +81,8 @@ def refrigerant_dirs(extra: list[Path] | None = None) -> list[Path]:
     """Directories searched for refrigerant files, in order.
 
     ``$RECIPSIM_REFRIGERANTS``, then ``extra`` (the case's folder and its parent),
-    the working directory's ``refrigerants/`` and the repository's ``refrigerants/``.
+    the working directory's ``refrigerants/`` and the refrigerants shipped in the package
+    (``recipsim/data/refrigerants``).
     """
     dirs: list[Path] = []
     env = os.environ.get("RECIPSIM_REFRIGERANTS")
@@ -90,7 +91,7 @@ def refrigerant_dirs(extra: list[Path] | None = None) -> list[Path]:
     for d in extra or []:
         dirs.append(d / "refrigerants")
     dirs.append(Path.cwd() / "refrigerants")
-    dirs.append(Path(__file__).resolve().parents[3] / "refrigerants")
+    dirs.append(package_data("refrigerants"))
     seen: list[Path] = []
     for d in dirs:
         if d not in seen:

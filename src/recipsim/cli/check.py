@@ -14,6 +14,7 @@ import sys
 from pathlib import Path
 from typing import Any
 
+from recipsim.case.files import shipped_path
 from recipsim.cli.options import add_common_options, exit_status, positive_int
 
 
@@ -23,13 +24,19 @@ def add_check_parser(sub: Any) -> argparse.ArgumentParser:
         "check",
         help="run a set of (hard) cases and compare each outcome with its expectation",
         description=(
-            "Run every case of the given directories or files (e.g. cases/hard), compare "
-            "each outcome (converged, not converged, refused, failed) and its mass, energy "
-            "and drive closures with the expectations.toml beside the cases, print a "
-            "table and write <out>/check.csv. A failing case is a row; the check goes on."
+            "Run every case of the given directories or files (e.g. 'hard', the shipped "
+            "hard cases), compare each outcome (converged, not converged, refused, "
+            "failed) and its mass, energy and drive closures with the expectations.toml "
+            "beside the cases, print a table and write <out>/check.csv. A failing case is a "
+            "row; the check goes on."
         ),
     )
-    parser.add_argument("paths", nargs="+", type=Path, help="case directories or files")
+    parser.add_argument(
+        "paths",
+        nargs="+",
+        type=shipped_path,
+        help="case directories or files, or a shipped folder or case by name (e.g. hard)",
+    )
     parser.add_argument(
         "--fast",
         action="store_true",

@@ -30,7 +30,9 @@ def add_paper_parser(sub: Any) -> None:
         "paper",
         help="the paper's study: pinned vs flexible bearing loads (table1.csv, figures)",
     )
-    p.add_argument("case", type=Path, help="case file (TOML), e.g. cases/paper_tabulated.toml")
+    p.add_argument(
+        "case", type=Path, help="case file (TOML) or a shipped case name, e.g. paper_tabulated"
+    )
     add_common_options(p, None, "output directory (default reports/paper/<case>)")
     p.set_defaults(
         handler=lambda args, argv: exit_status(lambda: run_paper_command(args), str(args.case))

@@ -43,7 +43,7 @@ def add_sweep_parser(sub: Any) -> argparse.ArgumentParser:
         ),
     )
     parser.add_argument(
-        "sweep", type=Path, help="sweep file (TOML), e.g. cases/sweeps/lbp_map.toml"
+        "sweep", type=Path, help="sweep file (TOML) or a shipped sweep by name, e.g. lbp_map"
     )
     parser.add_argument(
         "-j",

@@ -1,6 +1,6 @@
 """Stability checks: run a set of (hard) cases and compare each outcome with its expectation.
 
-``recipsim check cases/hard`` runs every case file of a directory (see
+``recipsim check hard`` runs every case file of a directory (see
 :mod:`recipsim.cli.check`), one row per case, and never stops at a failing case:
 
 - outcome ``converged`` / ``not_converged``: the run went to its end (the periodic

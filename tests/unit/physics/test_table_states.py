@@ -18,7 +18,7 @@ import sys
 
 import pytest
 
-from helpers import ROOT
+from helpers import REFERENCE
 from recipsim.case.refrigerant import load_refrigerant
 from recipsim.physics.thermo.coolprop_info import coolprop_version, fluid_constants
 from recipsim.physics.thermo.fluid import Fluid
@@ -116,7 +116,7 @@ def test_run_with_table_properties_does_not_import_coolprop(tmp_path):
 import json, sys
 from recipsim.results.run import simulate_case
 from recipsim.case.load import load_case
-run = simulate_case(load_case({str(ROOT / "cases" / "reference_r134a_lbp.toml")!r}))
+run = simulate_case(load_case({str(REFERENCE)!r}))
 print(json.dumps({{"coolprop": "CoolProp" in sys.modules,
                   "capacity": run.row["cooling_capacity [W]"],
                   "power": run.row["indicated_power [W]"],
@@ -132,7 +132,7 @@ print(json.dumps({{"coolprop": "CoolProp" in sys.modules,
     from recipsim.case.load import load_case
     from recipsim.results.run import simulate_case
 
-    case = load_case(ROOT / "cases" / "reference_r134a_lbp.toml", ["options.properties=heos"])
+    case = load_case(REFERENCE, ["options.properties=heos"])
     heos_run = simulate_case(case).row
     assert _rel(table_run["capacity"], heos_run["cooling_capacity [W]"]) < 1e-5
     assert _rel(table_run["power"], heos_run["indicated_power [W]"]) < 1e-6

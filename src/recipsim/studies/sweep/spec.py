@@ -37,7 +37,7 @@ from pathlib import Path
 from typing import Any
 
 from recipsim.atomic import checked_name, name_from_stem
-from recipsim.case.files import read_toml, resolve_reference
+from recipsim.case.files import read_toml, resolve_reference, shipped_path
 from recipsim.case.schema import check_keys
 from recipsim.errors import CaseError
 
@@ -232,7 +232,7 @@ def load_sweep(path: str | Path, allow_external_paths: bool = False) -> SweepSpe
     CaseError
         Naming the sweep file, the key and what is allowed.
     """
-    path = Path(path)
+    path = shipped_path(path, "sweeps")
     file = str(path)
     raw, text = read_toml(path, "sweep")
     check_keys(raw, SWEEP_KEYS, file, "")
