@@ -33,21 +33,22 @@ def package_data(*parts: str) -> Path:
 
 
 def shipped_path(path: str | Path, folder: str = "") -> Path:
-    """``path`` itself if it exists, else the shipped case file or folder it names.
+    """``path`` itself, or the shipped case file or folder that a bare name means.
 
-    A bare name (no separator) is looked up among the shipped cases (``folder``:
-    ``""`` for cases, ``"sweeps"`` for sweep files, ``""`` also finds the ``hard``
-    folder), with ``.toml`` added for a file; anything else is returned unchanged, so
-    that reading it reports it missing.
+    Order: an existing file ``path``; a shipped file ``<name>.toml`` (``folder``: ``""``
+    for cases, ``"sweeps"`` for sweep files); an existing folder ``path``; a shipped
+    folder (``hard``). A path with a separator is returned unchanged, and so is a name
+    found nowhere, so that reading it reports it missing.
     """
     text = str(path)
-    if Path(text).exists() or any(c in text for c in "/\\"):
-        return Path(path)
+    local = Path(path)
+    if local.is_file() or any(c in text for c in "/\\"):
+        return local
     base = package_data("cases", folder) if folder else package_data("cases")
-    for candidate in (base / text, base / f"{text}.toml"):
+    for candidate in (base / f"{text}.toml", local, base / text):
         if candidate.exists():
             return candidate
-    return Path(path)
+    return local
 
 
 def shipped_case_dirs() -> list[Path]:

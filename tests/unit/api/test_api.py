@@ -62,3 +62,13 @@ def test_with_validates_like_the_file_and_keeps_cases_immutable():
 def test_an_unknown_name_is_a_clear_error():
     with pytest.raises(recipsim.CaseError, match="no such case file"):
         recipsim.load_case("no_such_case")
+
+
+def test_a_shipped_name_wins_over_a_local_folder_of_that_name(tmp_path, monkeypatch):
+    """Running from a folder that holds a report directory named like the case."""
+    (tmp_path / "reference_r134a_lbp").mkdir()
+    monkeypatch.chdir(tmp_path)
+    assert recipsim.load_case("reference_r134a_lbp").path == str(REFERENCE)
+    local = tmp_path / "mine.toml"
+    local.write_text('extends = "reference_r134a_lbp"\nname = "mine"\n')
+    assert recipsim.load_case("mine.toml").name == "mine"  # a local file is itself
