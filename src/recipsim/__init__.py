@@ -20,13 +20,25 @@ from pathlib import Path
 
 __version__ = "0.1.0"
 
-__all__ = ["Case", "CaseError", "Result", "SolverError", "load_case", "simulate", "__version__"]
+__all__ = [
+    "Case",
+    "CaseError",
+    "Result",
+    "SolverError",
+    "__version__",
+    "compare",
+    "load_case",
+    "simulate",
+    "sweep",
+]
 
 _API = {
     "Case": "recipsim.api",
     "Result": "recipsim.api",
     "load_case": "recipsim.api",
     "simulate": "recipsim.api",
+    "sweep": "recipsim.api",
+    "compare": "recipsim.api",
     "CaseError": "recipsim.errors",
     "SolverError": "recipsim.errors",
 }

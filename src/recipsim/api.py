@@ -14,13 +14,14 @@ is ever chosen.
 
 from __future__ import annotations
 
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 import pandas as pd
 
-from recipsim.case.load import Case, load_case
+from recipsim.case.load import Case, load_case, parse_override, toml_literal
 from recipsim.results.run import CaseRun, simulate_case
 
 if TYPE_CHECKING:
@@ -28,7 +29,7 @@ if TYPE_CHECKING:
 
     from recipsim.solve.periodic import PeriodicSolution
 
-__all__ = ["Case", "Result", "load_case", "simulate"]
+__all__ = ["Case", "Result", "compare", "load_case", "simulate", "sweep"]
 
 
 @dataclass(frozen=True)
@@ -143,3 +144,106 @@ def simulate(case: Case) -> Result:
         solution=run.solution,
         _run=run,
     )
+
+
+def compare(a: Case | Result, b: Case | Result) -> pd.DataFrame:
+    """Compare two cases (simulated here if they are not results yet).
+
+    Returns
+    -------
+    pandas.DataFrame
+        The table of ``recipsim compare``'s ``comparison.csv``: one row per summary
+        quantity and per bearing's RMS, peak and orbit; a column per case (named after
+        it, suffixed ``_a``/``_b`` when the names are equal); ``difference`` (B - A) and
+        ``relative_difference [-]``.
+    """
+    from recipsim.studies.compare import case_labels, comparison_table
+
+    results = [r if isinstance(r, Result) else simulate(r) for r in (a, b)]
+    labels = case_labels(results[0].case.name, results[1].case.name)
+    return comparison_table(results[0]._run.row, results[1]._run.row, *labels)
+
+
+def sweep(
+    case: Case,
+    axes: Mapping[str, Sequence[Any]],
+    *,
+    jobs: int | None = 1,
+    scheduler: str | None = None,
+    directory: str | Path | None = None,
+    name: str | None = None,
+    plots: bool = False,
+    max_points: int | None = None,
+) -> pd.DataFrame:
+    """Run ``case`` over a grid of case values: the engine of ``recipsim sweep``.
+
+    Parameters
+    ----------
+    case : Case
+        The base case (its file and the overrides it carries).
+    axes : mapping of str to sequence
+        Dotted case key to its values, combined as a grid, the first key slowest:
+        ``{"operating_point.evaporating_temperature": ["-30 degC", "-20 degC"]}``.
+    jobs : int, optional
+        Worker processes (``None``: every CPU; 1: this process). Ignored with ``scheduler``.
+    scheduler : str, optional
+        Address of a Dask distributed scheduler.
+    directory : str or Path, optional
+        Parent of the sweep's output directory ``<directory>/<name>``; the sweep
+        resumes from the points already there. Default: a temporary directory (not
+        kept).
+    name : str, optional
+        Sweep name (default ``<case name>_sweep``).
+    plots : bool
+        Draw the map plots.
+    max_points : int, optional
+        Refuse larger grids (default 100 000).
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per point: the axes (SI), ``status``, ``message`` and the summary.
+
+    Raises
+    ------
+    CaseError
+        An unknown key or a grid over the limit, before anything runs.
+    """
+    import tempfile
+
+    from recipsim.studies.sweep.engine import run_sweep
+    from recipsim.studies.sweep.spec import DEFAULT_MAX_POINTS, SweepSpec
+
+    sweep_name = name or f"{case.name}_sweep"
+    fixed = tuple((".".join(parse_override(t)[0]), parse_override(t)[1]) for t in case.overrides)
+    grid = tuple((str(key), tuple(values)) for key, values in axes.items())
+    lines = [f"name = {toml_literal(sweep_name)}", f"base = {toml_literal(case.path)}"]
+    lines += ["[set]"] + [f"{toml_key(k)} = {toml_literal(v)}" for k, v in fixed]
+    lines += ["[axes]"]
+    lines += [f"{toml_key(k)} = [{', '.join(toml_literal(v) for v in vs)}]" for k, vs in grid]
+    spec = SweepSpec(
+        name=sweep_name,
+        description=f"recipsim.sweep of {case.name}",
+        path=Path(case.path),
+        text="\n".join(lines) + "\n",
+        base=Path(case.path).resolve(),
+        fixed=fixed,
+        axes=grid,
+        points=(),
+        max_points=DEFAULT_MAX_POINTS if max_points is None else max_points,
+    )
+    options: dict[str, Any] = {
+        "jobs": jobs,
+        "scheduler": scheduler,
+        "plots": plots,
+        "allow_external_paths": case.allow_external_paths,
+    }
+    if directory is not None:
+        return run_sweep(spec, out=Path(directory), **options).table
+    with tempfile.TemporaryDirectory(prefix="recipsim-sweep-") as tmp:
+        return run_sweep(spec, out=Path(tmp), **options).table
+
+
+def toml_key(dotted: str) -> str:
+    """A dotted case key as a TOML key (each part quoted)."""
+    return ".".join(toml_literal(part) for part in dotted.split("."))

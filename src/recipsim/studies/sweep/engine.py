@@ -155,7 +155,7 @@ def build_table(
 
 
 def run_sweep(
-    path: str | Path,
+    path: str | Path | SweepSpec,
     *,
     jobs: int | None = None,
     scheduler: str | None = None,
@@ -177,8 +177,8 @@ def run_sweep(
 
     Parameters
     ----------
-    path : str or Path
-        Sweep file.
+    path : str, Path or SweepSpec
+        Sweep file, or a sweep built in Python (:func:`recipsim.api.sweep`).
     jobs : int, optional
         Local worker processes (default: the CPUs available); 1 runs the points in
         this process. Ignored with ``scheduler``.
@@ -228,7 +228,7 @@ def run_sweep(
         A worker died; finished points are kept and a rerun resumes.
     """
     start = time.perf_counter() if started is None else started
-    spec = load_sweep(path, allow_external_paths)
+    spec = path if isinstance(path, SweepSpec) else load_sweep(path, allow_external_paths)
     if parquet:
         _check_parquet()
     spec.check_size(max_points)
