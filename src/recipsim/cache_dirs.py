@@ -19,6 +19,17 @@ from pathlib import Path
 _warned: set[str] = set()
 
 
+def numba_cache_lacks(module: str) -> bool:
+    """Whether numba's cache for this version of the compiled sources holds nothing yet of
+    ``module`` (e.g. ``"integrator"``: the first run then compiles the solver, about
+    30-45 s)."""
+    directory = os.environ.get("NUMBA_CACHE_DIR")
+    if not directory or os.environ.get("NUMBA_DISABLE_JIT") == "1":
+        return False
+    path = Path(directory)
+    return not path.is_dir() or next(path.rglob(f"{module}.*.nbi"), None) is None
+
+
 def cache_dir() -> Path:
     """recipsim's cache directory (not created here)."""
     env = os.environ.get("RECIPSIM_CACHE")

@@ -109,8 +109,23 @@ def _run_command(args: argparse.Namespace, argv: list[str] | None) -> int:
 def main(argv: list[str] | None = None) -> int:
     """Entry point of the ``recipsim`` command."""
     args = _parser().parse_args(argv)
+    _show_progress_notes(not getattr(args, "quiet", False))
     status: int = args.handler(args, argv)
     return status
+
+
+def _show_progress_notes(show: bool) -> None:
+    """Print recipsim's one-line notes (compiling the solver, building a property table)
+    on standard error, ``recipsim: ...``; ``--quiet`` keeps them off."""
+    import logging
+
+    logger = logging.getLogger("recipsim")
+    if not any(getattr(h, "_recipsim_cli", False) for h in logger.handlers):
+        handler = logging.StreamHandler()
+        handler.setFormatter(logging.Formatter("recipsim: %(message)s"))
+        handler._recipsim_cli = True  # type: ignore[attr-defined]
+        logger.addHandler(handler)
+    logger.setLevel(logging.INFO if show else logging.WARNING)
 
 
 def _print_summary(row: dict[str, Any], where: Path) -> None:

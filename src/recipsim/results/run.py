@@ -2,14 +2,20 @@
 
 from __future__ import annotations
 
+import logging
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
+
+from recipsim.cache_dirs import numba_cache_lacks
 
 if TYPE_CHECKING:
     import pandas as pd
 
     from recipsim.case.load import Case
     from recipsim.solve.periodic import PeriodicSolution
+
+
+logger = logging.getLogger(__name__)
 
 
 @dataclass
@@ -49,6 +55,8 @@ def simulate_case(case: Case, argv: list[str] | None = None) -> CaseRun:
     from recipsim.solve.drive import build_model_for
     from recipsim.solve.periodic import solve_periodic
 
+    if numba_cache_lacks("integrator"):
+        logger.info("compiling the solver (once per installation: about 30-45 s)")
     solution = None
     if case.options.pressure == "tabulated" and case.options.mechanics == "pinned":
         cycle = pinned_tabulated_cycle(case)  # inverse dynamics only, nothing to integrate

@@ -151,3 +151,17 @@ def test_a_cache_directory_others_can_write_is_reported(tmp_path):
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         check_private(shared)  # once per directory
+
+
+def test_the_first_run_is_announced_once_per_cache(tmp_path, monkeypatch):
+    """``numba_cache_lacks("integrator")`` is true until the solver's code is cached."""
+    from recipsim.cache_dirs import numba_cache_lacks
+
+    monkeypatch.setenv("NUMBA_CACHE_DIR", str(tmp_path / "numba"))
+    monkeypatch.delenv("NUMBA_DISABLE_JIT", raising=False)
+    assert numba_cache_lacks("integrator")
+    (tmp_path / "numba" / "solve_x").mkdir(parents=True)
+    (tmp_path / "numba" / "solve_x" / "property_table._patch-279.py311.nbi").write_text("")
+    assert numba_cache_lacks("integrator")  # other modules' code is not the solver's
+    (tmp_path / "numba" / "solve_x" / "integrator._step-175.py311.nbi").write_text("")
+    assert not numba_cache_lacks("integrator")

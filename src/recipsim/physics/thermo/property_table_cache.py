@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import hashlib
 import json
+import logging
 import time
 import warnings
 import zipfile
@@ -32,6 +33,8 @@ from recipsim.physics.thermo.property_table import (
     PropertyTable,
     TableResolution,
 )
+
+logger = logging.getLogger(__name__)
 
 #: Version of the cache file's own layout (key, checksum, arrays), part of the key.
 CACHE_FORMAT = 2
@@ -181,6 +184,9 @@ def load_property_table(
         )
     from recipsim.physics.thermo.property_table_build import build_table
 
+    logger.info(
+        "building the %s property table (once; 1-6 s, cached in %s)", coolprop_name, path.parent
+    )
     table = build_table(coolprop_name, t_min, t_max, res)
     table.path = path
     _write(path, table, key)
