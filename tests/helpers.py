@@ -5,6 +5,8 @@ from __future__ import annotations
 import tomllib
 from pathlib import Path
 
+import pytest
+
 ROOT = Path(__file__).resolve().parents[1]
 CASES = ROOT / "src" / "recipsim" / "data" / "cases"
 REFERENCE = CASES / "reference_r134a_lbp.toml"
@@ -42,3 +44,51 @@ def solve_case(path: Path, overrides: list[str] | None = None):
     from recipsim.solve.periodic import solve_periodic
 
     return solve_periodic(build_model_for(load_case(path, overrides or [])))
+
+
+# ---- hostile-input tests: sentinels around --out, one-line errors -------------------
+
+
+class Sandbox:
+    """Sentinels beside and above ``out``, another report inside it, inputs apart."""
+
+    def __init__(self, root: Path) -> None:
+        self.root = root
+        self.work = root / "work"
+        self.out = self.work / "out"
+        self.inputs = root / "inputs"
+        self.inputs.mkdir(exist_ok=True)
+        (self.out / "other_report").mkdir(parents=True)
+        (root / "above.txt").write_text("above")
+        (self.work / "beside.txt").write_text("beside")
+        (self.out / "other_report" / "keep.csv").write_text("a,b\n1,2\n")
+        self.before = self.snapshot()
+
+    def snapshot(self) -> dict[str, bytes]:
+        """Every file but the inputs and the outputs recipsim may write into ``out``."""
+        files = {}
+        for path in sorted(self.root.rglob("*")):
+            if not path.is_file() or path.is_relative_to(self.inputs):
+                continue
+            if path.is_relative_to(self.out) and not path.is_relative_to(self.out / "other_report"):
+                continue
+            files[str(path.relative_to(self.root))] = path.read_bytes()
+        return files
+
+    def unchanged(self) -> bool:
+        """Nothing outside ``out`` (and nothing of another report inside it) changed."""
+        return self.snapshot() == self.before
+
+    def case(self, text: str, name: str = "case.toml") -> Path:
+        """Write an input file (a case, by default) into the inputs directory."""
+        path = self.inputs / name
+        path.write_text(text)
+        return path
+
+
+def one_line_error(capsys: pytest.CaptureFixture[str]) -> str:
+    err = capsys.readouterr().err.strip()
+    assert "Traceback" not in err
+    assert err.count("\n") == 0, err
+    assert err.startswith("recipsim:"), err
+    return err

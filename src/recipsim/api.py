@@ -215,7 +215,8 @@ def sweep(
     from recipsim.studies.sweep.spec import DEFAULT_MAX_POINTS, SweepSpec
 
     sweep_name = name or f"{case.name}_sweep"
-    fixed = tuple((".".join(parse_override(t)[0]), parse_override(t)[1]) for t in case.overrides)
+    parsed = [parse_override(text) for text in case.overrides]
+    fixed = tuple((".".join(path), value) for path, value in parsed)
     grid = tuple((str(key), tuple(values)) for key, values in axes.items())
     lines = [f"name = {toml_literal(sweep_name)}", f"base = {toml_literal(case.path)}"]
     lines += ["[set]"] + [f"{toml_key(k)} = {toml_literal(v)}" for k, v in fixed]

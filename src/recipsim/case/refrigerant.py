@@ -120,12 +120,21 @@ def load_refrigerant(
         refrigerant file when it is invalid.
     """
     checked_name(name, case_file, key)  # a refrigerant name is a file name, never a path
+    path = find_refrigerant_file(name, search)
+    if path is not None:
+        return read_refrigerant_file(path)
+    known = available_refrigerants(search)
+    raise CaseError(case_file, key, f"unknown refrigerant {name!r}; available: {known}")
+
+
+def find_refrigerant_file(name: str, search: list[Path] | None = None) -> Path | None:
+    """The first ``<name>.toml`` in :func:`refrigerant_dirs`, or None (``name`` must be a
+    plain name: see :func:`load_refrigerant`)."""
     for d in refrigerant_dirs(search):
         path = d / f"{name}.toml"
         if path.is_file():
-            return read_refrigerant_file(path)
-    known = available_refrigerants(search)
-    raise CaseError(case_file, key, f"unknown refrigerant {name!r}; available: {known}")
+            return path
+    return None
 
 
 def read_refrigerant_file(path: Path) -> RefrigerantSpec:

@@ -17,61 +17,16 @@ from pathlib import Path
 import pandas as pd
 import pytest
 
-from helpers import CASES, REFERENCE
+from helpers import CASES, REFERENCE, Sandbox, one_line_error
 from recipsim.atomic import MARKER
 from recipsim.cli.main import main
 
 FAST = ["--no-plots", "--quiet"]
 
 
-class Sandbox:
-    """Sentinels beside and above ``out``, another report inside it, inputs apart."""
-
-    def __init__(self, root: Path) -> None:
-        self.root = root
-        self.work = root / "work"
-        self.out = self.work / "out"
-        self.inputs = root / "inputs"
-        self.inputs.mkdir()
-        (self.out / "other_report").mkdir(parents=True)
-        (root / "above.txt").write_text("above")
-        (self.work / "beside.txt").write_text("beside")
-        (self.out / "other_report" / "keep.csv").write_text("a,b\n1,2\n")
-        self.before = self.snapshot()
-
-    def snapshot(self) -> dict[str, bytes]:
-        """Every file but the inputs and the outputs recipsim may write into ``out``."""
-        files = {}
-        for path in sorted(self.root.rglob("*")):
-            if not path.is_file() or path.is_relative_to(self.inputs):
-                continue
-            if path.is_relative_to(self.out) and not path.is_relative_to(self.out / "other_report"):
-                continue
-            files[str(path.relative_to(self.root))] = path.read_bytes()
-        return files
-
-    def unchanged(self) -> bool:
-        """Nothing outside ``out`` (and nothing of another report inside it) changed."""
-        return self.snapshot() == self.before
-
-    def case(self, text: str, name: str = "case.toml") -> Path:
-        """Write an input file (a case, by default) into the inputs directory."""
-        path = self.inputs / name
-        path.write_text(text)
-        return path
-
-
 @pytest.fixture
 def box(tmp_path: Path) -> Sandbox:
     return Sandbox(tmp_path)
-
-
-def one_line_error(capsys: pytest.CaptureFixture[str]) -> str:
-    err = capsys.readouterr().err.strip()
-    assert "Traceback" not in err
-    assert err.count("\n") == 0, err
-    assert err.startswith("recipsim:"), err
-    return err
 
 
 def run(box: Sandbox, case: Path, *extra: str) -> int:

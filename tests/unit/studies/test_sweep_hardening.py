@@ -13,9 +13,8 @@ import tracemalloc
 from pathlib import Path
 
 import pandas as pd
-import pytest
 
-from helpers import REFERENCE
+from helpers import REFERENCE, Sandbox, one_line_error
 from recipsim.atomic import MARKER
 from recipsim.cli.main import main
 from recipsim.studies.sweep.engine import TIMING_COLUMNS
@@ -37,29 +36,6 @@ def write(tmp_path: Path, body: str, name: str = "small") -> Path:
     return path
 
 
-def sentinels(tmp_path: Path) -> tuple[Path, dict[str, bytes]]:
-    """An output directory with files beside and above it; returns it and a snapshot."""
-    out = tmp_path / "work" / "out"
-    out.mkdir(parents=True)
-    (tmp_path / "above.txt").write_text("above")
-    (tmp_path / "work" / "beside.txt").write_text("beside")
-    return out, snapshot(tmp_path, out)
-
-
-def snapshot(root: Path, out: Path) -> dict[str, bytes]:
-    return {
-        str(p.relative_to(root)): p.read_bytes()
-        for p in sorted(root.rglob("*"))
-        if p.is_file() and not p.is_relative_to(out) and not p.is_relative_to(root / "inputs")
-    }
-
-
-def one_line_error(capsys: pytest.CaptureFixture[str]) -> str:
-    err = capsys.readouterr().err.strip()
-    assert "Traceback" not in err and err.count("\n") == 0, err
-    return err
-
-
 def test_a_huge_grid_is_refused_before_anything_is_built(tmp_path, capsys):
     """1e9 points: refused from the axis lengths in milliseconds, nothing allocated."""
     values = ", ".join(f'"{t} rpm"' for t in range(2000, 3000))
@@ -71,7 +47,8 @@ def test_a_huge_grid_is_refused_before_anything_is_built(tmp_path, capsys):
     )
     sweep = write(tmp_path, body)
     assert load_sweep(sweep).size == 10**9
-    out, before = sentinels(tmp_path)
+    box = Sandbox(tmp_path)
+    out = box.out
     tracemalloc.start()
     start = time.perf_counter()
     status = main(["sweep", str(sweep), "--out", str(out), "--quiet", "--no-plots"])
@@ -81,7 +58,7 @@ def test_a_huge_grid_is_refused_before_anything_is_built(tmp_path, capsys):
     err = one_line_error(capsys)
     assert status == 2 and "1,000,000,000 points" in err and "max_points" in err
     assert elapsed < 2.0 and peak < 50e6
-    assert list(out.iterdir()) == [] and snapshot(tmp_path, out) == before
+    assert [p.name for p in out.iterdir()] == ["other_report"] and box.unchanged()
 
 
 def test_the_limit_is_configurable_in_the_file_and_on_the_command_line(tmp_path, capsys):
@@ -164,7 +141,8 @@ def test_a_tampered_point_file_is_recomputed(tmp_path, capsys):
 
 
 def test_unsafe_sweep_names_and_foreign_directories_are_refused(tmp_path, capsys):
-    out, before = sentinels(tmp_path)
+    box = Sandbox(tmp_path)
+    out = box.out
     for name in ('""', '".."', '"../x"', '"/tmp"'):
         sweep = tmp_path / "inputs" / "bad.toml"
         sweep.parent.mkdir(exist_ok=True)
@@ -180,7 +158,7 @@ def test_unsafe_sweep_names_and_foreign_directories_are_refused(tmp_path, capsys
     assert sorted(p.name for p in foreign.iterdir()) == ["thesis.tex"]
     assert main(["sweep", str(sweep), "--out", str(out / "x" / ".."), "--quiet"]) == 2
     one_line_error(capsys)
-    assert snapshot(tmp_path, out) == before
+    assert box.unchanged()
 
 
 def test_base_outside_the_sweep_directory_needs_the_opt_in(tmp_path, capsys):

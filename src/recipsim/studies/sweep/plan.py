@@ -42,7 +42,7 @@ from recipsim.case.load import (
     parse_override,
     resolve_extends,
 )
-from recipsim.case.refrigerant import refrigerant_dirs
+from recipsim.case.refrigerant import find_refrigerant_file
 from recipsim.case.schema import Choice, Field, Text
 from recipsim.case.units import to_si
 from recipsim.errors import CaseError
@@ -182,14 +182,13 @@ class _RefrigerantTexts:
         key = str(name)
         if key not in self.texts:
             self.texts[key] = ""
-            for directory in refrigerant_dirs(self.search):
-                path = directory / f"{key}.toml"
-                if isinstance(name, str) and "/" not in key and path.is_file():
-                    try:
-                        self.texts[key] = read_input_text(path, "refrigerant", MAX_TOML_BYTES)
-                    except CaseError:
-                        pass  # the point's case load reports it
-                    break
+            safe = isinstance(name, str) and "/" not in key and "\\" not in key
+            path = find_refrigerant_file(key, self.search) if safe else None
+            if path is not None:
+                try:
+                    self.texts[key] = read_input_text(path, "refrigerant", MAX_TOML_BYTES)
+                except CaseError:
+                    pass  # the point's case load reports it
         return self.texts[key]
 
 
