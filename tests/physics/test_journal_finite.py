@@ -76,8 +76,9 @@ def state(eps, direction):
 @pytest.mark.parametrize("ld", RATIOS)
 def test_finite_law_against_independent_reynolds_solver(tables, ld):
     """eps 0.1-0.95, rotation, squeeze both ways and a crank-pin mix: force within 1.5 %
-    of |F| (measured at most 0.36 %, at L/D 1.25, eps 0.95); in pure rotation the
-    tangential force (the attitude) within 2 % of itself; peak pressure within 3 %."""
+    of |F| (measured at most 0.45 %, at L/D 1.5, eps 0.95); in pure rotation the
+    tangential force (the attitude) within 2 % of itself (measured 0.31 %); peak pressure
+    within 1 % (measured 0.12 %)."""
     table = tables[1][ld]
     for eps in (0.1, 0.5, 0.8, 0.95):
         for direction in ("rotation", "approach", "separation", "crank pin"):
@@ -91,7 +92,7 @@ def test_finite_law_against_independent_reynolds_solver(tables, ld):
             got_peak = finite_journal_peak_pressure(
                 e[0], e[1], v[0], v[1], wj, wb, R, 2 * R * ld, C, MU, table, 0
             )
-            assert got_peak == pytest.approx(peak, rel=0.03), (eps, direction)
+            assert got_peak == pytest.approx(peak, rel=0.01), (eps, direction)
 
 
 def test_short_bearing_limit_is_approached(tables):
