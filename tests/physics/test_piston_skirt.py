@@ -24,7 +24,8 @@ from recipsim.physics.mechanics.skirt import (
 R, L, C, MU = 0.011, 0.020, 6.0e-6, 0.006
 GEOMETRY = (R, L, C, MU)
 #: 2-D finite-difference grid of the reference (axial x circumferential): measured
-#: against a grid twice as fine, its forces are within 0.5 % at eccentricity 0.9.
+#: against a grid twice as fine, its end forces are within 0.4 % and its peak pressure
+#: within 0.7 % at offsets of 0.9 c.
 GRID = (80, 360)
 
 
@@ -91,15 +92,15 @@ def test_untilted_squeeze_matches_its_closed_form_and_the_2d_reference(e: float)
     exact = _squeeze_closed_form(e * C, v)
     assert exact < 0.0  # squeeze towards +Y is resisted
     # quadrature (24 RK4 steps, 2 x 6 Gauss points) against the closed form: measured
-    # 2e-4 at e = 0.9; bar 1e-3
-    assert f_crown + f_skirt == pytest.approx(exact, rel=1e-3)
+    # 7e-4 at e = 0.9, below 1e-5 up to e = 0.6; bar 2e-3
+    assert f_crown + f_skirt == pytest.approx(exact, rel=2e-3)
     assert f_crown == pytest.approx(f_skirt, rel=1e-5)  # the march runs crown to skirt
     assert friction == 0.0
     ref = reference_film(e * C, e * C, v, v, 0.0, *GEOMETRY, *GRID)
     short = reference_film(e * C, e * C, v, v, 0.0, *GEOMETRY, *GRID, circumferential=False)
-    # circumferential flow modelled: measured 0.0 / 1.1 / 1.8 / 0.3 % off the 2-D solution
+    # circumferential flow modelled: measured 0.0 / 2.1 / 1.3 / 0.3 % off the 2-D solution
     assert f_crown + f_skirt == pytest.approx(ref[0] + ref[1], rel=0.03)
-    # neglecting it (short film) overestimates by 33 % at e = 0 and 5.6x at e = 0.9
+    # neglecting it (short film) overestimates by 33 / 48 / 99 % and 5.6 times
     assert short[0] / ref[0] > 1.3
 
 
@@ -123,8 +124,8 @@ def test_wedge_squeeze_and_tilt_rate_against_the_2d_reference() -> None:
     """40 random states (wedge, squeeze, tilt rate; offsets up to 0.9 c at both ends)
     and heavily loaded extremes. End forces within 12 % of the larger reference end
     force (measured 10.3 %, of which about 1 % is the 2 x 6 point quadrature; most
-    states 1-3 %), friction within 2 % (measured 0.7 %), peak pressure within 15 %
-    (measured 11 %)."""
+    states 1-3 %), friction within 2 % (measured 1.1 %), peak pressure within 15 %
+    (measured 9.9 %)."""
     states = _random_states(40, seed=1)
     states += [
         (0.9 * C, -0.9 * C, 0.0, 0.0, 4.0),
@@ -160,22 +161,23 @@ def test_tilted_wedge_pushes_the_piston_back_to_the_bore_axis() -> None:
     assert f_skirt > abs(f_crown)
 
 
-@pytest.mark.parametrize("state", _random_states(12, seed=3))
+@pytest.mark.parametrize("state", _random_states(30, seed=3))
 def test_mirror_symmetries(state: tuple[float, float, float, float, float]) -> None:
     ec, es, vc, vs, u = state
     f_c, f_s, fr = skirt_film(ec, es, vc, vs, u, *GEOMETRY)
     scale = max(abs(f_c), abs(f_s))
     # Y -> -Y: forces change sign, friction does not. The nodes are symmetric, so this
     # is round-off, but for a line whose pressure touches zero next to an end, where
-    # round-off can pick the cavitating branch (linear over one step): measured 3e-6
+    # round-off can pick the other branch (cavitating or not): measured 4e-5 on 200 states
     g_c, g_s, gr = skirt_film(-ec, -es, -vc, -vs, u, *GEOMETRY)
     assert abs(g_c + f_c) < 1e-4 * scale and abs(g_s + f_s) < 1e-4 * scale
     assert gr == pytest.approx(fr, rel=1e-4, abs=1e-9)
     # s -> L - s with the sliding reversed: the ends swap, the axial force flips. The
-    # march runs from the crown end, so this holds to the discretisation (measured 0.5 %)
+    # march runs from the crown end, so this holds to the discretisation (measured 2e-5
+    # on 200 states)
     m_c, m_s, mr = skirt_film(es, ec, vs, vc, -u, *GEOMETRY)
-    assert abs(m_c - f_s) < 0.01 * scale and abs(m_s - f_c) < 0.01 * scale
-    assert mr == pytest.approx(-fr, rel=0.01, abs=1e-9)
+    assert abs(m_c - f_s) < 1e-4 * scale and abs(m_s - f_c) < 1e-4 * scale
+    assert mr == pytest.approx(-fr, rel=1e-4, abs=1e-9)
 
 
 def test_reversing_the_sliding_mirrors_the_wedge_forces() -> None:
@@ -183,7 +185,7 @@ def test_reversing_the_sliding_mirrors_the_wedge_forces() -> None:
         f_c, f_s, _ = skirt_film(ec, es, 0.0, 0.0, 2.5, *GEOMETRY)
         m_c, m_s, _ = skirt_film(es, ec, 0.0, 0.0, -2.5, *GEOMETRY)
         scale = max(abs(f_c), abs(f_s))
-        assert abs(m_c - f_s) < 0.01 * scale and abs(m_s - f_c) < 0.01 * scale
+        assert abs(m_c - f_s) < 1e-4 * scale and abs(m_s - f_c) < 1e-4 * scale
 
 
 def test_film_dissipates_power() -> None:
