@@ -299,10 +299,11 @@ def test_cli_exit_status_follows_the_expectations(tmp_path: Path) -> None:
     )
     out = tmp_path / "out"
     assert main(["check", str(tmp_path), "--out", str(out), "--quiet"]) == 0
-    assert pd.read_csv(out / "check.csv")["matches"].all()
+    written = out / tmp_path.name / "check.csv"  # --out is the parent of <folder name>/
+    assert pd.read_csv(written)["matches"].all()
     expectations.write_text('[cases.typo]\nexpected = "refused"\n')  # wet: default converged
     assert main(["check", str(tmp_path), "--out", str(out), "--quiet"]) == 1
-    frame = pd.read_csv(out / "check.csv").set_index("case")
+    frame = pd.read_csv(written).set_index("case")
     assert not frame.loc["wet", "matches"] and frame.loc["typo", "matches"]
     assert main(["check", str(tmp_path / "missing"), "--out", str(out)]) == 2
 

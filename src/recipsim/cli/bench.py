@@ -2,7 +2,8 @@
 
 Runs the ladder of :mod:`.ladder` on one case against its tight-tolerance reference and
 writes ``work_precision.csv``, ``work_precision.png`` and ``bench.json`` to
-``reports/bench/<case>/`` (``<case>+<overrides>`` when ``--set`` is given), then names
+``<out>/<case>/`` (``<case>+<digest>`` when ``--set`` is given, see
+:func:`recipsim.report.case_report.report_name`; default ``--out``: ``reports/bench``), then names
 the cheapest rung within 1e-3 and its speed-up over the pure-Python baseline.
 
 Exit status: 0 done (whatever the rungs' statuses); 1 the reference failed or did not
@@ -12,7 +13,6 @@ converge; 2 invalid case or option. Nothing heavy is imported at module level.
 from __future__ import annotations
 
 import argparse
-import re
 import sys
 import time
 from pathlib import Path
@@ -41,7 +41,11 @@ def add_bench_parser(sub: Any) -> argparse.ArgumentParser:
     )
     parser.add_argument("case", type=Path, help="case file (TOML)")
     add_common_options(
-        parser, None, "output directory (default: reports/bench/<case>[+<overrides>]/)", False
+        parser,
+        DEFAULT_OUT,
+        "parent directory of the bench: it goes to OUT/<case name>/ "
+        "(OUT/<case name>+<digest of the --set values>/ with --set) (default: reports/bench/)",
+        False,
     )
     parser.add_argument(
         "--repeats",
@@ -71,10 +75,12 @@ def add_bench_parser(sub: Any) -> argparse.ArgumentParser:
     return parser
 
 
-def default_out(case_name: str, overrides: list[str]) -> Path:
-    """``reports/bench/<case>`` or, with overrides, ``<case>+<key=value>+...``."""
-    tag = "+".join(re.sub(r"[^A-Za-z0-9._=-]+", "_", text) for text in overrides)
-    return DEFAULT_OUT / (f"{case_name}+{tag}" if tag else case_name)
+def default_out(case_name: str, overrides: list[str], parent: Path = DEFAULT_OUT) -> Path:
+    """``<parent>/<case>`` or, with overrides, ``<parent>/<case>+<digest>``, checked to be
+    replaceable (:func:`recipsim.report.case_report.report_dir`)."""
+    from recipsim.report.case_report import report_dir
+
+    return report_dir(parent, case_name, overrides)
 
 
 def run_bench_command(args: argparse.Namespace, argv: list[str] | None) -> int:
@@ -107,7 +113,7 @@ def _bench(args: argparse.Namespace, argv: list[str] | None) -> int:
 
     say = (lambda *a: None) if args.quiet else (lambda *a: print(*a, flush=True))
     base = load_case(args.case, args.overrides)
-    out_dir = args.out or default_out(base.name, args.overrides)
+    out_dir = default_out(base.name, args.overrides, args.out)
     started = time.time()
     meta: dict[str, Any] = {
         "case": str(args.case),

@@ -2,9 +2,10 @@
 
 Runs every case (see :mod:`recipsim.studies.check`), prints a table (case, expected and actual
 outcome, revolutions, wall time, mass / energy / drive closures, message) and writes
-``<out>/check.csv`` atomically. Exit status: 0 every outcome matches its expectation,
-1 some do not, 2 invalid input to the check itself (a missing path, a bad expectations
-file). This module imports nothing heavy at module level.
+``<out>/<name>/check.csv`` atomically, ``<name>`` the checked folder's or file's (``hard``;
+several joined by ``_``), ``+<digest>`` with ``--set``. Exit status: 0 every outcome
+matches its expectation, 1 some do not, 2 invalid input to the check itself (a missing
+path, a bad expectations file). This module imports nothing heavy at module level.
 """
 
 from __future__ import annotations
@@ -27,7 +28,7 @@ def add_check_parser(sub: Any) -> argparse.ArgumentParser:
             "Run every case of the given directories or files (e.g. 'hard', the shipped "
             "hard cases), compare each outcome (converged, not converged, refused, "
             "failed) and its mass, energy and drive closures with the expectations.toml "
-            "beside the cases, print a table and write <out>/check.csv. A failing case is a "
+            "beside the cases, print a table and write <out>/<name>/check.csv. A failing case is a "
             "row; the check goes on."
         ),
     )
@@ -59,7 +60,11 @@ def add_check_parser(sub: Any) -> argparse.ArgumentParser:
     )
     parser.add_argument("--quiet", action="store_true", help="print the table only")
     add_common_options(
-        parser, Path("reports/check"), "output directory (default reports/check/)", False
+        parser,
+        Path("reports/check"),
+        "parent directory of the check: it goes to OUT/<name>/ (the checked folder's or "
+        "file's name; +<digest of the --set values> with --set) (default: reports/check/)",
+        False,
     )
     parser.set_defaults(handler=run_check_command)
     return parser
@@ -71,8 +76,19 @@ def run_check_command(args: argparse.Namespace, argv: list[str] | None = None) -
     return exit_status(lambda: _check(args), label)
 
 
+def check_name(paths: list[Path]) -> str:
+    """Name of a check's output directory: the checked folders' or files' names."""
+    from recipsim.atomic import MAX_NAME_LENGTH, name_from_stem
+
+    return name_from_stem("_".join(Path(p).stem for p in paths))[:MAX_NAME_LENGTH]
+
+
 def _check(args: argparse.Namespace) -> int:
+    from recipsim.atomic import atomic_directory
+    from recipsim.report.case_report import report_dir
     from recipsim.studies.check import format_table, run_check, write_check_csv
+
+    target = report_dir(args.out, check_name(args.paths), args.overrides)  # before running
 
     def progress(row: Any) -> None:
         if not args.quiet:
@@ -89,7 +105,9 @@ def _check(args: argparse.Namespace) -> int:
         progress=progress,
     )
     print(format_table(rows))
-    path = write_check_csv(rows, args.out)
+    with atomic_directory(target) as tmp:
+        write_check_csv(rows, tmp)
+    path = target / "check.csv"
     if not args.quiet:
         print(f"-> {path}")
     return 0 if all(r.matches for r in rows) else 1

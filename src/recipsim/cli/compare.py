@@ -2,17 +2,19 @@
 
 Runs two cases (e.g. the coupled cylinder + flexible mechanism run against the flexible
 mechanism under a tabulated pressure curve; two refrigerants; pinned against flexible)
-and writes one output directory, built beside its destination and swapped in whole::
+and writes one output directory ``<out>/<A>_vs_<B>/`` (``<A>_vs_<B>+<digest>`` when
+``--set``, ``--set-a`` or ``--set-b`` is given), built beside its destination and
+swapped in whole; ``<dir>`` below::
 
-    <out>/comparison.csv     quantity, group, <A>, <B>, difference, relative_difference [-]
-    <out>/cases.csv          per case: file, overrides, refrigerant, options, converged
-    <out>/overlay_*.png      pressure, p-V, torque, bearing loads, orbits (one curve per case)
-    <out>/provenance.json    versions, command, the two case files and overrides
-    <out>/<A>/, <out>/<B>/   each case's full report (as ``recipsim run``)
+    <dir>/comparison.csv     quantity, group, <A>, <B>, difference, relative_difference [-]
+    <dir>/cases.csv          per case: file, overrides, refrigerant, options, converged
+    <dir>/overlay_*.png      pressure, p-V, torque, bearing loads, orbits (one curve per case)
+    <dir>/provenance.json    versions, command, the two case files and overrides
+    <dir>/<A>/, <dir>/<B>/   each case's full report (as ``recipsim run``)
 
 ``--set`` applies to both cases, ``--set-a`` / ``--set-b`` to one (after ``--set``), so
 one file can be compared with itself at another setting. Labels are the case names,
-suffixed ``_a``/``_b`` when equal. Default ``--out``: ``reports/compare/<A>_vs_<B>``.
+suffixed ``_a``/``_b`` when equal. Default ``--out``: ``reports/compare``.
 
 Exit status: 0 success; 1 a simulation failed (the message names the case file, crank
 angle and state); 2 invalid input (missing file, bad ``--set``, an ``--out`` that exists and was not
@@ -88,7 +90,11 @@ def add_compare_parser(sub: Any) -> argparse.ArgumentParser:
     parser.add_argument("case_a", type=Path, help="case A (TOML), the base of the differences")
     parser.add_argument("case_b", type=Path, help="case B (TOML)")
     add_common_options(
-        parser, None, "output directory (default: reports/compare/<A>_vs_<B>/), replaced whole"
+        parser,
+        Path("reports/compare"),
+        "parent directory of the comparison: it goes to OUT/<A>_vs_<B>/ "
+        "(OUT/<A>_vs_<B>+<digest of the --set values>/ with --set), replaced whole "
+        "(default: reports/compare/)",
     )
     for side in ("a", "b"):
         parser.add_argument(
@@ -114,7 +120,7 @@ def run_compare_command(args: argparse.Namespace, argv: list[str] | None) -> int
             overrides=args.overrides,
             overrides_a=args.overrides_a,
             overrides_b=args.overrides_b,
-            out=args.out,
+            parent=args.out,
             plots=not args.no_plots,
             argv=argv if argv is not None else sys.argv,
             allow_external_paths=args.allow_external_paths,
@@ -147,6 +153,7 @@ def run_comparison(
     plots: bool = True,
     argv: list[str] | None = None,
     allow_external_paths: bool = False,
+    parent: Path | None = None,
 ) -> Comparison:
     """Run two cases and write their comparison directory atomically.
 
@@ -159,13 +166,16 @@ def run_comparison(
     overrides_a, overrides_b : list of str, optional
         ``KEY=VALUE`` applied to one case, after ``overrides``.
     out : Path, optional
-        Output directory (replaced whole); default ``reports/compare/<A>_vs_<B>``.
+        Output directory itself (replaced whole); by default ``<parent>/<A>_vs_<B>``
+        (``+<digest>`` with overrides, :func:`recipsim.report.case_report.report_name`).
     plots : bool
         Write the overlay figures and each report's figures.
     argv : list of str, optional
         Command line recorded in the provenance.
     allow_external_paths : bool
         See :func:`recipsim.case.load.load_case`.
+    parent : Path, optional
+        Parent of the default output directory (``--out``); default ``reports/compare``.
 
     Returns
     -------
@@ -194,8 +204,15 @@ def run_comparison(
         for p, s in zip(paths, sets, strict=True)
     ]  # both before running
     labels = case_labels(cases[0].name, cases[1].name)
-    target = Path(out) if out is not None else _default_out(cases[0].name, cases[1].name)
-    check_replaceable(target)  # before anything runs
+    if out is not None:
+        target = Path(out)
+        check_replaceable(target)  # before anything runs
+    else:
+        from recipsim.report.case_report import report_dir
+
+        sides = [f"{side}.{text}" for side, s in zip("ab", sets, strict=True) for text in s]
+        name = f"{cases[0].name}_vs_{cases[1].name}"
+        target = report_dir(parent or DEFAULT_PARENT, name, sides)
     runs = (_simulate(paths[0], cases[0], argv), _simulate(paths[1], cases[1], argv))
     table = comparison_table(runs[0].row, runs[1].row, *labels)
     extra = [
@@ -207,8 +224,8 @@ def run_comparison(
     return Comparison(runs, labels, table, case_rows, target, time.perf_counter() - start)
 
 
-def _default_out(name_a: str, name_b: str) -> Path:
-    return Path("reports") / "compare" / f"{name_a}_vs_{name_b}"
+#: Default ``--out`` of ``recipsim compare`` (the parent of ``<A>_vs_<B>``).
+DEFAULT_PARENT = Path("reports/compare")
 
 
 def _write(

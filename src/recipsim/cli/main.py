@@ -1,6 +1,13 @@
 """Command line: ``recipsim run CASE... [--out DIR] [--set KEY=VALUE ...]``,
 ``recipsim sweep SWEEP [--jobs N] [--scheduler ADDRESS] [--out DIR]`` (see
-:mod:`recipsim.cli.sweep`).
+:mod:`recipsim.cli.sweep`), ``compare``, ``paper``, ``bench``, ``check``.
+
+``--out DIR`` means the same in every subcommand: the parent directory of the output
+directory, ``DIR/<name>``, where ``<name>`` is the case's (``run``, ``paper``,
+``bench``), the sweep's (``sweep``), ``<A>_vs_<B>`` (``compare``) or the checked
+folder's (``check``), followed by ``+<digest>`` of the ``--set`` overrides when there
+are any (:func:`recipsim.report.case_report.report_name`). Only the defaults differ:
+``reports/`` for ``run``, ``reports/<subcommand>/`` for the others (``reports/sweeps/``).
 
 Exit status: 0 success; 1 a simulation failed (message names crank angle and state), a
 case did not reach its periodic state within ``solver.max_revolutions`` (its report is
@@ -42,7 +49,12 @@ def _parser() -> argparse.ArgumentParser:
     sub = parser.add_subparsers(dest="command", required=True)
     run = sub.add_parser("run", help="simulate cases and write a report per case")
     run.add_argument("cases", nargs="+", type=Path, help="case files (TOML)")
-    add_common_options(run, Path("reports"), "parent directory of the reports (default: reports/)")
+    add_common_options(
+        run,
+        Path("reports"),
+        "parent directory of the reports: each case's goes to OUT/<case name>/, "
+        "OUT/<case name>+<digest of the --set values>/ with --set (default: reports/)",
+    )
     run.add_argument("--quiet", action="store_true", help="print nothing but errors")
     run.set_defaults(handler=_run_command)
     for register in _SUBCOMMANDS:
@@ -57,22 +69,23 @@ def run_case(
     plots: bool = True,
     argv: list[str] | None = None,
     allow_external_paths: bool = False,
-) -> dict[str, Any]:
-    """Load, simulate and report one case into ``out/<case name>``; returns its summary row.
+) -> tuple[dict[str, Any], Path]:
+    """Load, simulate and report one case; returns its summary row and report directory.
 
-    The report directory is checked before the simulation (it must be new, empty or a
-    recipsim report), so a refused ``--out`` costs nothing.
+    The report goes to ``out/<case name>`` (``out/<case name>+<digest>`` with overrides,
+    :func:`recipsim.report.case_report.report_name`). It is checked before the
+    simulation (it must be new, empty or a recipsim report), so a refused ``--out``
+    costs nothing.
     """
-    from recipsim.atomic import output_dir
     from recipsim.case.load import load_case
-    from recipsim.report.case_report import write_case_report
+    from recipsim.report.case_report import report_dir, write_case_report
     from recipsim.results.run import simulate_case
 
     case = load_case(path, overrides, allow_external_paths=allow_external_paths)
-    target = output_dir(out, case.name)
+    target = report_dir(out, case.name, case.overrides)
     run = simulate_case(case, argv)
     write_case_report(run, target, overrides, plots)
-    return run.row
+    return run.row, target
 
 
 def _run_command(args: argparse.Namespace, argv: list[str] | None) -> int:
@@ -81,7 +94,7 @@ def _run_command(args: argparse.Namespace, argv: list[str] | None) -> int:
     for path in args.cases:
 
         def one(path: Path = path) -> int:
-            row = run_case(
+            row, target = run_case(
                 path,
                 args.overrides,
                 args.out,
@@ -90,13 +103,13 @@ def _run_command(args: argparse.Namespace, argv: list[str] | None) -> int:
                 args.allow_external_paths,
             )
             if not args.quiet:
-                _print_summary(row, args.out / row["case"])
+                _print_summary(row, target)
             if not row["converged [-]"]:
                 print(
                     f"recipsim: {path}: did not reach its periodic state in "
                     f"{row['revolutions [-]']} revolutions (cycle residual "
                     f"{row['cycle_residual [-]']:.1e}, tolerance in solver.cycle_tolerance); "
-                    f"the report says so: {args.out / row['case']}",
+                    f"the report says so: {target}",
                     file=sys.stderr,
                 )
                 return 1

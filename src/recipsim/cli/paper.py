@@ -1,5 +1,8 @@
 """``recipsim paper CASE [--out DIR]``: the paper's pinned-against-flexible study.
 
+Writes ``<out>/<case name>/`` (``+<digest>`` with ``--set``; default ``--out``:
+``reports/paper``).
+
 Runs, for the mechanism, geometry, operating point and pressure curve of a case,
 the pinned and the flexible crank train under (a) inertia only, (b) the gas load,
 (c) the gas load with the case's bearing damping, and writes ``table1.csv`` (the
@@ -33,7 +36,12 @@ def add_paper_parser(sub: Any) -> None:
     p.add_argument(
         "case", type=Path, help="case file (TOML) or a shipped case name, e.g. paper_tabulated"
     )
-    add_common_options(p, None, "output directory (default reports/paper/<case>)")
+    add_common_options(
+        p,
+        Path("reports/paper"),
+        "parent directory of the study: it goes to OUT/<case name>/ "
+        "(OUT/<case name>+<digest of the --set values>/ with --set) (default: reports/paper/)",
+    )
     p.set_defaults(
         handler=lambda args, argv: exit_status(lambda: run_paper_command(args), str(args.case))
     )
@@ -57,7 +65,6 @@ def add_paper_parser(sub: Any) -> None:
 
 def run_paper_command(args: argparse.Namespace) -> int:
     """Run the study for ``args.case``; returns the exit status."""
-    from recipsim.atomic import check_replaceable
     from recipsim.case.load import load_case
     from recipsim.model.build import build_model, crank_geometry
     from recipsim.physics.mechanics.tabulated import PressureCurve
@@ -83,8 +90,9 @@ def run_paper_command(args: argparse.Namespace) -> int:
             cycle["cylinder_pressure [Pa]"].to_numpy(),
         )
         source = "the cylinder pressure of the case on the rigid crank"
-    out = args.out or Path("reports") / "paper" / case.name
-    check_replaceable(out)  # before the study runs
+    from recipsim.report.case_report import report_dir
+
+    out = report_dir(args.out, case.name, args.overrides)  # checked before the study runs
     drive = case.options.drive if case.options.mechanics == "flexible" else "torque_profile"
     start = args.undamped_start or ("periodic" if args.undamped_revolutions is None else "unloaded")
     study = run_paper_study(

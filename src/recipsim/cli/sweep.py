@@ -75,7 +75,7 @@ def add_sweep_parser(sub: Any) -> argparse.ArgumentParser:
     add_common_options(
         parser,
         Path("reports/sweeps"),
-        "parent directory of the sweep's output directory (default: reports/sweeps/)",
+        "parent directory of the sweep: it goes to OUT/<sweep name>/ (default: reports/sweeps/)",
     )
     for flag, help_text in _SWITCHES:
         parser.add_argument(flag, action="store_true", help=help_text)

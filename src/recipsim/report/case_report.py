@@ -7,13 +7,16 @@ one intact.
 
 from __future__ import annotations
 
+import hashlib
 import json
+from collections.abc import Mapping, Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 import pandas as pd
 
-from recipsim.atomic import atomic_directory
+from recipsim.atomic import atomic_directory, check_replaceable, checked_name, normalised
+from recipsim.errors import CaseError
 
 if TYPE_CHECKING:
     from recipsim.results.run import CaseRun
@@ -28,11 +31,14 @@ def write_report(
     meta: dict[str, Any],
     plenum: tuple[float, float] | None = None,
     plots: bool = True,
+    files: Mapping[str, bytes] | None = None,
 ) -> Path:
     """Write one case's report into ``out_dir`` atomically.
 
     ``out_dir`` is replaced whole if it is a recipsim output directory (or empty);
     any other existing directory is refused (:func:`recipsim.atomic.atomic_directory`).
+    ``case_text`` becomes ``case.toml`` (headed by the overrides when it does not name
+    them itself); ``files`` (relative path to content) are written beside it.
 
     Returns
     -------
@@ -43,30 +49,99 @@ def write_report(
     with atomic_directory(out_dir) as tmp:
         pd.DataFrame([summary_row]).to_csv(tmp / "summary.csv", index=False)
         cycle.to_csv(tmp / "cycle.csv", index=False)
-        header = "".join(f"# --set {o}\n" for o in overrides)
+        header = "".join(f"# --set {o}\n" for o in overrides if f"# --set {o}" not in case_text)
         (tmp / "case.toml").write_text(
-            ("# overrides applied on top of this file:\n" + header if overrides else "") + case_text
+            ("# overrides applied on top of this file:\n" + header if header else "") + case_text
         )
+        for name, content in (files or {}).items():
+            (tmp / name).parent.mkdir(parents=True, exist_ok=True)
+            (tmp / name).write_bytes(content)
         (tmp / "provenance.json").write_text(json.dumps(meta, indent=2, default=str))
         if plots:
             from recipsim.report.plotting import save_cycle_figures
 
-            save_cycle_figures(cycle, tmp, plenum=plenum)
+            save_cycle_figures(cycle, tmp, plenum=plenum, title=run_title(summary_row))
     return out_dir
+
+
+def run_title(row: Mapping[str, Any]) -> str:
+    """What was run, for plot titles: case name, mechanics, drive and pressure source."""
+    pressure = {"cylinder": "cylinder model", "tabulated": "tabulated pressure"}.get(
+        str(row.get("pressure")), str(row.get("pressure"))
+    )
+    return f"{row.get('case')}: {row.get('mechanics')} crank, {row.get('drive')}, {pressure}"
 
 
 def write_case_report(
     run: CaseRun, out_dir: Path, overrides: list[str], plots: bool = True
 ) -> Path:
-    """Write the report of ``run`` atomically into ``out_dir`` (see reports/README.md)."""
+    """Write the report of ``run`` atomically into ``out_dir`` (see reports/README.md).
+
+    Its ``case.toml`` is the case fully resolved (:mod:`recipsim.report.resolved_case`),
+    with the refrigerant file and a tabulated pressure curve beside it.
+    """
+    from recipsim.report.resolved_case import resolved_case
+
     op = run.case.operating_point
+    text, files = resolved_case(run.case)
     return write_report(
         out_dir,
         run.row,
         run.cycle,
-        run.case.source_text,
+        text,
         overrides,
         run.meta,
         plenum=(op.suction_pressure, op.discharge_pressure),
         plots=plots,
+        files=files,
     )
+
+
+def overrides_digest(overrides: Sequence[str]) -> str:
+    """A short, stable digest of ``KEY=VALUE`` overrides (8 hexadecimal digits).
+
+    The same changes give the same digest whatever their order, spacing or repetition
+    (the last value of a key wins, as when they are applied).
+    """
+    from recipsim.case.load import parse_override
+
+    values: dict[str, Any] = {}
+    for text in overrides:
+        path, value = parse_override(text)
+        values[".".join(path)] = value
+    canonical = json.dumps(sorted(values.items()), default=str, ensure_ascii=False)
+    return hashlib.sha256(canonical.encode()).hexdigest()[:8]
+
+
+def report_name(name: str, overrides: Sequence[str]) -> str:
+    """Directory name of a case's output: ``<name>``, or ``<name>+<digest>`` with overrides
+    (:func:`overrides_digest`), so runs with other ``--set`` values never share one."""
+    return f"{name}+{overrides_digest(overrides)}" if overrides else name
+
+
+def report_dir(parent: Path, name: str, overrides: Sequence[str], file: str = "--out") -> Path:
+    """``parent/<report_name>``, checked to be replaceable by recipsim.
+
+    Parameters
+    ----------
+    parent : Path
+        The directory the user pointed to (``--out``).
+    name : str
+        Case (or study) name, a plain file name (:func:`recipsim.atomic.checked_name`).
+    overrides : sequence of str
+        ``KEY=VALUE`` overrides of the run.
+    file : str
+        Where ``parent`` came from, for messages.
+
+    Raises
+    ------
+    CaseError
+        ``parent`` is not a directory, or the target exists and is neither empty nor a
+        recipsim output.
+    """
+    parent = normalised(parent)
+    if parent.exists() and not parent.is_dir():
+        raise CaseError(str(parent), file, "exists and is not a directory")
+    target = parent / report_name(checked_name(name, file), overrides)
+    check_replaceable(target)
+    return target

@@ -78,26 +78,41 @@ def plot_valves(cycle: pd.DataFrame, ax: Any = None) -> Figure:
 
 
 def plot_torque(cycle: pd.DataFrame, ax: Any = None, label: str = "") -> Figure:
-    """Driving torque and its gas and inertia parts against crank angle."""
+    """Driving, gas and inertia torques on the crankshaft against crank angle [N m].
+
+    One sign convention in every report (``reports/README.md``, "Torques"): a torque is
+    positive when it turns the crank in its direction of rotation. The driving torque
+    is positive on average; the gas torque, the torque of the gas force on the crank,
+    is negative while the piston compresses and positive during re-expansion; the
+    inertia torque is the driving torque plus the gas torque (what accelerates the
+    bodies and, on flexible bearings, what the bearings take).
+    """
     fig, ax = _axes(ax)
     theta = cycle["crank_angle [deg]"]
     ax.plot(theta, cycle["shaft_torque [N m]"], label=label or "driving torque")
     if not label:
-        ax.plot(theta, -cycle["gas_torque [N m]"], "--", lw=0.9, label="- gas torque")
+        ax.plot(theta, cycle["gas_torque [N m]"], "--", lw=0.9, label="gas torque")
         ax.plot(theta, cycle["inertia_torque [N m]"], ":", lw=0.9, label="inertia torque")
+    ax.axhline(0.0, color="0.5", lw=0.6)
     ax.set_xlabel("crank angle from TDC [deg]")
-    ax.set_ylabel("torque [N m]")
+    ax.set_ylabel("torque on the crankshaft [N m]")
     ax.set_xlim(0, 360)
-    ax.set_title("shaft torque at constant speed")
+    ax.set_title("torques (positive: along the rotation)")
     ax.grid(True, alpha=0.3)
     ax.legend()
     return fig
 
 
 def save_cycle_figures(
-    cycle: pd.DataFrame, directory: Any, plenum: tuple[float, float] | None = None
+    cycle: pd.DataFrame,
+    directory: Any,
+    plenum: tuple[float, float] | None = None,
+    title: str = "",
 ) -> list[str]:
-    """Write the standard figures of one case as PNG files; returns the file names."""
+    """Write the standard figures of one case as PNG files; returns the file names.
+
+    ``title`` (what was run: case, mechanics, drive, pressure source) heads every figure.
+    """
     from pathlib import Path
 
     directory = Path(directory)
@@ -117,5 +132,7 @@ def save_cycle_figures(
         if label == "flexible":
             figures["orbits.png"] = plot_orbits({label: cycle})
     for name, fig in figures.items():
+        if title:
+            fig.suptitle(title, fontsize="medium")
         fig.savefig(directory / name, dpi=110)
     return list(figures)

@@ -20,8 +20,12 @@ import pytest
 from helpers import CASES, REFERENCE, Sandbox, one_line_error
 from recipsim.atomic import MARKER
 from recipsim.cli.main import main
+from recipsim.report.case_report import report_name
 
 FAST = ["--no-plots", "--quiet"]
+#: few revolutions, for tests that need a report, not a converged one
+BOUNDS = ["solver.max_revolutions=3", "solver.min_revolutions=1"]
+BOUNDS_ARGS = [a for text in BOUNDS for a in ("--set", text)]
 
 
 @pytest.fixture
@@ -51,8 +55,8 @@ def test_a_case_name_that_is_not_a_plain_file_name_is_refused(box, capsys, name)
 
 def test_a_case_named_like_its_unsafe_file_gets_a_safe_default_name(box, capsys):
     path = box.case('extends = "reference_r134a_lbp"\n', name="my case (v2).toml")
-    assert run(box, path, "--set", "solver.max_revolutions=3", "--set", "solver.min_revolutions=1")
-    assert (box.out / "my_case__v2_" / MARKER).is_file()
+    assert run(box, path, *BOUNDS_ARGS)
+    assert (box.out / report_name("my_case__v2_", BOUNDS) / MARKER).is_file()
     assert box.unchanged()
 
 
@@ -90,17 +94,17 @@ def test_a_report_replaces_its_previous_self_and_cleans_leftovers(box, capsys):
     whose process is gone and keeps a live one (a concurrent run's)."""
     dead = _dead_pid()
     host = socket.gethostname()
-    stale = box.out / f".reference_r134a_lbp.tmp-{host}-{dead}-abc"
-    live = box.out / f".reference_r134a_lbp.tmp-{host}-{os.getpid()}-def"
-    old = box.out / ".reference_r134a_lbp.old-1-2"
+    name = report_name("reference_r134a_lbp", BOUNDS)
+    stale = box.out / f".{name}.tmp-{host}-{dead}-abc"
+    live = box.out / f".{name}.tmp-{host}-{os.getpid()}-def"
+    old = box.out / f".{name}.old-1-2"
     for d in (stale, live, old):
         d.mkdir()
         (d / "summary.csv").write_text("half")
-    fast = ["--set", "solver.max_revolutions=3", "--set", "solver.min_revolutions=1"]
-    assert run(box, REFERENCE, *fast) in (0, 1)
-    assert run(box, REFERENCE, *fast) in (0, 1)  # replaces its own report
+    assert run(box, REFERENCE, *BOUNDS_ARGS) in (0, 1)
+    assert run(box, REFERENCE, *BOUNDS_ARGS) in (0, 1)  # replaces its own report
     assert not stale.exists() and not old.exists() and live.exists()
-    assert (box.out / "reference_r134a_lbp" / "summary.csv").is_file()
+    assert (box.out / name / "summary.csv").is_file()
     assert box.unchanged()
 
 
@@ -287,15 +291,16 @@ def test_run_exits_1_when_the_case_does_not_converge_and_keeps_the_report(box, c
     )
     err = one_line_error(capsys)
     assert status == 1 and "did not reach its periodic state in 2 revolutions" in err
-    summary = pd.read_csv(box.out / "reference_r134a_lbp" / "summary.csv")
+    sets = ["solver.max_revolutions=2", "solver.min_revolutions=1", "solver.cycle_tolerance=1e-12"]
+    summary = pd.read_csv(box.out / report_name("reference_r134a_lbp", sets) / "summary.csv")
     assert not bool(summary["converged [-]"].iloc[0])
 
 
 def test_a_full_disk_is_one_line_exit_1_and_the_previous_report_survives(box, capsys, monkeypatch):
-    fast = ["--set", "solver.max_revolutions=3", "--set", "solver.min_revolutions=1"]
+    fast = BOUNDS_ARGS
     run(box, REFERENCE, *fast)
     capsys.readouterr()
-    report = box.out / "reference_r134a_lbp"
+    report = box.out / report_name("reference_r134a_lbp", BOUNDS)
     before = (report / "summary.csv").read_bytes()
 
     def full(*args, **kwargs):
@@ -305,7 +310,7 @@ def test_a_full_disk_is_one_line_exit_1_and_the_previous_report_survives(box, ca
     assert run(box, REFERENCE, *fast) == 1
     assert "No space left on device" in one_line_error(capsys)
     assert (report / "summary.csv").read_bytes() == before
-    assert sorted(p.name for p in box.out.iterdir()) == ["other_report", "reference_r134a_lbp"]
+    assert sorted(p.name for p in box.out.iterdir()) == ["other_report", report.name]
     assert box.unchanged()
 
 

@@ -143,7 +143,7 @@ def test_paper_command_writes_table1_with_the_paper_pattern(tmp_path):
         ["paper", str(PAPER), "--out", str(out), "--no-plots", "--undamped-revolutions", "3"]
     )
     assert status == 0
-    table = pd.read_csv(out / "table1.csv").set_index("bearing")
+    table = pd.read_csv(out / "paper_tabulated" / "table1.csv").set_index("bearing")
     assert list(table.index) == list(BEARING_NAMES)
     assert (table["gas_flexible_rms [N]"] > table["gas_pinned_rms [N]"]).all()
     assert (table["inertia_flexible_rms [N]"] > table["inertia_pinned_rms [N]"]).all()

@@ -72,7 +72,12 @@ def test_report_files(report):
     meta = json.loads((report / "provenance.json").read_text())
     assert meta["property_backend"] == "CoolProp TABLE" and meta["solver"]["rtol"] > 0
     assert meta["property_table_max_error [-]"] < 1e-4  # measured against HEOS at build
-    assert (report / "case.toml").read_text() == REFERENCE.read_text()
+    # the case as run, resolved (tests/unit/report/test_resolved_case.py): the same case
+    from recipsim.case.load import load_case
+
+    resolved, original = load_case(report / "case.toml"), load_case(REFERENCE)
+    assert resolved.operating_point == original.operating_point
+    assert resolved.geometry == original.geometry and resolved.valves == original.valves
 
 
 def test_columns_carry_units_and_are_documented(report):

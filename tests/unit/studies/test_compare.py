@@ -187,9 +187,9 @@ def test_output_directory_layout(tab_vs_coupled):
 def test_self_comparison_has_zero_differences(tmp_path, capsys):
     """The same case twice: every difference is 0 (the solver is deterministic), except the
     measured wall time; relative differences are 0 or NaN (A = 0, or a NaN gas metric)."""
-    out = tmp_path / "self"
-    argv = ["compare", str(PAPER), str(PAPER), "--out", str(out), "--no-plots"]
+    argv = ["compare", str(PAPER), str(PAPER), "--out", str(tmp_path / "self"), "--no-plots"]
     assert main(argv) == 0
+    out = tmp_path / "self" / "paper_tabulated_vs_paper_tabulated"  # --out is the parent
     printed = capsys.readouterr().out
     assert "paper_tabulated_a" in printed and "bearing_rms_primary [N]" in printed
     table = pd.read_csv(out / "comparison.csv").set_index("quantity")
@@ -282,12 +282,13 @@ def test_missing_second_file_exits_2_and_keeps_previous_output(tmp_path, capsys)
     assert (
         main(["compare", str(PAPER), str(PAPER), "--out", str(out), "--no-plots", "--quiet"]) == 0
     )
-    before = (out / "comparison.csv").read_bytes()
+    written = out / "paper_tabulated_vs_paper_tabulated"
+    before = (written / "comparison.csv").read_bytes()
     missing = tmp_path / "nope.toml"
     assert main(["compare", str(PAPER), str(missing), "--out", str(out)]) == 2
     err = capsys.readouterr().err.strip()
     assert err.count("\n") == 0 and str(missing) in err and "no such case file" in err
-    assert (out / "comparison.csv").read_bytes() == before
+    assert (written / "comparison.csv").read_bytes() == before
     assert sorted(p.name for p in tmp_path.iterdir()) == ["cmp"]
 
 
@@ -319,8 +320,12 @@ def test_solver_failure_in_case_b_writes_nothing(tmp_path, capsys):
 
 
 def test_refuses_to_replace_a_directory_that_is_not_a_comparison(tmp_path, capsys):
-    """``--out reports`` must not wipe the reports: exit 2, the directory untouched."""
-    (tmp_path / "keep.txt").write_text("mine")
+    """A directory of the user's where the comparison would go is never replaced: exit 2,
+    the directory untouched."""
+    mine = tmp_path / "paper_tabulated_vs_paper_tabulated"
+    mine.mkdir()
+    (mine / "keep.txt").write_text("mine")
     assert main(["compare", str(PAPER), str(PAPER), "--out", str(tmp_path), "--no-plots"]) == 2
     assert "not written by recipsim" in capsys.readouterr().err
-    assert [p.name for p in tmp_path.iterdir()] == ["keep.txt"]
+    assert [p.name for p in tmp_path.iterdir()] == [mine.name]
+    assert [p.name for p in mine.iterdir()] == ["keep.txt"]
