@@ -50,8 +50,8 @@ def rotor_jacobian(spec: MechanismSpec, geometry: CrankGeometry, speed: float) -
         yp, ym = y.copy(), y.copy()
         yp[j] += scale[j]
         ym[j] -= scale[j]
-        flexible_rhs(0.0, yp, fp, aux, par, 1e5, table, table)
-        flexible_rhs(0.0, ym, fm, aux, par, 1e5, table, table)
+        flexible_rhs(0.0, yp, fp, aux, par, 1e5, table, table, table)
+        flexible_rhs(0.0, ym, fm, aux, par, 1e5, table, table, table)
         jac[:, j] = (fp - fm) / (2 * scale[j])
     return jac
 

@@ -33,9 +33,9 @@ NO_TABLE = np.zeros(1)
 
 
 @njit
-def _call_rhs_many(n, y, dydt, aux, par, pa, pp, da, dt):  # type: ignore[no-untyped-def]
+def _call_rhs_many(n, y, dydt, aux, par, pa, pp, da, dt, bt):  # type: ignore[no-untyped-def]
     for _ in range(n):
-        flexible_rhs_tabulated(0.0, y, dydt, aux, par, pa, pp, da, dt)
+        flexible_rhs_tabulated(0.0, y, dydt, aux, par, pa, pp, da, dt, bt)
 
 
 def test_rhs_is_compiled_and_allocation_free(
@@ -46,7 +46,7 @@ def test_rhs_is_compiled_and_allocation_free(
     par = mechanism_parameters(spec, geometry, shell_pressure=1.15e5, speed=omega)
     y = initial_state(par, 0.4, omega, 8e5)
     dydt, aux = np.zeros(lay.N_STATE), np.zeros(lay.N_AUX)
-    args = (y, dydt, aux, par, curve.crank_angle, curve.pressure, NO_TABLE, NO_TABLE)
+    args = (y, dydt, aux, par, curve.crank_angle, curve.pressure, NO_TABLE, NO_TABLE, NO_TABLE)
     _call_rhs_many(1, *args)  # compile
     counts = []
     enabled = nrt.memsys_stats_enabled()
@@ -75,7 +75,7 @@ def test_parameters_are_arguments_not_frozen_globals(
     out = []
     for par in (par_a, par_b):
         dydt, aux = np.zeros(lay.N_STATE), np.zeros(lay.N_AUX)
-        flexible_rhs(0.0, y, dydt, aux, par, 8e5, NO_TABLE, NO_TABLE)
+        flexible_rhs(0.0, y, dydt, aux, par, 8e5, NO_TABLE, NO_TABLE, NO_TABLE)
         out.append(dydt[lay.Y_ROTOR_VX])
     assert out[0] == pytest.approx(2 * out[1], rel=1e-12)
 
@@ -92,7 +92,7 @@ def test_initial_state_carries_the_pinned_reactions(
     p = 12e5
     y = initial_state(par, theta, omega, p)
     aux = np.zeros(lay.N_AUX)
-    flexible_outputs(0.0, y, aux, par, p, NO_TABLE, NO_TABLE)
+    flexible_outputs(0.0, y, aux, par, p, NO_TABLE, NO_TABLE, NO_TABLE)
     ref = np.zeros(N_PIN_OUT)
     pinned_reactions(theta, omega, 0.0, p, par, ref)
     forces = aux[lay.A_BEARING_FORCE : lay.A_BEARING_FORCE + 18]
@@ -100,7 +100,7 @@ def test_initial_state_carries_the_pinned_reactions(
     np.testing.assert_allclose(forces, ref[:18], atol=1e-6 * scale)
     # and without deflection nothing is loaded
     y0 = initial_state(par, theta, omega, p, static_deflection=False)
-    flexible_outputs(0.0, y0, aux, par, p, NO_TABLE, NO_TABLE)
+    flexible_outputs(0.0, y0, aux, par, p, NO_TABLE, NO_TABLE, NO_TABLE)
     assert np.abs(aux[lay.A_BEARING_FORCE : lay.A_BEARING_FORCE + 18]).max() < 1e-9 * scale
 
 
@@ -128,7 +128,7 @@ def test_state_accessors_and_piston_outputs(
     )
     assert piston_tilt(y) == 2e-4
     aux = np.zeros(lay.N_AUX)
-    flexible_outputs(0.0, y, aux, par, 1.15e5, NO_TABLE, NO_TABLE)
+    flexible_outputs(0.0, y, aux, par, 1.15e5, NO_TABLE, NO_TABLE, NO_TABLE)
     x, v = piston_axial_displacement(y, par)
     assert aux[lay.A_PISTON_DISPLACEMENT] == pytest.approx(x, abs=1e-15)
     assert aux[lay.A_PISTON_SPEED] == pytest.approx(v, rel=1e-12)
@@ -152,7 +152,9 @@ def _integrate_with_work(
     pa, pp = curve.crank_angle, curve.pressure
 
     def fun(t: float, z: np.ndarray) -> np.ndarray:
-        flexible_rhs_tabulated(t, z[:-1], dydt, aux, par, pa, pp, drive_angles, drive_torques)
+        flexible_rhs_tabulated(
+            t, z[:-1], dydt, aux, par, pa, pp, drive_angles, drive_torques, NO_TABLE
+        )
         power = aux[lay.A_DRIVE_POWER] + aux[lay.A_GAS_POWER] - aux[lay.A_BEARING_POWER]
         return np.append(dydt, power)
 

@@ -46,7 +46,11 @@ OPTION_SPEC: Spec = {
     "heat_transfer": Choice(("adiabatic", "annand", "adair"), "adiabatic", "in-cylinder heat"),
     "leakage": Choice(("none", "piston_gap"), "none", "piston-cylinder leakage"),
     "mechanics": Choice(("pinned", "flexible"), "pinned", "crank train"),
-    "bearing_law": Choice(("linear",), "linear", "bearing force law"),
+    "bearing_law": Choice(
+        ("linear", "short_journal", "finite_journal"),
+        "linear",
+        "law of the journal bearings (primary, secondary, eccentric) whose table names none",
+    ),
     "drive": Choice(("constant_speed", "torque_profile", "induction_motor"), "constant_speed"),
 }
 
@@ -142,6 +146,7 @@ TOP_KEYS = {
     "bearings",
     "pressure_curve",
     "motor",
+    "oil",
 }
 
 
@@ -574,7 +579,7 @@ def case_from_dict(
         )
     if solver.min_revolutions > solver.max_revolutions:
         raise CaseError(file, "solver.min_revolutions", "must not exceed solver.max_revolutions")
-    mechanism = mechanism_from_dict(raw, file, bore=geometry.bore)
+    mechanism = mechanism_from_dict(raw, file, bore=geometry.bore, default_law=options.bearing_law)
     if geometry.liner_length is None:
         geometry = replace(
             geometry,

@@ -21,13 +21,21 @@ is not read here: it is passed separately as a :class:`CrankGeometry`.
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Collection, Mapping
+from collections.abc import Collection, Mapping
 from dataclasses import dataclass, replace
 from typing import Any
 
-from recipsim.case.units import to_si
+from recipsim.case.lubrication import (
+    FILM_KEYS,
+    FilmSpec,
+    OilSpec,
+    has_film_keys,
+    parse_film,
+    parse_oil,
+)
+from recipsim.case.table_reader import TableReader as _Table
 from recipsim.errors import CaseError
-from recipsim.physics.mechanics.layout import BEARING_NAMES
+from recipsim.physics.mechanics.layout import BEARING_LAWS, BEARING_NAMES
 
 _INERTIA = "kg*m**2"
 
@@ -119,6 +127,15 @@ class RotorSpec:
         Axial position of the centre of mass (eccentric plane at z = 0) [m].
     primary_z, secondary_z : float
         Axial positions of the primary (1) and secondary (2) bearings [m].
+    counterweight_mass : float
+        Counterweight: a point mass on the rotor [kg] (0: none). ``mass`` and the
+        inertias are the rotor's without it.
+    counterweight_radius : float
+        Its distance from the spin axis [m].
+    counterweight_angle : float
+        Its angle ahead of the crank pin about +Z [rad] (pi: opposite the pin).
+    counterweight_z : float
+        Its axial position [m].
     """
 
     mass: float
@@ -127,6 +144,10 @@ class RotorSpec:
     centre_of_mass_z: float
     primary_z: float
     secondary_z: float
+    counterweight_mass: float = 0.0
+    counterweight_radius: float = 0.0
+    counterweight_angle: float = math.pi
+    counterweight_z: float = 0.0
 
 
 @dataclass(frozen=True)
@@ -136,19 +157,25 @@ class BearingSpec:
     Attributes
     ----------
     law : str
-        ``"linear"``: isotropic spring and dashpot normal to the bearing axis.
+        ``"linear"``: isotropic spring and dashpot normal to the bearing axis;
+        ``"short_journal"``, ``"finite_journal"``: hydrodynamic journal;
+        ``"skirt_film"``: the piston's lubricated skirt (piston_top and piston_skirt).
     stiffness : float
-        [N/m].
+        [N/m] (linear law; 0 when not given).
     damping : float
-        [N s/m].
+        [N s/m] (linear law).
     position_from_crown : float or None
         Piston bearings only: axial position of the bearing marker below the crown [m].
+    film : FilmSpec or None
+        Film data (geometry, clearance, viscosity, contact), required by the film laws
+        and kept when given for a linear bearing (so the law can be switched).
     """
 
     law: str
     stiffness: float
     damping: float
     position_from_crown: float | None = None
+    film: FilmSpec | None = None
 
 
 @dataclass(frozen=True)
@@ -163,6 +190,7 @@ class MechanismSpec:
     connecting_rod: ConnectingRodSpec
     rotor: RotorSpec
     bearings: tuple[BearingSpec, ...]
+    oil: OilSpec | None = None
 
     def bearing(self, name: str) -> BearingSpec:
         """The bearing called ``name`` (one of ``BEARING_NAMES``)."""
@@ -231,48 +259,6 @@ def with_damping(spec: MechanismSpec, damping: float | Mapping[str, float]) -> M
 # ---------------------------------------------------------------------------- parser
 
 
-class _Table:
-    """Reads keys from one case table, tracking which keys were used."""
-
-    def __init__(self, data: Any, file: str, prefix: str) -> None:
-        if not isinstance(data, Mapping):
-            raise CaseError(file, prefix, f"expected a table, got {data!r}")
-        self.data = data
-        self.file = file
-        self.prefix = prefix
-
-    def key(self, name: str) -> str:
-        return f"{self.prefix}.{name}"
-
-    def check_keys(self, allowed: Collection[str]) -> None:
-        unknown = sorted(set(self.data) - set(allowed))
-        if unknown:
-            raise CaseError(
-                self.file,
-                self.key(unknown[0]),
-                f"unknown key; allowed: {', '.join(sorted(allowed))}",
-            )
-
-    def quantity(
-        self,
-        name: str,
-        unit: str,
-        check: Callable[[float], bool],
-        allowed: str,
-        default: float | None = None,
-    ) -> float:
-        if name not in self.data:
-            if default is not None:
-                return default
-            raise CaseError(self.file, self.key(name), f"missing; allowed: {allowed} ({unit})")
-        value = to_si(self.data[name], unit, self.file, self.key(name))
-        if not math.isfinite(value) or not check(value):
-            raise CaseError(
-                self.file, self.key(name), f"{value!r} {unit} is out of range; allowed: {allowed}"
-            )
-        return value
-
-
 def _positive(v: float) -> bool:
     return v > 0.0
 
@@ -293,6 +279,12 @@ _PISTON_KEYS = (
     "transverse_inertia",
 )
 _ROD_KEYS = ("mass", "centre_of_mass_fraction", "inertia")
+_COUNTERWEIGHT_KEYS = (
+    "counterweight_mass",
+    "counterweight_radius",
+    "counterweight_angle",
+    "counterweight_z",
+)
 _ROTOR_KEYS = (
     "mass",
     "polar_inertia",
@@ -300,9 +292,12 @@ _ROTOR_KEYS = (
     "centre_of_mass_z",
     "primary_z",
     "secondary_z",
+    *_COUNTERWEIGHT_KEYS,
 )
-_BEARING_KEYS = ("law", "stiffness", "damping")
-_PISTON_BEARING_KEYS = (*_BEARING_KEYS, "position_from_crown")
+_BEARING_KEYS = ("law", "stiffness", "damping", *FILM_KEYS)
+_PISTON_BEARING_KEYS = ("law", "stiffness", "damping", "position_from_crown",
+                        "radial_clearance", "film_temperature", "contact_film",
+                        "contact_stiffness", "contact_friction")  # fmt: skip
 
 
 def _parse_piston(t: _Table, bore: float | None) -> PistonSpec:
@@ -348,32 +343,79 @@ def _parse_rotor(t: _Table) -> RotorSpec:
     z2 = t.quantity(
         "secondary_z", "m", lambda v: v != z1, f"any finite value other than primary_z ({z1:g} m)"
     )
-    return RotorSpec(mass, ip, it, zg, z1, z2)
+    m_u = t.quantity("counterweight_mass", "kg", _non_negative, ">= 0", 0.0)
+    if m_u == 0.0:
+        extra = [k for k in _COUNTERWEIGHT_KEYS[1:] if k in t.data]
+        if extra:
+            raise CaseError(t.file, t.key(extra[0]), "needs counterweight_mass > 0")
+        return RotorSpec(mass, ip, it, zg, z1, z2)
+    r_u = t.quantity("counterweight_radius", "m", _positive, "> 0")
+    ang = t.quantity("counterweight_angle", "rad", _any, "any angle", math.pi)
+    z_u = t.quantity("counterweight_z", "m", _any, "any finite value", 0.0)
+    return RotorSpec(mass, ip, it, zg, z1, z2, m_u, r_u, ang, z_u)
 
 
-def _parse_bearing(t: _Table, name: str, piston_length: float) -> BearingSpec:
+class _LazyOil:
+    """The ``[oil]`` table, parsed when a lubricated bearing first needs it (a case
+    without one never imports the oil laws)."""
+
+    def __init__(self, data: Any, file: str) -> None:
+        self.data = data
+        self.file = file
+        self.spec: OilSpec | None = None
+
+    def get(self) -> OilSpec:
+        if self.spec is None:
+            self.spec = parse_oil(self.data, self.file)
+        return self.spec
+
+
+def _parse_bearing(
+    t: _Table, name: str, piston: PistonSpec, bore: float | None, oil: _LazyOil, default_law: str
+) -> BearingSpec:
+    """One ``[bearings.<name>]`` table; ``default_law`` (``options.bearing_law``) applies
+    to the journals that name no law of their own."""
     is_piston = name in ("piston_top", "piston_skirt")
     t.check_keys(_PISTON_BEARING_KEYS if is_piston else _BEARING_KEYS)
-    law = t.data.get("law")
-    if law is None:
-        raise CaseError(t.file, t.key("law"), 'missing; allowed: "linear"')
-    if law != "linear":
-        raise CaseError(
-            t.file,
-            t.key("law"),
-            f'{law!r} is not available (short_journal is planned); allowed: "linear"',
-        )
-    k = t.quantity("stiffness", "N/m", _positive, "> 0")
-    c = t.quantity("damping", "N*s/m", _non_negative, ">= 0")
+    allowed = BEARING_LAWS[name]
+    fallback = default_law if default_law in allowed and not is_piston else "linear"
+    law = t.choice("law", allowed, None if is_piston or name == "pin" else fallback)
+    needs_spring = law == "linear"
+    k = t.quantity("stiffness", "N/m", _positive, "> 0", None if needs_spring else 0.0)
+    c = t.quantity("damping", "N*s/m", _non_negative, ">= 0", None if needs_spring else 0.0)
     position = None
     if is_piston:
         position = t.quantity(
             "position_from_crown",
             "m",
-            lambda v: 0.0 <= v <= piston_length,
-            f"0 ... piston length ({piston_length:g} m)",
+            lambda v: 0.0 <= v <= piston.length,
+            f"0 ... piston length ({piston.length:g} m)",
         )
-    return BearingSpec(law=law, stiffness=k, damping=c, position_from_crown=position)
+    film = None
+    if law == "skirt_film" or (is_piston and "radial_clearance" in t.data):
+        if bore is None:
+            raise CaseError(t.file, t.key("law"), "the piston film needs the bore")
+        film = parse_film(t, oil.get(), diameter=bore, length=piston.length)
+    elif law != "linear" or (not is_piston and has_film_keys(t.data)):
+        film = parse_film(t, oil.get())
+    return BearingSpec(law=law, stiffness=k, damping=c, position_from_crown=position, film=film)
+
+
+def _check_piston_film(bearings: list[BearingSpec], file: str) -> None:
+    """The piston's two stations form one film: both ``skirt_film`` or neither, with one
+    clearance and one temperature."""
+    top, skirt = bearings[4], bearings[5]
+    if (top.law == "skirt_film") != (skirt.law == "skirt_film"):
+        raise CaseError(
+            file,
+            "bearings.piston_skirt.law",
+            "piston_top and piston_skirt form one film: both skirt_film or neither",
+        )
+    if top.law == "skirt_film" and top.film is not None and skirt.film is not None:
+        for key in ("radial_clearance", "film_temperature"):
+            if getattr(top.film, key) != getattr(skirt.film, key):
+                raise CaseError(file, f"bearings.piston_skirt.{key}",
+                                "differs from piston_top's; allowed: the same value")  # fmt: skip
 
 
 def mechanism_from_dict(
@@ -382,6 +424,7 @@ def mechanism_from_dict(
     *,
     bore: float | None = None,
     allowed_extra_keys: Collection[str] = (),
+    default_law: str = "linear",
 ) -> MechanismSpec:
     """Read the ``[mechanism.*]`` and ``[bearings.*]`` tables of a case.
 
@@ -396,6 +439,8 @@ def mechanism_from_dict(
     allowed_extra_keys : collection of str
         Keys of ``[mechanism]`` and ``[bearings]`` that belong to someone else (e.g. a
         model-selection key) and are skipped instead of being rejected.
+    default_law : str
+        Law of the journals whose table names none (``options.bearing_law``).
 
     Returns
     -------
@@ -422,13 +467,14 @@ def mechanism_from_dict(
         raise CaseError(file, "bearings", f"missing table; needs {', '.join(BEARING_NAMES)}")
     brg = _Table(tables["bearings"], file, "bearings")
     brg.check_keys((*BEARING_NAMES, *allowed_extra_keys))
+    oil = _LazyOil(tables.get("oil"), file)
     bearings = []
     for name in BEARING_NAMES:
         if name not in brg.data:
             raise CaseError(file, brg.key(name), "missing table")
-        bearings.append(
-            _parse_bearing(_Table(brg.data[name], file, brg.key(name)), name, piston.length)
-        )
+        table = _Table(brg.data[name], file, brg.key(name))
+        bearings.append(_parse_bearing(table, name, piston, bore, oil, default_law))
+    _check_piston_film(bearings, file)
     top, skirt = bearings[4].position_from_crown, bearings[5].position_from_crown
     if top == skirt:
         raise CaseError(
@@ -436,7 +482,9 @@ def mechanism_from_dict(
             "bearings.piston_skirt.position_from_crown",
             f"equals the piston_top position ({top!r} m); allowed: any other position",
         )
-    return MechanismSpec(piston, rod, rotor, tuple(bearings))
+    if "oil" in tables:
+        oil.get()  # validated even when no bearing uses it
+    return MechanismSpec(piston, rod, rotor, tuple(bearings), oil.spec)
 
 
 # ------------------------------------------------------------------ reference compressor
@@ -459,7 +507,10 @@ def reference_mechanism_tables() -> dict[str, Any]:
       35 g for the pin, 17.5 g for each piston bearing), rounded. With it the viscous
       bearing forces are about a tenth of the elastic ones, as the paper reports for
       its "parametric dissipation" (whose values it does not give). Real oil films
-      damp far more (short-bearing squeeze damping is of order 1e5 N s/m).
+      damp far more (short-bearing squeeze damping is of order 1e5 N s/m);
+    - journal film data (diameter, length, 10 um radial clearance) and the ISO VG 10
+      oil at 60 C for the hydrodynamic laws; the journals take the default law
+      (``options.bearing_law``, linear unless set).
     """
     gauss = 10.0 / math.sqrt(3.0)
     return {
@@ -486,9 +537,21 @@ def reference_mechanism_tables() -> dict[str, Any]:
             },
         },
         "bearings": {
-            "primary": {"law": "linear", "stiffness": "5.0e7 N/m", "damping": "4700 N*s/m"},
-            "secondary": {"law": "linear", "stiffness": "4.0e7 N/m", "damping": "4200 N*s/m"},
-            "eccentric": {"law": "linear", "stiffness": "2.5e7 N/m", "damping": "1300 N*s/m"},
+            "primary": {
+                "stiffness": "5.0e7 N/m",
+                "damping": "4700 N*s/m",
+                **_journal("16 mm", "20 mm"),
+            },
+            "secondary": {
+                "stiffness": "4.0e7 N/m",
+                "damping": "4200 N*s/m",
+                **_journal("14 mm", "12 mm"),
+            },
+            "eccentric": {
+                "stiffness": "2.5e7 N/m",
+                "damping": "1300 N*s/m",
+                **_journal("14 mm", "12 mm"),
+            },
             "pin": {"law": "linear", "stiffness": "5.0e7 N/m", "damping": "1300 N*s/m"},
             "piston_top": {
                 "law": "linear",
@@ -503,7 +566,13 @@ def reference_mechanism_tables() -> dict[str, Any]:
                 "position_from_crown": f"{10.0 + gauss:.4f} mm",
             },
         },
+        "oil": {"name": "iso_vg10", "film_temperature": "60 degC"},
     }
+
+
+def _journal(diameter: str, length: str) -> dict[str, str]:
+    """Film data of a reference journal (design notes section 4): 10 um radial clearance."""
+    return {"diameter": diameter, "length": length, "radial_clearance": "10 um"}
 
 
 def reference_geometry() -> CrankGeometry:

@@ -18,7 +18,7 @@ from recipsim.case.load import Case
 from recipsim.case.mechanism import CrankGeometry
 from recipsim.case.refrigerant import case_fluid
 from recipsim.model import scenes
-from recipsim.model.mechanism_parameters import mechanism_parameters
+from recipsim.model.mechanism_parameters import bearing_tables, mechanism_parameters
 from recipsim.model.pinned import pinned_torque_profile
 from recipsim.physics.kinematics import piston_displacement
 from recipsim.physics.mechanics import layout as mlay
@@ -339,7 +339,10 @@ def build_model(case: Case, drive_pressure: tuple[np.ndarray, np.ndarray] | None
     else:
         d_angles, d_torques = np.zeros(1), np.zeros(1)
 
-    par = np.concatenate([model.par[: scenes.P_TABLES], p_angles, p_values, d_angles, d_torques])
+    b_tables = bearing_tables(case.mechanism)
+    par = np.concatenate(
+        [model.par[: scenes.P_TABLES], p_angles, p_values, d_angles, d_torques, b_tables]
+    )
     par[scenes.P_MECH : scenes.P_MECH + mlay.N_PAR] = mpar
     par[scenes.P_LEAK_CLEARANCE] = case.leakage.radial_clearance
     ipar = model.ipar.copy()
@@ -348,6 +351,8 @@ def build_model(case: Case, drive_pressure: tuple[np.ndarray, np.ndarray] | None
     ipar[scenes.I_PTAB_N] = p_angles.size
     ipar[scenes.I_DTAB] = scenes.P_TABLES + 2 * p_angles.size
     ipar[scenes.I_DTAB_N] = d_angles.size
+    ipar[scenes.I_BTAB] = scenes.P_TABLES + 2 * p_angles.size + 2 * d_angles.size
+    ipar[scenes.I_BTAB_N] = b_tables.size
     free = opts.drive != "constant_speed"
     ipar[scenes.I_STOP_ON_ANGLE] = 1 if free else 0
 

@@ -66,6 +66,10 @@ def mechanism_parameters(
     par[lay.P_ROTOR_COM_Z] = rotor.centre_of_mass_z
     par[lay.P_PRIMARY_Z] = rotor.primary_z
     par[lay.P_SECONDARY_Z] = rotor.secondary_z
+    par[lay.P_COUNTERWEIGHT_MASS] = rotor.counterweight_mass
+    par[lay.P_COUNTERWEIGHT_RADIUS] = rotor.counterweight_radius
+    par[lay.P_COUNTERWEIGHT_ANGLE] = rotor.counterweight_angle
+    par[lay.P_COUNTERWEIGHT_Z] = rotor.counterweight_z
 
     rod = spec.connecting_rod
     par[lay.P_ROD_MASS] = rod.mass
@@ -86,6 +90,7 @@ def mechanism_parameters(
     par[lay.P_PISTON_SKIRT_U] = com - skirt
     par[lay.P_PIN_FROM_CROWN] = piston.pin_offset_from_crown
 
+    offsets = _table_offsets(spec)
     for i, (bearing, axis) in enumerate(zip(spec.bearings, _BEARING_AXES, strict=True)):
         row = lay.P_BEARINGS + i * lay.N_BEARING_PAR
         if bearing.law not in lay.LAW_CODES:
@@ -94,4 +99,44 @@ def mechanism_parameters(
         par[row + lay.BP_AXIS] = axis
         par[row + lay.BP_STIFFNESS] = bearing.stiffness
         par[row + lay.BP_DAMPING] = bearing.damping
+        par[row + lay.BP_TABLE] = offsets[i]
+        film = bearing.film
+        if film is not None and bearing.law != "linear":
+            par[row + lay.BP_DIAMETER] = film.diameter
+            par[row + lay.BP_LENGTH] = film.length
+            par[row + lay.BP_CLEARANCE] = film.radial_clearance
+            par[row + lay.BP_VISCOSITY] = film.viscosity
+            par[row + lay.BP_CONTACT_FILM] = film.contact_film
+            par[row + lay.BP_CONTACT_STIFFNESS] = film.contact_stiffness
+            par[row + lay.BP_CONTACT_FRICTION] = film.contact_friction
     return par
+
+
+def _finite_tables(spec: MechanismSpec) -> list[np.ndarray | None]:
+    """The impedance table of each ``finite_journal`` bearing (None for the others)."""
+    tables: list[np.ndarray | None] = []
+    for bearing in spec.bearings:
+        if bearing.law == "finite_journal" and bearing.film is not None:
+            from recipsim.physics.mechanics.journal_table import finite_journal_table
+
+            tables.append(finite_journal_table(bearing.film.length / bearing.film.diameter))
+        else:
+            tables.append(None)
+    return tables
+
+
+def _table_offsets(spec: MechanismSpec) -> list[int]:
+    """Offset of each bearing's table in :func:`bearing_tables` (-1: none)."""
+    offsets = []
+    position = 0
+    for table in _finite_tables(spec):
+        offsets.append(-1 if table is None else position)
+        position += 0 if table is None else table.size
+    return offsets
+
+
+def bearing_tables(spec: MechanismSpec) -> np.ndarray:
+    """The ``finite_journal`` tables of ``spec`` in bearing order, one flat float64 array
+    (a single zero when there are none), as the compiled mechanism reads them."""
+    tables = [t for t in _finite_tables(spec) if t is not None]
+    return np.concatenate(tables) if tables else np.zeros(1)

@@ -14,7 +14,7 @@ One layout for all scenes (built once from the case by :func:`recipsim.model.bui
 
 - ``par`` = [cylinder block (``cylinder.N_PAR``) | mechanism block (``layout.N_PAR``) |
   scene scalars (``N_SCENE_PAR``) | tables: pressure angles, pressures, drive angles,
-  drive torques]; offsets and lengths of the tables in ``ipar``;
+  drive torques, bearing tables]; offsets and lengths of the tables in ``ipar``;
 - ``y`` = [cylinder states (coupled only) | mechanism states | mechanism quadratures];
 - ``aux`` = [cylinder outputs (``cylinder.N_AUX``) | mechanism outputs
   (``layout.N_AUX``)]: every scene fills the cylinder block (pressure, volume,
@@ -51,7 +51,9 @@ I_PTAB_N = cyl.N_IPAR + 1  # its length
 I_DTAB = cyl.N_IPAR + 2  # offset of the drive torque table
 I_DTAB_N = cyl.N_IPAR + 3
 I_STOP_ON_ANGLE = cyl.N_IPAR + 4  # 1: the terminal crank-angle event is armed
-N_IPAR = cyl.N_IPAR + 5
+I_BTAB = cyl.N_IPAR + 5  # offset of the bearing tables (finite_journal) in par
+I_BTAB_N = cyl.N_IPAR + 6  # their total length (at least 1)
+N_IPAR = cyl.N_IPAR + 7
 
 # ---- float parameters ----------------------------------------------------------------
 P_MECH = cyl.N_PAR  # first entry of the mechanism block
@@ -107,6 +109,12 @@ def _tables(par, ipar):
 
 
 @njit(cache=True)
+def _bearing_tables(par, ipar):
+    b0 = ipar[I_BTAB]
+    return par[b0 : b0 + ipar[I_BTAB_N]]
+
+
+@njit(cache=True)
 def leakage_eccentricity(ym, mpar, piston_length: float, clearance: float) -> float:
     """Effective eccentricity ratio of a tilted, offset piston in the bore [-].
 
@@ -147,7 +155,8 @@ def _mechanism_part(t, y, m0, par, ipar, dydt, aux, p_gas) -> None:
     mpar = par[P_MECH : P_MECH + lay.N_PAR]
     _, _, da, dt = _tables(par, ipar)
     ym = y[m0 : m0 + lay.N_STATE]
-    flexible_rhs(t, ym, dydt[m0 : m0 + lay.N_STATE], aux[A_MECH:N_AUX], mpar, p_gas, da, dt)
+    bt = _bearing_tables(par, ipar)
+    flexible_rhs(t, ym, dydt[m0 : m0 + lay.N_STATE], aux[A_MECH:N_AUX], mpar, p_gas, da, dt, bt)
     q = m0 + lay.N_STATE
     dydt[q + MQ_DRIVE] = aux[A_MECH + lay.A_DRIVE_POWER]
     dydt[q + MQ_BEARINGS] = aux[A_MECH + lay.A_BEARING_POWER]

@@ -35,8 +35,20 @@ def bearing_columns(forces: np.ndarray, displacements: np.ndarray) -> dict[str, 
     return cols
 
 
-def flexible_columns(mech_aux: np.ndarray) -> dict[str, np.ndarray]:
-    """Columns of the flexible mechanism from its outputs, shape (n, ``layout.N_AUX``)."""
+def film_clearances(mech_par: np.ndarray) -> dict[str, float]:
+    """Radial clearance [m] of every bearing that runs on an oil film, by name."""
+    out = {}
+    for i, name in enumerate(lay.BEARING_NAMES):
+        row = lay.P_BEARINGS + i * lay.N_BEARING_PAR
+        if int(mech_par[row + lay.BP_LAW]) != lay.LAW_LINEAR:
+            out[name] = float(mech_par[row + lay.BP_CLEARANCE])
+    return out
+
+
+def flexible_columns(mech_aux: np.ndarray, mech_par: np.ndarray) -> dict[str, np.ndarray]:
+    """Columns of the flexible mechanism from its outputs, shape (n, ``layout.N_AUX``),
+    and its parameters (film bearings add film thickness, friction torque, absorbed
+    power, contact force and peak film pressure)."""
     nb = lay.N_BEARINGS
     f = mech_aux[:, lay.A_BEARING_FORCE : lay.A_BEARING_FORCE + 3 * nb].reshape(-1, nb, 3)
     d = mech_aux[:, lay.A_BEARING_DISPLACEMENT : lay.A_BEARING_DISPLACEMENT + 3 * nb]
@@ -45,7 +57,49 @@ def flexible_columns(mech_aux: np.ndarray) -> dict[str, np.ndarray]:
     cols["piston_lateral_displacement [m]"] = mech_aux[:, lay.A_PISTON_LATERAL]
     cols["piston_tilt [rad]"] = mech_aux[:, lay.A_PISTON_TILT]
     cols["bearing_power_loss [W]"] = mech_aux[:, lay.A_BEARING_POWER]
+    for name, clearance in film_clearances(mech_par).items():
+        i = lay.BEARING_NAMES.index(name)
+        e = np.hypot(d[:, 3 * i], d[:, 3 * i + 1])
+        cols[f"film_thickness_{name} [m]"] = clearance - e
+        cols[f"eccentricity_ratio_{name} [-]"] = e / clearance
+        cols[f"friction_torque_{name} [N m]"] = mech_aux[:, lay.A_BEARING_TORQUE + 2 * i]
+        cols[f"bearing_power_loss_{name} [W]"] = mech_aux[:, lay.A_BEARING_DISSIPATION + i]
+        cols[f"contact_force_{name} [N]"] = mech_aux[:, lay.A_BEARING_CONTACT + i]
+        cols[f"film_peak_pressure_{name} [Pa]"] = mech_aux[:, lay.A_BEARING_PEAK_PRESSURE + i]
+    if "piston_skirt" in film_clearances(mech_par):
+        cols["piston_friction_force [N]"] = mech_aux[:, lay.A_PISTON_FRICTION]
+        cols["piston_friction_power [W]"] = mech_aux[:, lay.A_PISTON_FRICTION_POWER]
     return cols
+
+
+def _time_mean(values: np.ndarray, speed: np.ndarray) -> float:
+    """Time mean over one revolution from uniform crank-angle samples (dt = dtheta/omega)."""
+    return float(np.sum(values / speed) / np.sum(1.0 / speed))
+
+
+def film_summary(cycle: pd.DataFrame) -> dict[str, Any]:
+    """Per film bearing: smallest film, largest eccentricity ratio, film pressure and
+    contact force, friction power; the piston film's friction power."""
+    row: dict[str, Any] = {}
+    speed = cycle["crank_speed [rad/s]"].to_numpy()
+    for name in lay.BEARING_NAMES:
+        if f"film_thickness_{name} [m]" not in cycle:
+            continue
+        row[f"min_film_thickness_{name} [m]"] = float(cycle[f"film_thickness_{name} [m]"].min())
+        row[f"max_eccentricity_ratio_{name} [-]"] = float(
+            cycle[f"eccentricity_ratio_{name} [-]"].max()
+        )
+        row[f"max_film_pressure_{name} [Pa]"] = float(
+            cycle[f"film_peak_pressure_{name} [Pa]"].max()
+        )
+        row[f"max_contact_force_{name} [N]"] = float(cycle[f"contact_force_{name} [N]"].max())
+        loss = cycle[f"bearing_power_loss_{name} [W]"].to_numpy()
+        row[f"friction_power_{name} [W]"] = _time_mean(loss, speed)
+    if "piston_friction_power [W]" in cycle:
+        row["piston_friction_power [W]"] = _time_mean(
+            cycle["piston_friction_power [W]"].to_numpy(), speed
+        )
+    return row
 
 
 def pinned_columns(

@@ -32,7 +32,12 @@ from recipsim.physics.kinematics import piston_displacement
 from recipsim.physics.mechanics import layout as mlay
 from recipsim.physics.mechanics.tabulated import tabulated_pressure
 from recipsim.physics.thermo import cylinder as cyl
-from recipsim.results.bearings import flexible_columns, mechanism_summary, pinned_columns
+from recipsim.results.bearings import (
+    film_summary,
+    flexible_columns,
+    mechanism_summary,
+    pinned_columns,
+)
 from recipsim.solve.periodic import PeriodicSolution, sample_outputs
 
 CYCLE_COLUMNS: list[tuple[str, int]] = [
@@ -130,7 +135,7 @@ def cycle_table(solution: PeriodicSolution) -> pd.DataFrame:
         par = case_mechanism_parameters(model.case)
         mech, _ = pinned_columns(grid, data["cylinder_pressure [Pa]"], omega, par)
     else:
-        mech = flexible_columns(values[:, scenes.A_MECH :])
+        mech = flexible_columns(values[:, scenes.A_MECH :], model.mechanism_par)
         mech.update(flexible_torques(values, data["shaft_torque [N m]"]))
     data.update(mech)
     data["time [s]"] = _time_from_tdc(grid, np.asarray(data["crank_speed [rad/s]"]))
@@ -370,6 +375,13 @@ def summary(
     row["bearing_dissipation_power [W]"] = bearing_loss * freq
     row.update(_motor_metrics(case, cycle, freq, p_shaft))
     row.update(mech)
+    row.update(film_summary(cycle))
+    if model is not None and model.scene != scenes.SCENE_CYLINDER:
+        row["mechanical_efficiency [-]"] = _ratio(row["indicated_power [W]"], p_shaft)
+        # shaft power = indicated power + friction and bearing losses, over the revolution
+        row["mechanical_balance_residual [-]"] = _ratio(
+            p_shaft - row["indicated_power [W]"] - bearing_loss * freq, p_shaft
+        )
     row.update(_solver_metrics(solution))
 
     angles = cycle["crank_angle [deg]"].to_numpy()

@@ -197,9 +197,10 @@ def simulate_mechanism(
 
     dydt = np.zeros(lay.N_STATE)
     aux = np.zeros(lay.N_AUX)
+    no_tables = np.zeros(1)  # the paper's linear bearings have no finite_journal table
 
     def fun(t: float, state: np.ndarray) -> np.ndarray:
-        flexible_rhs_tabulated(t, state, dydt, aux, par, pa, pp, da, dt)
+        flexible_rhs_tabulated(t, state, dydt, aux, par, pa, pp, da, dt, no_tables)
         return dydt.copy()
 
     def crank_event(t: float, state: np.ndarray) -> float:
@@ -272,7 +273,7 @@ def simulate_mechanism(
     ys = np.ascontiguousarray(sol.sol(ts).T)
     gas = np.array([tabulated_pressure(th, pa, pp) for th in ys[:, lay.Y_CRANK_ANGLE]])
     out = np.zeros((ts.size, lay.N_AUX))
-    flexible_output_history(ts, ys, par, gas, da, dt, out)
+    flexible_output_history(ts, ys, par, gas, da, dt, np.zeros(1), out)
     nb = lay.N_BEARINGS
     forces = out[:, lay.A_BEARING_FORCE : lay.A_BEARING_FORCE + 3 * nb].reshape(-1, nb, 3)
     disp = out[:, lay.A_BEARING_DISPLACEMENT : lay.A_BEARING_DISPLACEMENT + 3 * nb]

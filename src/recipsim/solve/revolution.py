@@ -355,13 +355,18 @@ def _evaluate_samples(times, samples, sample_modes, par, ipar, props, pbuf, out)
 
 
 def sample_outputs(model: Model, rev: Revolution) -> np.ndarray:
-    """Auxiliary outputs (layout ``A_*`` of the scene) at every sample, in time order."""
+    """Auxiliary outputs (layout ``A_*`` of the scene) at every sample, in time order,
+    with the post-processing outputs (peak film pressures) switched on."""
     out = np.zeros((rev.times.shape[0], N_AUX))
+    par = model.par
+    if model.scene != scenes.SCENE_CYLINDER:
+        par = par.copy()
+        par[scenes.P_MECH + mlay.P_DETAILED_OUTPUTS] = 1.0
     _evaluate_samples(
         rev.times,
         rev.samples,
         rev.sample_modes,
-        model.par,
+        par,
         model.ipar,
         model.props,
         model.props.buffer,

@@ -398,7 +398,7 @@ def _undamped_periodic(
     aux = np.zeros(lay.N_AUX)
 
     def fun(t: float, state: np.ndarray) -> np.ndarray:
-        flexible_rhs_tabulated(t, state, dydt, aux, par, pa, pp, no_drive, no_drive)
+        flexible_rhs_tabulated(t, state, dydt, aux, par, pa, pp, no_drive, no_drive, no_drive)
         return dydt.copy()
 
     y0 = initial_state(par, 0.0, omega, tabulated_pressure(0.0, pa, pp))

@@ -167,12 +167,26 @@ def test_out_of_range_or_wrong_unit(path: tuple[str, ...], value: object, key: s
     assert e.key in (key or ".".join(path), "bearings.piston_skirt.position_from_crown")
 
 
-def test_unavailable_law_says_what_is_allowed() -> None:
+def test_unknown_law_says_what_is_allowed() -> None:
     t = tables()
-    t["bearings"]["primary"]["law"] = "short_journal"
+    t["bearings"]["primary"]["law"] = "ball_bearing"
     e = _error(t)
     assert e.key == "bearings.primary.law"
-    assert "linear" in e.message
+    assert "linear, short_journal, finite_journal" in e.message
+    t = tables()
+    t["bearings"]["pin"]["law"] = "short_journal"  # the pin stays linear
+    e = _error(t)
+    assert e.key == "bearings.pin.law"
+    assert e.message.endswith("allowed: linear")
+
+
+def test_film_law_needs_its_geometry() -> None:
+    t = tables()
+    t["bearings"]["primary"]["law"] = "short_journal"
+    del t["bearings"]["primary"]["diameter"]
+    e = _error(t)
+    assert e.key == "bearings.primary.diameter"
+    assert "missing" in e.message
 
 
 def test_scale_bearings_keeps_damping_ratio() -> None:

@@ -36,9 +36,14 @@ from numba import njit
 
 from recipsim.physics.kinematics import piston_displacement, rod_angle, rod_centre_of_mass
 from recipsim.physics.mechanics import layout as lay
-from recipsim.physics.mechanics.bearings import bearing_force, bearing_spring_energy
+from recipsim.physics.mechanics.bearings import (
+    bearing_load,
+    bearing_peak_pressure,
+    bearing_spring_energy,
+)
 from recipsim.physics.mechanics.bodies import planar_marker, rotor_marker, rotor_moment
 from recipsim.physics.mechanics.pinned import N_PIN_OUT, pinned_reactions
+from recipsim.physics.mechanics.skirt import skirt_contact, skirt_film, skirt_peak_pressure
 from recipsim.physics.mechanics.tabulated import periodic_linear_interpolation, tabulated_pressure
 from recipsim.physics.motor import induction_motor_torque
 
@@ -50,6 +55,7 @@ _NB = lay.N_BEARING_PAR
 def _bearing(
     i: int,
     par: np.ndarray,
+    tables: np.ndarray,
     aux: np.ndarray,
     ex: float,
     ey: float,
@@ -57,28 +63,145 @@ def _bearing(
     vy: float,
     spin_journal: float,
     spin_bushing: float,
-) -> tuple[float, float, float, float]:
+) -> tuple[float, float, float, float, float, float]:
     """Evaluate bearing ``i`` (relative motion in X-Y), record it in ``aux``.
 
-    Returns fx, fy (force on the journal), the power absorbed [W] and the spring energy.
+    Returns fx, fy (force on the journal), the friction torques on journal and bushing,
+    the power absorbed [W] and the spring energy [J].
     """
     row = _ROW + i * _NB
-    fx, fy, fz = bearing_force(par, row, ex, ey, 0.0, vx, vy, 0.0, spin_journal, spin_bushing)
-    axis = int(par[row + lay.BP_AXIS])
-    if axis == lay.AXIS_X:
+    if int(par[row + lay.BP_AXIS]) == lay.AXIS_X:
         ex = 0.0
         vx = 0.0
-    base = lay.A_BEARING_FORCE + 3 * i
-    aux[base] = fx
-    aux[base + 1] = fy
-    aux[base + 2] = fz
-    base = lay.A_BEARING_DISPLACEMENT + 3 * i
-    aux[base] = ex
-    aux[base + 1] = ey
-    aux[base + 2] = 0.0
-    power = -(fx * vx + fy * vy)
-    energy = bearing_spring_energy(par, row, ex, ey, 0.0)
-    return fx, fy, power, energy
+    fx, fy, tj, tb, absorbed, contact = bearing_load(
+        par, row, tables, ex, ey, vx, vy, spin_journal, spin_bushing
+    )
+    aux[lay.A_BEARING_FORCE + 3 * i] = fx
+    aux[lay.A_BEARING_FORCE + 3 * i + 1] = fy
+    aux[lay.A_BEARING_FORCE + 3 * i + 2] = 0.0
+    aux[lay.A_BEARING_DISPLACEMENT + 3 * i] = ex
+    aux[lay.A_BEARING_DISPLACEMENT + 3 * i + 1] = ey
+    aux[lay.A_BEARING_DISPLACEMENT + 3 * i + 2] = 0.0
+    aux[lay.A_BEARING_TORQUE + 2 * i] = tj
+    aux[lay.A_BEARING_TORQUE + 2 * i + 1] = tb
+    aux[lay.A_BEARING_DISSIPATION + i] = absorbed
+    aux[lay.A_BEARING_CONTACT + i] = contact
+    peak = 0.0
+    if par[lay.P_DETAILED_OUTPUTS] != 0.0:
+        peak = bearing_peak_pressure(par, row, tables, ex, ey, vx, vy, spin_journal, spin_bushing)
+    aux[lay.A_BEARING_PEAK_PRESSURE + i] = peak
+    return fx, fy, tj, tb, absorbed, bearing_spring_energy(par, row, ex, ey)
+
+
+@njit(cache=True)
+def _record_station(
+    i: int, aux: np.ndarray, e: float, f: float, absorbed: float, contact: float, peak: float
+) -> None:
+    """Record a piston station of the skirt film as bearing ``i`` in ``aux``."""
+    for k in range(3):
+        aux[lay.A_BEARING_FORCE + 3 * i + k] = 0.0
+        aux[lay.A_BEARING_DISPLACEMENT + 3 * i + k] = 0.0
+    aux[lay.A_BEARING_FORCE + 3 * i + 1] = f
+    aux[lay.A_BEARING_DISPLACEMENT + 3 * i + 1] = e
+    aux[lay.A_BEARING_TORQUE + 2 * i] = 0.0
+    aux[lay.A_BEARING_TORQUE + 2 * i + 1] = 0.0
+    aux[lay.A_BEARING_DISSIPATION + i] = absorbed
+    aux[lay.A_BEARING_CONTACT + i] = contact
+    aux[lay.A_BEARING_PEAK_PRESSURE + i] = peak
+
+
+@njit(cache=True)
+def _skirt(
+    par: np.ndarray,
+    aux: np.ndarray,
+    e_top: float,
+    e_skirt: float,
+    v_top: float,
+    v_skirt: float,
+    sliding_speed: float,
+    top_to_skirt: float,
+) -> tuple[float, float, float]:
+    """The lubricated skirt between the ``piston_top`` and ``piston_skirt`` stations.
+
+    Returns the lateral (Y) forces on the piston at the two stations and the axial
+    friction force on the piston (positive towards the head) [N]; records the stations
+    in ``aux`` as bearings 5 and 6 (the film's peak pressure at ``piston_skirt``).
+    """
+    row = _ROW + lay.B_PISTON_SKIRT * _NB
+    radius = 0.5 * par[row + lay.BP_DIAMETER]
+    clearance = par[row + lay.BP_CLEARANCE]
+    mu = par[row + lay.BP_VISCOSITY]
+    f_top, f_skirt, friction = skirt_film(
+        e_top, e_skirt, v_top, v_skirt, sliding_speed, radius, top_to_skirt, clearance, mu
+    )
+    c_top, c_skirt, c_friction = skirt_contact(
+        e_top, e_skirt, v_top, v_skirt, sliding_speed, radius, top_to_skirt, clearance,
+        par[row + lay.BP_CONTACT_FILM], par[row + lay.BP_CONTACT_STIFFNESS],
+        par[row + lay.BP_CONTACT_FRICTION],
+    )  # fmt: skip
+    f_top += c_top
+    f_skirt += c_skirt
+    friction += c_friction
+    peak = 0.0
+    if par[lay.P_DETAILED_OUTPUTS] != 0.0:
+        peak = skirt_peak_pressure(
+            e_top, e_skirt, v_top, v_skirt, sliding_speed, radius, top_to_skirt, clearance, mu
+        )
+    _record_station(lay.B_PISTON_TOP, aux, e_top, f_top, -f_top * v_top, abs(c_top), 0.0)
+    _record_station(
+        lay.B_PISTON_SKIRT, aux, e_skirt, f_skirt, -f_skirt * v_skirt, abs(c_skirt), peak
+    )
+    aux[lay.A_PISTON_FRICTION] = friction
+    return f_top, f_skirt, friction
+
+
+@njit(cache=True)
+def _counterweight_accelerations(
+    d: tuple[float, float, float, float, float],
+    f: tuple[float, float, float, float, float],
+    m_u: float,
+    h: float,
+    rpx: float,
+    rpy: float,
+    bx: float,
+    by: float,
+    free_spin: bool,
+) -> tuple[float, float, float, float, float]:
+    """Rotor accelerations with a counterweight point mass rigidly on the rotor.
+
+    Small-tilt generalised equations ``(D + m_u J^T J) qdd = f - m_u J^T b`` in
+    ``q = (x, y, tilt_x, tilt_y, crank angle)``: ``D`` the diagonal of the balanced
+    rotor's equations, ``f`` their right-hand sides, ``J`` the Jacobian of the
+    counterweight's in-plane position ``(x + h tilt_y + rho_x, y - h tilt_x + rho_y)``
+    (``h`` its height above the rotor's centre of mass, ``rho`` its radius vector,
+    ``rho' = (rpx, rpy)`` its derivative in the crank angle), i.e. rows
+    ``(1, 0, 0, h, rpx)`` and ``(0, 1, -h, 0, rpy)``, and ``b = (bx, by)`` the
+    centripetal part of its acceleration. Solved in closed form by the Woodbury
+    identity (a rank-2 update of ``D``). With ``free_spin`` False the crank angle is
+    prescribed (``qdd[4] = 0``) and drops out.
+    """
+    d0, d1, d2, d3, d4 = d
+    u0 = (f[0] - m_u * bx) / d0
+    u1 = (f[1] - m_u * by) / d1
+    u2 = (f[2] + m_u * h * by) / d2
+    u3 = (f[3] - m_u * h * bx) / d3
+    inv4 = 1.0 / d4 if free_spin else 0.0
+    u4 = (f[4] - m_u * (rpx * bx + rpy * by)) * inv4
+    ju0 = u0 + h * u3 + rpx * u4
+    ju1 = u1 - h * u2 + rpy * u4
+    s00 = 1.0 / m_u + 1.0 / d0 + h * h / d3 + rpx * rpx * inv4
+    s11 = 1.0 / m_u + 1.0 / d1 + h * h / d2 + rpy * rpy * inv4
+    s01 = rpx * rpy * inv4
+    det = s00 * s11 - s01 * s01
+    w0 = (s11 * ju0 - s01 * ju1) / det
+    w1 = (s00 * ju1 - s01 * ju0) / det
+    return (
+        u0 - w0 / d0,
+        u1 - w1 / d1,
+        u2 + h * w1 / d2,
+        u3 - h * w0 / d3,
+        u4 - (rpx * w0 + rpy * w1) * inv4,
+    )
 
 
 @njit(cache=True)
@@ -91,6 +214,7 @@ def flexible_rhs(
     gas_pressure: float,
     drive_angles: np.ndarray,
     drive_torques: np.ndarray,
+    bearing_tables: np.ndarray,
 ) -> None:
     """Right-hand side of the flexible mechanism, ``dy/dt = f(t, y)``.
 
@@ -103,16 +227,21 @@ def flexible_rhs(
     dydt : numpy.ndarray
         Output, shape ``(N_STATE,)``, overwritten.
     aux : numpy.ndarray
-        Output, shape ``(N_AUX,)``, overwritten: bearing forces and displacements,
-        driving torque, gas force, energies and powers, piston position (``A_*``).
+        Output, shape ``(N_AUX,)``, overwritten: bearing forces, displacements,
+        friction torques, absorbed powers and contact forces, driving torque, gas
+        force, energies and powers, piston position (``A_*``).
     par : numpy.ndarray
-        Parameter array (:func:`.parameters.mechanism_parameters`).
+        Parameter array (:func:`recipsim.model.mechanism_parameters.mechanism_parameters`).
     gas_pressure : float
         Cylinder pressure at this instant [Pa].
     drive_angles, drive_torques : numpy.ndarray
         Periodic driving-torque table, crank angle [rad] (increasing, span < 2 pi) and
         torque [N m]; read only by the ``torque_profile`` drive (pass any 1-element
         arrays otherwise).
+    bearing_tables : numpy.ndarray
+        Tables of the ``finite_journal`` bearings
+        (:func:`recipsim.model.mechanism_parameters.bearing_tables`; any 1-element
+        array when there are none).
     """
     r = par[lay.P_CRANK_RADIUS]
     big_l = par[lay.P_ROD_LENGTH]
@@ -185,16 +314,38 @@ def flexible_rhs(
     _, p6y, _, v6y = planar_marker(xp, yp, vxp, vyp, gamd, u_skirt * cg, u_skirt * sg)
 
     # ------------------------------------------------------------- bearings
-    f1x, f1y, w1, e1 = _bearing(lay.B_PRIMARY, par, aux, p1x, p1y, v1x, v1y, wz, 0.0)
-    f2x, f2y, w2, e2 = _bearing(lay.B_SECONDARY, par, aux, p2x, p2y, v2x, v2y, wz, 0.0)
-    f3x, f3y, w3, e3 = _bearing(
-        lay.B_ECCENTRIC, par, aux, pex - pbx, pey - pby, vex - vbx, vey - vby, wz, phid
+    f1x, f1y, t1, _, w1, e1 = _bearing(
+        lay.B_PRIMARY, par, bearing_tables, aux, p1x, p1y, v1x, v1y, wz, 0.0
     )
-    f4x, f4y, w4, e4 = _bearing(
-        lay.B_PIN, par, aux, ppx - psx, ppy - psy, vpx - vsx, vpy - vsy, gamd, phid
+    f2x, f2y, t2, _, w2, e2 = _bearing(
+        lay.B_SECONDARY, par, bearing_tables, aux, p2x, p2y, v2x, v2y, wz, 0.0
     )
-    f5x, f5y, w5, e5 = _bearing(lay.B_PISTON_TOP, par, aux, 0.0, p5y, 0.0, v5y, 0.0, 0.0)
-    f6x, f6y, w6, e6 = _bearing(lay.B_PISTON_SKIRT, par, aux, 0.0, p6y, 0.0, v6y, 0.0, 0.0)
+    f3x, f3y, t3, t3b, w3, e3 = _bearing(
+        lay.B_ECCENTRIC, par, bearing_tables, aux,
+        pex - pbx, pey - pby, vex - vbx, vey - vby, wz, phid,
+    )  # fmt: skip
+    f4x, f4y, _, t4b, w4, e4 = _bearing(
+        lay.B_PIN, par, bearing_tables, aux, ppx - psx, ppy - psy, vpx - vsx, vpy - vsy, gamd, phid
+    )
+    friction = 0.0
+    if int(par[_ROW + lay.B_PISTON_SKIRT * _NB + lay.BP_LAW]) == lay.LAW_SKIRT_FILM:
+        f5y, f6y, friction = _skirt(par, aux, p5y, p6y, v5y, v6y, vxp, u_top - u_skirt)
+        f5x = 0.0
+        f6x = 0.0
+        w5 = aux[lay.A_BEARING_DISSIPATION + lay.B_PISTON_TOP]
+        aux[lay.A_PISTON_FRICTION_POWER] = -friction * vxp
+        w6 = aux[lay.A_BEARING_DISSIPATION + lay.B_PISTON_SKIRT] - friction * vxp
+        e5 = 0.0
+        e6 = 0.0
+    else:
+        aux[lay.A_PISTON_FRICTION] = 0.0
+        aux[lay.A_PISTON_FRICTION_POWER] = 0.0
+        f5x, f5y, _, _, w5, e5 = _bearing(
+            lay.B_PISTON_TOP, par, bearing_tables, aux, 0.0, p5y, 0.0, v5y, 0.0, 0.0
+        )
+        f6x, f6y, _, _, w6, e6 = _bearing(
+            lay.B_PISTON_SKIRT, par, bearing_tables, aux, 0.0, p6y, 0.0, v6y, 0.0, 0.0
+        )
 
     # ------------------------------------------------- rotor Newton-Euler
     m_r = par[lay.P_ROTOR_MASS]
@@ -205,40 +356,76 @@ def flexible_rhs(
     m3x, m3y, m3z = rotor_moment(ca, sa, cb, sb, rex, rey, rez, f3x, f3y)
     mx = m1x + m2x + m3x
     my = m1y + m2y + m3y
-    mz = m1z + m2z + m3z
+    mz = m1z + m2z + m3z + t1 + t2 + t3
     # Euler in the tilted frame: I dw/dt + W x (I w) = M, W = (wx, wy, ald sb)
-    pdot = (mx - bed * (i_p * wz - i_t * ald * sb)) / i_t
-    aldd = (pdot + ald * bed * sb) / cb
-    bedd = (my - wx * (i_t * ald * sb - i_p * wz)) / i_t
+    fa = mx - bed * (i_p * wz - i_t * ald * sb) + i_t * ald * bed * sb  # = i_t cb aldd
+    fb = my - wx * (i_t * ald * sb - i_p * wz)  # = i_t bedd
+    aldd = fa / (i_t * cb)
+    bedd = fb / i_t
+    fx_r = f1x + f2x + f3x
+    fy_r = f1y + f2y + f3y
+    axg = fx_r / m_r
+    ayg = fy_r / m_r
     drive = int(par[lay.P_DRIVE])
-    if drive == lay.DRIVE_CONSTANT_SPEED:
-        thdd = 0.0
-        torque = i_p * (aldd * sb + ald * bed * cb) - mz
+    if drive == lay.DRIVE_INDUCTION_MOTOR:
+        torque = induction_motor_torque(
+            wz,
+            par[lay.P_MOTOR_SYNC_SPEED],
+            par[lay.P_MOTOR_BREAKDOWN_TORQUE],
+            par[lay.P_MOTOR_BREAKDOWN_SLIP],
+            par[lay.P_MOTOR_BACKWARD_RATIO],
+        )
+    elif drive == lay.DRIVE_TORQUE_PROFILE:
+        torque = periodic_linear_interpolation(th, drive_angles, drive_torques)
     else:
-        if drive == lay.DRIVE_INDUCTION_MOTOR:
-            torque = induction_motor_torque(
-                wz,
-                par[lay.P_MOTOR_SYNC_SPEED],
-                par[lay.P_MOTOR_BREAKDOWN_TORQUE],
-                par[lay.P_MOTOR_BREAKDOWN_SLIP],
-                par[lay.P_MOTOR_BACKWARD_RATIO],
-            )
+        torque = 0.0
+    spin_rest = i_p * (aldd * sb + ald * bed * cb)  # spin terms of the tilting rotor
+    m_u = par[lay.P_COUNTERWEIGHT_MASS]
+    free_spin = drive != lay.DRIVE_CONSTANT_SPEED
+    if m_u > 0.0:
+        r_u = par[lay.P_COUNTERWEIGHT_RADIUS]
+        ang = th + par[lay.P_COUNTERWEIGHT_ANGLE]
+        rux = r_u * math.cos(ang)
+        ruy = r_u * math.sin(ang)
+        h_u = par[lay.P_COUNTERWEIGHT_Z] - zg
+        # the spin equation holds i_p * tilt_x'' * sin(tilt_y), and the counterweight's
+        # moment makes tilt_x'' large: solve again with the tilt acceleration found
+        for _ in range(2):
+            axg, ayg, aldd, bedd, thdd = _counterweight_accelerations(
+                (m_r, m_r, i_t * cb, i_t, i_p),
+                (fx_r, fy_r, fa, fb, mz + torque - spin_rest),
+                m_u, h_u, -ruy, rux, -thd * thd * rux, -thd * thd * ruy, free_spin,
+            )  # fmt: skip
+            spin_rest = i_p * (aldd * sb + ald * bed * cb)
+        # counterweight acceleration and its pull on the spin (constant speed: the torque)
+        aux_x = axg + h_u * bedd - ruy * thdd - thd * thd * rux
+        aux_y = ayg - h_u * aldd + rux * thdd - thd * thd * ruy
+        if not free_spin:
+            thdd = 0.0
+            torque = spin_rest - mz + m_u * (-ruy * aux_x + rux * aux_y)
+        vux = vxg + h_u * bed - ruy * thd
+        vuy = vyg - h_u * ald + rux * thd
+        ke_counterweight = 0.5 * m_u * (vux * vux + vuy * vuy)
+    else:
+        ke_counterweight = 0.0
+        if free_spin:
+            thdd = (mz + torque) / i_p - aldd * sb - ald * bed * cb
         else:
-            torque = periodic_linear_interpolation(th, drive_angles, drive_torques)
-        thdd = (mz + torque) / i_p - aldd * sb - ald * bed * cb
+            thdd = 0.0
+            torque = spin_rest - mz
 
     # ---------------------------------------------------- rod Newton-Euler
     m_c = par[lay.P_ROD_MASS]
     fxc = -f3x - f4x
     fyc = -f3y - f4y
-    mc = bx * (-f3y) - by * (-f3x) + sx * (-f4y) - sy * (-f4x)
+    mc = bx * (-f3y) - by * (-f3x) + sx * (-f4y) - sy * (-f4x) + t3b + t4b
     phidd = mc / par[lay.P_ROD_INERTIA]
 
     # ------------------------------------------------- piston Newton-Euler
     m_p = par[lay.P_PISTON_MASS]
     gas = -(gas_pressure - par[lay.P_SHELL_PRESSURE]) * par[lay.P_PISTON_AREA]
-    fxp = f4x + f5x + f6x + gas * cg
-    fyp = f4y + f5y + f6y + gas * sg
+    fxp = f4x + f5x + f6x + (gas + friction) * cg
+    fyp = f4y + f5y + f6y + (gas + friction) * sg
     mp = u_pin * (cg * f4y - sg * f4x) + u_top * (cg * f5y - sg * f5x)
     mp += u_skirt * (cg * f6y - sg * f6x)
     gamdd = mp / par[lay.P_PISTON_INERTIA]
@@ -246,8 +433,8 @@ def flexible_rhs(
     # ------------------------------------------------------------ derivatives
     for i in range(lay.N_COORD):
         dydt[i] = y[lay.N_COORD + i]
-    dydt[lay.Y_ROTOR_VX] = (f1x + f2x + f3x) / m_r
-    dydt[lay.Y_ROTOR_VY] = (f1y + f2y + f3y) / m_r
+    dydt[lay.Y_ROTOR_VX] = axg
+    dydt[lay.Y_ROTOR_VY] = ayg
     dydt[lay.Y_ROTOR_TILT_X_RATE] = aldd
     dydt[lay.Y_ROTOR_TILT_Y_RATE] = bedd
     dydt[lay.Y_CRANK_SPEED] = thdd
@@ -262,7 +449,7 @@ def flexible_rhs(
     # ---------------------------------------------------------------- outputs
     aux[lay.A_DRIVE_TORQUE] = torque
     aux[lay.A_GAS_FORCE] = gas
-    aux[lay.A_KINETIC_ENERGY_ROTOR] = 0.5 * (
+    aux[lay.A_KINETIC_ENERGY_ROTOR] = ke_counterweight + 0.5 * (
         m_r * (vxg * vxg + vyg * vyg) + i_t * (wx * wx + wy * wy) + i_p * wz * wz
     )
     aux[lay.A_KINETIC_ENERGY_ROD] = 0.5 * (
@@ -295,6 +482,7 @@ def flexible_rhs_tabulated(
     pressures: np.ndarray,
     drive_angles: np.ndarray,
     drive_torques: np.ndarray,
+    bearing_tables: np.ndarray,
 ) -> None:
     """:func:`flexible_rhs` with the cylinder pressure from a periodic p(theta) table.
 
@@ -303,7 +491,7 @@ def flexible_rhs_tabulated(
     state.
     """
     p = tabulated_pressure(y[lay.Y_CRANK_ANGLE], pressure_angles, pressures)
-    flexible_rhs(t, y, dydt, aux, par, p, drive_angles, drive_torques)
+    flexible_rhs(t, y, dydt, aux, par, p, drive_angles, drive_torques, bearing_tables)
 
 
 @njit(cache=True)
@@ -315,6 +503,7 @@ def flexible_outputs(
     gas_pressure: float,
     drive_angles: np.ndarray,
     drive_torques: np.ndarray,
+    bearing_tables: np.ndarray,
 ) -> None:
     """Write the outputs (``aux`` layout ``A_*`` of :mod:`.layout`) for one state.
 
@@ -322,7 +511,7 @@ def flexible_outputs(
     allocated here: this is for post-processing, not the integrator's hot path).
     """
     scratch = np.empty(lay.N_STATE)
-    flexible_rhs(t, y, scratch, aux, par, gas_pressure, drive_angles, drive_torques)
+    flexible_rhs(t, y, scratch, aux, par, gas_pressure, drive_angles, drive_torques, bearing_tables)
 
 
 @njit(cache=True)
@@ -333,14 +522,16 @@ def flexible_output_history(
     gas_pressures: np.ndarray,
     drive_angles: np.ndarray,
     drive_torques: np.ndarray,
+    bearing_tables: np.ndarray,
     out: np.ndarray,
 ) -> None:
     """:func:`flexible_outputs` for a history: ``ys`` (n, N_STATE) -> ``out`` (n, N_AUX)."""
     scratch = np.empty(lay.N_STATE)
     for i in range(t.shape[0]):
         flexible_rhs(
-            t[i], ys[i], scratch, out[i], par, gas_pressures[i], drive_angles, drive_torques
-        )
+            t[i], ys[i], scratch, out[i], par, gas_pressures[i], drive_angles, drive_torques,
+            bearing_tables,
+        )  # fmt: skip
 
 
 # ------------------------------------------------------------ state accessors
@@ -439,9 +630,16 @@ def initial_state(
     pinned_reactions(theta, omega, 0.0, gas_pressure, par, out)
 
     def deflection(i: int) -> np.ndarray:
-        k = par[_ROW + i * _NB + lay.BP_STIFFNESS]
+        k = effective_stiffness(par, i)
         f = out[3 * i : 3 * i + 2]
-        return -f / k if k > 0.0 else np.zeros(2)
+        if k <= 0.0:
+            return np.zeros(2)
+        e = -f / k
+        clearance = par[_ROW + i * _NB + lay.BP_CLEARANCE]
+        size = float(np.hypot(e[0], e[1]))
+        if clearance > 0.0 and size > 0.5 * clearance:  # a film law: stay inside it
+            e *= 0.5 * clearance / size
+        return e
 
     r, big_l = par[lay.P_CRANK_RADIUS], par[lay.P_ROD_LENGTH]
     zg = par[lay.P_ROTOR_COM_Z]
@@ -488,6 +686,29 @@ def initial_state(
     return y
 
 
+def effective_stiffness(par: np.ndarray, i: int) -> float:
+    """A stiffness of bearing ``i`` for start poses and tolerances [N/m].
+
+    The linear law's own; a journal film's secant stiffness at eccentricity ratio 0.5
+    from the short-bearing load at the shaft speed (fixed bushing); the piston film's
+    none (0: the piston starts centred).
+    """
+    row = _ROW + i * _NB
+    law = int(par[row + lay.BP_LAW])
+    if law == lay.LAW_LINEAR:
+        return float(par[row + lay.BP_STIFFNESS])
+    if law == lay.LAW_SKIRT_FILM:
+        return 0.0
+    c = par[row + lay.BP_CLEARANCE]
+    radius = 0.5 * par[row + lay.BP_DIAMETER]
+    length = par[row + lay.BP_LENGTH]
+    omega = max(abs(par[lay.P_SPEED]), 1.0)
+    eps = 0.5
+    shape = eps * math.sqrt(math.pi**2 * (1 - eps**2) + 16 * eps**2) / (1 - eps**2) ** 2
+    load = par[row + lay.BP_VISCOSITY] * omega * radius * length**3 / (4 * c * c) * shape
+    return float(load / (eps * c))
+
+
 def state_scales(par: np.ndarray) -> np.ndarray:
     """Characteristic size of each state, for absolute tolerances and convergence checks.
 
@@ -500,7 +721,7 @@ def state_scales(par: np.ndarray) -> np.ndarray:
     numpy.ndarray
         Shape ``(N_STATE,)``, positive.
     """
-    ks = [par[_ROW + i * _NB + lay.BP_STIFFNESS] for i in range(lay.N_BEARINGS)]
+    ks = [effective_stiffness(par, i) for i in range(lay.N_BEARINGS)]
     k_max = max(ks)
     d = 100.0 / k_max
     zg = par[lay.P_ROTOR_COM_Z]

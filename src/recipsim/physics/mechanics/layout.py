@@ -54,8 +54,26 @@ BEARING_NAMES: tuple[str, ...] = (
 
 #: Bearing law codes (``par[P_BEARINGS + i * N_BEARING_PAR + BP_LAW]``).
 LAW_LINEAR = 0
-LAW_SHORT_JOURNAL = 1  # reserved: Ocvirk short bearing, not implemented yet
-LAW_CODES: dict[str, int] = {"linear": LAW_LINEAR}
+LAW_SHORT_JOURNAL = 1  # Ocvirk short bearing, Guembel cavitation (journal.py)
+LAW_FINITE_JOURNAL = 2  # finite-length impedance table (journal_finite.py)
+LAW_SKIRT_FILM = 3  # piston_top + piston_skirt as one lubricated skirt (skirt.py)
+LAW_CODES: dict[str, int] = {
+    "linear": LAW_LINEAR,
+    "short_journal": LAW_SHORT_JOURNAL,
+    "finite_journal": LAW_FINITE_JOURNAL,
+    "skirt_film": LAW_SKIRT_FILM,
+}
+#: Laws each bearing accepts (the pin stays linear: its journal does not turn against
+#: its bushing by more than the rod's swing, so it runs squeeze-only at eps near 1).
+JOURNAL_LAWS = ("linear", "short_journal", "finite_journal")
+BEARING_LAWS: dict[str, tuple[str, ...]] = {
+    "primary": JOURNAL_LAWS,
+    "secondary": JOURNAL_LAWS,
+    "eccentric": JOURNAL_LAWS,
+    "pin": ("linear",),
+    "piston_top": ("linear", "skirt_film"),
+    "piston_skirt": ("linear", "skirt_film"),
+}
 
 #: Bearing axis codes: the law acts in the plane normal to this axis.
 AXIS_X = 0
@@ -70,8 +88,12 @@ BP_DAMPING = 3  # [N s/m]
 BP_CLEARANCE = 4  # radial clearance [m] (hydrodynamic laws; 0 for linear)
 BP_DIAMETER = 5  # journal diameter [m] (hydrodynamic laws)
 BP_LENGTH = 6  # bearing length [m] (hydrodynamic laws)
-BP_VISCOSITY = 7  # oil dynamic viscosity [Pa s] (hydrodynamic laws)
-N_BEARING_PAR = 8
+BP_VISCOSITY = 7  # oil dynamic viscosity at the film temperature [Pa s] (hydrodynamic laws)
+BP_CONTACT_FILM = 8  # film thickness below which asperity contact starts [m]
+BP_CONTACT_STIFFNESS = 9  # contact penalty stiffness (law of the kernel) [N/m^1.5]
+BP_CONTACT_FRICTION = 10  # Coulomb friction coefficient of the contact [-]
+BP_TABLE = 11  # offset of the finite_journal table in the bearing-table array (-1: none)
+N_BEARING_PAR = 12
 
 # ----------------------------------------------------------------------- parameters
 P_CRANK_RADIUS = 0  # r [m]
@@ -100,7 +122,12 @@ P_MOTOR_SYNC_SPEED = 22  # induction motor: synchronous speed [rad/s]
 P_MOTOR_BREAKDOWN_TORQUE = 23  # induction motor: forward-field peak torque [N m]
 P_MOTOR_BREAKDOWN_SLIP = 24  # induction motor: slip at the peak [-]
 P_MOTOR_BACKWARD_RATIO = 25  # induction motor: backward/forward field ratio [-]
-P_BEARINGS = 26  # first bearing row
+P_COUNTERWEIGHT_MASS = 26  # rotor counterweight (point mass on the rotor) [kg]
+P_COUNTERWEIGHT_RADIUS = 27  # its distance from the spin axis [m]
+P_COUNTERWEIGHT_ANGLE = 28  # its angle ahead of the crank pin about +Z [rad]
+P_COUNTERWEIGHT_Z = 29  # its axial position (eccentric plane z = 0) [m]
+P_DETAILED_OUTPUTS = 30  # 1: also compute the post-processing outputs (peak film pressures)
+P_BEARINGS = 31  # first bearing row
 N_PAR = P_BEARINGS + N_BEARINGS * N_BEARING_PAR
 
 #: Drive codes (``par[P_DRIVE]``).
@@ -187,4 +214,18 @@ A_PISTON_LATERAL = A_DRIVE_TORQUE + 11  # piston centre of mass, Y [m]
 A_PISTON_TILT = A_DRIVE_TORQUE + 12  # piston tilt about Z [rad]
 A_CRANK_ANGLE = A_DRIVE_TORQUE + 13  # [rad]
 A_CRANK_SPEED = A_DRIVE_TORQUE + 14  # [rad/s]
-N_AUX = A_DRIVE_TORQUE + 15
+#: Per bearing i: friction torque about the bearing axis on the journal-side body at
+#: ``A_BEARING_TORQUE + 2 i`` and on the bushing-side body at ``+ 2 i + 1`` [N m]
+#: (zero for the linear law and the piston film).
+A_BEARING_TORQUE = A_DRIVE_TORQUE + 15
+#: Per bearing i: power dissipated in its film and contact, ``-(F.de/dt + T_j w_j +
+#: T_b w_b)`` [W] (the linear law: its damper's power).
+A_BEARING_DISSIPATION = A_BEARING_TORQUE + 2 * N_BEARINGS
+#: Per bearing i: asperity contact normal force [N] (0 while the film carries the load).
+A_BEARING_CONTACT = A_BEARING_DISSIPATION + N_BEARINGS
+A_PISTON_FRICTION = A_BEARING_CONTACT + N_BEARINGS  # axial film force on the piston [N]
+A_PISTON_FRICTION_POWER = A_PISTON_FRICTION + 1  # power it dissipates [W]
+#: Per bearing i: largest film pressure [Pa], only when ``par[P_DETAILED_OUTPUTS]`` is
+#: set (post-processing), else 0. The skirt film reports at ``piston_skirt``.
+A_BEARING_PEAK_PRESSURE = A_PISTON_FRICTION_POWER + 1
+N_AUX = A_BEARING_PEAK_PRESSURE + N_BEARINGS

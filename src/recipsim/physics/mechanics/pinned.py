@@ -110,13 +110,27 @@ def pinned_reactions(
     torque = par[lay.P_ROTOR_POLAR_INERTIA] * acc + r * (
         math.cos(theta) * ecc_y - math.sin(theta) * ecc_x
     )
+    # counterweight: the rotor carries its centripetal and tangential inertia force
+    m_u = par[lay.P_COUNTERWEIGHT_MASS]
+    cw_x = 0.0
+    cw_y = 0.0
+    cw_z = 0.0
+    if m_u > 0.0:
+        r_u = par[lay.P_COUNTERWEIGHT_RADIUS]
+        ang = theta + par[lay.P_COUNTERWEIGHT_ANGLE]
+        cw_x = m_u * r_u * (-w2 * math.cos(ang) - acc * math.sin(ang))
+        cw_y = m_u * r_u * (-w2 * math.sin(ang) + acc * math.cos(ang))
+        cw_z = par[lay.P_COUNTERWEIGHT_Z]
+        torque += m_u * r_u * r_u * acc
 
     for i in range(N_PIN_OUT):
         out[i] = 0.0
-    out[3 * lay.B_PRIMARY] = share1 * ecc_x
-    out[3 * lay.B_PRIMARY + 1] = share1 * ecc_y
-    out[3 * lay.B_SECONDARY] = share2 * ecc_x
-    out[3 * lay.B_SECONDARY + 1] = share2 * ecc_y
+    # f1 + f2 = ecc + F_cw; z1 f1 + z2 f2 = z_cw F_cw (moments about the eccentric plane)
+    lever = cw_z / (z2 - z1)
+    out[3 * lay.B_PRIMARY] = share1 * (ecc_x + cw_x) - lever * cw_x
+    out[3 * lay.B_PRIMARY + 1] = share1 * (ecc_y + cw_y) - lever * cw_y
+    out[3 * lay.B_SECONDARY] = share2 * (ecc_x + cw_x) + lever * cw_x
+    out[3 * lay.B_SECONDARY + 1] = share2 * (ecc_y + cw_y) + lever * cw_y
     out[3 * lay.B_ECCENTRIC] = -ecc_x
     out[3 * lay.B_ECCENTRIC + 1] = -ecc_y
     out[3 * lay.B_PIN] = pin_x

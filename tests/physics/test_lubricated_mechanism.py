@@ -1,0 +1,183 @@
+"""Lubricated journals and the rotor counterweight in the flexible crank train (issue 15).
+
+What must hold, each against an independent expectation:
+- the mechanical energy chain closes over a converged revolution: drive work = indicated
+  work + film and bearing dissipation, to 1e-4 of the shaft work (the friction torques
+  act on the bodies the films dissipate from: an omitted or misplaced torque shows here);
+- journal friction against Petroff's law: at least the concentric film's, at most that
+  raised by the largest eccentricity's 1/sqrt(1 - eps^2) plus the pressure-shear term;
+- orbits stay inside the clearance with no asperity contact on the shipped oil;
+- a stiff oil (viscosity x100) and stiff pin and piston springs bring the journal loads
+  to the pinned mechanism's;
+- the counterweight: pinned reactions change by exactly its inertia force and moment;
+  the flexible rotor with stiff bearings and a counterweight reproduces them (rigid
+  limit); with a free spin (induction motor) the energy chain still closes, which needs
+  the coupling of spin and whirl through the counterweight (Woodbury solve).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from helpers import CASES, solve_case
+from recipsim.case.load import load_case
+from recipsim.model.build import case_mechanism_parameters
+from recipsim.physics.mechanics import layout as lay
+from recipsim.physics.mechanics.pinned import N_PIN_OUT, pinned_reactions
+from recipsim.results.tables import cycle_table, pinned_tabulated_cycle, summary
+
+COUPLED = CASES / "reference_r134a_lbp_coupled.toml"
+TABULATED = CASES / "paper_tabulated.toml"
+SHORT = ['options.bearing_law="short_journal"', 'solver.method="dopri5_stiff"']
+JOURNALS = ("primary", "secondary", "eccentric")
+CONSTANT = ['options.drive="constant_speed"']
+PINNED = ['options.mechanics="pinned"', *CONSTANT]
+#: The reference compressor's counterweight for these tests: 40 g at 10 mm, opposite the pin.
+COUNTERWEIGHT = [
+    'mechanism.rotor.counterweight_mass="40 g"',
+    'mechanism.rotor.counterweight_radius="10 mm"',
+    'mechanism.rotor.counterweight_z="-5 mm"',
+]
+
+
+def _run(path, overrides):
+    sol = solve_case(path, overrides)
+    cycle = cycle_table(sol)
+    return sol, cycle, summary(sol, cycle)
+
+
+@pytest.fixture(scope="module")
+def lubricated():
+    return _run(COUPLED, SHORT)
+
+
+def test_lubricated_run_closes_the_mechanical_energy_chain(lubricated):
+    sol, cycle, row = lubricated
+    assert sol.converged
+    assert abs(row["mechanical_balance_residual [-]"]) < 1e-4
+    journals = sum(row[f"friction_power_{b} [W]"] for b in JOURNALS)
+    assert journals > 0.02 * row["shaft_power [W]"]  # friction is there, and counted
+    assert row["mechanical_efficiency [-]"] == pytest.approx(
+        row["indicated_power [W]"] / row["shaft_power [W]"], rel=1e-12
+    )
+    # the sampled per-bearing powers add up to the integrated total (720 samples)
+    speed = cycle["crank_speed [rad/s]"].to_numpy()
+    total = cycle["bearing_power_loss [W]"].to_numpy()
+    sampled = float(np.sum(total / speed) / np.sum(1.0 / speed))
+    assert sampled == pytest.approx(row["bearing_dissipation_power [W]"], rel=2e-3)
+
+
+def test_journal_friction_against_petroff(lubricated):
+    sol, cycle, row = lubricated
+    case = sol.model.case
+    omega = case.operating_point.shaft_speed
+    for name in ("primary", "secondary"):  # fixed bushing: the rotor's speed
+        film = case.mechanism.bearing(name).film
+        radius = 0.5 * film.diameter
+        petroff = 2 * math.pi * film.viscosity * radius**3 * film.length * omega**2
+        petroff /= film.radial_clearance
+        eps = row[f"max_eccentricity_ratio_{name} [-]"]
+        force = cycle[f"bearing_force_{name} [N]"].max()
+        pressure_shear = 0.5 * eps * film.radial_clearance * force * omega
+        power = row[f"friction_power_{name} [W]"]
+        assert petroff * 0.99 < power < petroff / math.sqrt(1 - eps**2) + pressure_shear
+
+
+def test_orbits_stay_inside_the_clearance_without_contact(lubricated):
+    _, cycle, row = lubricated
+    for name in JOURNALS:
+        assert 0.0 < row[f"max_eccentricity_ratio_{name} [-]"] < 0.9
+        assert row[f"max_contact_force_{name} [N]"] == 0.0
+        assert row[f"min_film_thickness_{name} [m]"] > 1e-6
+        assert row[f"max_film_pressure_{name} [Pa]"] > 1e5
+        assert (cycle[f"film_thickness_{name} [m]"] > 0).all()
+
+
+def test_stiff_oil_approaches_the_pinned_mechanism():
+    """Viscosity x100 (a spindle oil's three points scaled) with pin and piston springs
+    x100: the journals' orbits shrink towards the rigid crank and their RMS loads stay at
+    the pinned mechanism's. The loads do not converge on the pinned ones: a hundred times
+    the oil is a hundred times the friction torque (about 0.8 kW here), which the pinned
+    mechanism does not have and which loads the eccentric through the rod (1 % at x100,
+    0.1 % with the case's oil)."""
+    stiff_rest = [
+        "bearings.pin.stiffness=5e9",
+        "bearings.piston_top.stiffness=3e9",
+        "bearings.piston_skirt.stiffness=3e9",
+        "bearings.pin.damping=13000",
+        "bearings.piston_top.damping=7300",
+        "bearings.piston_skirt.damping=7300",
+    ]
+    pinned_case = load_case(TABULATED, PINNED)
+    pinned = summary(None, pinned_tabulated_cycle(pinned_case), pinned_case)
+    rows = []
+    for factor in (1.0, 100.0):
+        oil = [
+            'oil.law="vogel"',
+            'oil.temperatures=["30 degC", "60 degC", "100 degC"]',
+            f"oil.viscosities=[{18.6e-3 * factor}, {6.3e-3 * factor}, {2.4e-3 * factor}]",
+            'oil.density="860 kg/m**3"',
+        ]
+        rows.append(_run(TABULATED, SHORT + CONSTANT + stiff_rest + oil)[2])
+    for row in rows:
+        error = max(
+            abs(row[f"bearing_rms_{b} [N]"] / pinned[f"bearing_rms_{b} [N]"] - 1) for b in JOURNALS
+        )
+        assert error < 0.015
+    for b in JOURNALS:
+        eps = [row[f"max_eccentricity_ratio_{b} [-]"] for row in rows]
+        assert eps[1] < 0.1 * eps[0]  # the film stiffness grows with the viscosity
+
+
+def test_counterweight_changes_pinned_reactions_by_its_inertia_force():
+    case = load_case(COUPLED, [*PINNED, *COUNTERWEIGHT])
+    bare = case_mechanism_parameters(load_case(COUPLED, PINNED))
+    par = case_mechanism_parameters(case)
+    omega, acc, theta, p = 366.5, 150.0, 0.7, 8e5
+    a, b = np.zeros(N_PIN_OUT), np.zeros(N_PIN_OUT)
+    pinned_reactions(theta, omega, acc, p, bare, a)
+    pinned_reactions(theta, omega, acc, p, par, b)
+    m_u, r_u, z_u = 0.040, 0.010, -0.005
+    ang = theta + math.pi
+    force = m_u * r_u * np.array(
+        [-(omega**2) * math.cos(ang) - acc * math.sin(ang),
+         -(omega**2) * math.sin(ang) + acc * math.cos(ang)]
+    )  # fmt: skip
+    f1 = b[3 * lay.B_PRIMARY : 3 * lay.B_PRIMARY + 2] - a[3 * lay.B_PRIMARY : 3 * lay.B_PRIMARY + 2]
+    f2 = b[3 * lay.B_SECONDARY : 3 * lay.B_SECONDARY + 2]
+    f2 = f2 - a[3 * lay.B_SECONDARY : 3 * lay.B_SECONDARY + 2]
+    z1, z2 = -0.020, -0.052
+    np.testing.assert_allclose(f1 + f2, force, rtol=1e-12)  # force balance
+    np.testing.assert_allclose(z1 * f1 + z2 * f2, z_u * force, rtol=1e-12)  # moments
+    torque = b[lay.N_BEARINGS * 3] - a[lay.N_BEARINGS * 3]
+    assert torque == pytest.approx(m_u * r_u**2 * acc, rel=1e-12)
+
+
+def test_flexible_counterweight_reaches_the_rigid_limit():
+    stiff = [
+        f"bearings.{b}.stiffness={k * 1000}"
+        for b, k in (("primary", 5e7), ("secondary", 4e7), ("eccentric", 2.5e7), ("pin", 5e7),
+                     ("piston_top", 3e7), ("piston_skirt", 3e7))
+    ] + [
+        f"bearings.{b}.damping={c * math.sqrt(1000)}"
+        for b, c in (("primary", 4700), ("secondary", 4200), ("eccentric", 1300), ("pin", 1300),
+                     ("piston_top", 730), ("piston_skirt", 730))
+    ]  # fmt: skip
+    _, _, flexible = _run(TABULATED, stiff + CONSTANT + COUNTERWEIGHT)
+    pinned_case = load_case(TABULATED, [*PINNED, *COUNTERWEIGHT])
+    pinned = summary(None, pinned_tabulated_cycle(pinned_case), pinned_case)
+    plain_case = load_case(TABULATED, PINNED)
+    plain = summary(None, pinned_tabulated_cycle(plain_case), plain_case)
+    assert pinned["bearing_rms_primary [N]"] != pytest.approx(plain["bearing_rms_primary [N]"])
+    for b in lay.BEARING_NAMES:
+        key = f"bearing_rms_{b} [N]"
+        assert flexible[key] == pytest.approx(pinned[key], rel=2e-3)
+
+
+def test_counterweight_with_free_spin_closes_the_energy_chain():
+    sol, _, row = _run(COUPLED, SHORT + COUNTERWEIGHT)
+    assert sol.converged
+    assert abs(row["mechanical_balance_residual [-]"]) < 1e-4
