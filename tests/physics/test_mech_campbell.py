@@ -18,7 +18,8 @@ import pytest
 from recipsim.case.mechanism import CrankGeometry, MechanismSpec, RotorSpec, with_damping
 from recipsim.model.mechanism_parameters import mechanism_parameters
 from recipsim.physics.mechanics import layout as lay
-from recipsim.physics.mechanics.flexible import flexible_rhs, initial_state
+from recipsim.physics.mechanics.flexible import flexible_rhs
+from recipsim.physics.mechanics.flexible_setup import initial_state
 
 ROTOR = [lay.Y_ROTOR_X, lay.Y_ROTOR_Y, lay.Y_ROTOR_TILT_X, lay.Y_ROTOR_TILT_Y]
 ROTOR_STATES = ROTOR + [lay.N_COORD + i for i in ROTOR]

@@ -17,7 +17,7 @@ import pytest
 from recipsim.case.mechanism import CrankGeometry, MechanismSpec, scale_bearings, with_damping
 from recipsim.model.mechanism_parameters import mechanism_parameters
 from recipsim.model.pinned import pinned_loads
-from recipsim.physics.mechanics.flexible import initial_state
+from recipsim.physics.mechanics.flexible_setup import initial_state
 from recipsim.physics.mechanics.pinned import PinnedLoads
 from recipsim.physics.mechanics.tabulated import PressureCurve
 from recipsim.solve.mechanism_ivp import MechanismResult, simulate_mechanism

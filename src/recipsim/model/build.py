@@ -22,7 +22,7 @@ from recipsim.model.mechanism_parameters import bearing_tables, mechanism_parame
 from recipsim.model.pinned import pinned_torque_profile
 from recipsim.physics.kinematics import piston_displacement
 from recipsim.physics.mechanics import layout as mlay
-from recipsim.physics.mechanics.flexible import initial_state, state_scales
+from recipsim.physics.mechanics.flexible_setup import initial_state, state_scales
 from recipsim.physics.mechanics.tabulated import tabulated_pressure
 from recipsim.physics.thermo import cylinder as cyl
 from recipsim.physics.thermo.heat_transfer import (

@@ -22,9 +22,8 @@ from recipsim.physics.mechanics import layout as lay
 from recipsim.physics.mechanics.flexible import (
     flexible_output_history,
     flexible_rhs_tabulated,
-    initial_state,
-    state_scales,
 )
+from recipsim.physics.mechanics.flexible_setup import initial_state, state_scales
 from recipsim.physics.mechanics.pinned import force_rms
 from recipsim.physics.mechanics.tabulated import tabulated_pressure
 

@@ -67,7 +67,8 @@ from recipsim.case.mechanism import CrankGeometry, MechanismSpec, with_damping
 from recipsim.model.mechanism_parameters import mechanism_parameters
 from recipsim.model.pinned import pinned_loads
 from recipsim.physics.mechanics import layout as lay
-from recipsim.physics.mechanics.flexible import flexible_rhs_tabulated, initial_state, state_scales
+from recipsim.physics.mechanics.flexible import flexible_rhs_tabulated
+from recipsim.physics.mechanics.flexible_setup import initial_state, state_scales
 from recipsim.physics.mechanics.layout import BEARING_NAMES
 from recipsim.physics.mechanics.pinned import PinnedLoads
 from recipsim.physics.mechanics.tabulated import PressureCurve, tabulated_pressure

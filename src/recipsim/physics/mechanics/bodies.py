@@ -115,3 +115,52 @@ def planar_marker(
     px, py, vx, vy : float
     """
     return xg + dx, yg + dy, vxg - omega * dy, vyg + omega * dx
+
+
+@njit(cache=True)
+def counterweight_accelerations(
+    d: tuple[float, float, float, float, float],
+    f: tuple[float, float, float, float, float],
+    m_u: float,
+    h: float,
+    rpx: float,
+    rpy: float,
+    bx: float,
+    by: float,
+    free_spin: bool,
+) -> tuple[float, float, float, float, float]:
+    """Rotor accelerations with a counterweight point mass rigidly on the rotor.
+
+    Small-tilt generalised equations ``(D + m_u J^T J) qdd = f - m_u J^T b`` in
+    ``q = (x, y, tilt_x, tilt_y, crank angle)``: ``D`` the diagonal of the balanced
+    rotor's equations, ``f`` their right-hand sides, ``J`` the Jacobian of the
+    counterweight's in-plane position ``(x + h tilt_y + rho_x, y - h tilt_x + rho_y)``
+    (``h`` its height above the rotor's centre of mass, ``rho`` its radius vector,
+    ``rho' = (rpx, rpy)`` its derivative in the crank angle), i.e. rows
+    ``(1, 0, 0, h, rpx)`` and ``(0, 1, -h, 0, rpy)``, and ``b = (bx, by)`` the
+    centripetal part of its acceleration. Solved in closed form by the Woodbury
+    identity (a rank-2 update of ``D``). With ``free_spin`` False the crank angle is
+    prescribed (``qdd[4] = 0``) and drops out.
+    """
+    d0, d1, d2, d3, d4 = d
+    u0 = (f[0] - m_u * bx) / d0
+    u1 = (f[1] - m_u * by) / d1
+    u2 = (f[2] + m_u * h * by) / d2
+    u3 = (f[3] - m_u * h * bx) / d3
+    inv4 = 1.0 / d4 if free_spin else 0.0
+    u4 = (f[4] - m_u * (rpx * bx + rpy * by)) * inv4
+    ju0 = u0 + h * u3 + rpx * u4
+    ju1 = u1 - h * u2 + rpy * u4
+    s00 = 1.0 / m_u + 1.0 / d0 + h * h / d3 + rpx * rpx * inv4
+    s11 = 1.0 / m_u + 1.0 / d1 + h * h / d2 + rpy * rpy * inv4
+    s01 = rpx * rpy * inv4
+    det = s00 * s11 - s01 * s01
+    w0 = (s11 * ju0 - s01 * ju1) / det
+    w1 = (s00 * ju1 - s01 * ju0) / det
+    return (
+        u0 - w0 / d0,
+        u1 - w1 / d1,
+        u2 + h * w1 / d2,
+        u3 - h * w0 / d3,
+        u4 - (rpx * w0 + rpy * w1) * inv4,
+    )
