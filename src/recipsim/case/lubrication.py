@@ -26,6 +26,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from recipsim.case.table_reader import TableReader
+from recipsim.case.units import to_si
 from recipsim.errors import CaseError
 
 FILM_KEYS = (
@@ -111,8 +112,6 @@ def _points(t: TableReader, name: str, unit: str) -> tuple[float, ...]:
     values = t.data.get(name)
     if not isinstance(values, list) or not values:
         raise CaseError(t.file, t.key(name), f"expected a list of values in {unit}")
-    from recipsim.case.units import to_si
-
     return tuple(to_si(v, unit, t.file, f"{t.key(name)}[{i}]") for i, v in enumerate(values))
 
 

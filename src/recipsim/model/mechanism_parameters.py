@@ -3,6 +3,8 @@ parameter array read by the compiled functions (layout: :mod:`.layout`)."""
 
 from __future__ import annotations
 
+import functools
+
 import numpy as np
 
 from recipsim.case.mechanism import CrankGeometry, MechanismSpec
@@ -117,12 +119,21 @@ def _finite_tables(spec: MechanismSpec) -> list[np.ndarray | None]:
     tables: list[np.ndarray | None] = []
     for bearing in spec.bearings:
         if bearing.law == "finite_journal" and bearing.film is not None:
-            from recipsim.physics.mechanics.journal_table import finite_journal_table
-
-            tables.append(finite_journal_table(bearing.film.length / bearing.film.diameter))
+            tables.append(_finite_table(bearing.film.length / bearing.film.diameter))
         else:
             tables.append(None)
     return tables
+
+
+@functools.lru_cache(maxsize=16)
+def _finite_table(length_over_diameter: float) -> np.ndarray:
+    """The finite_journal table of one L/D, read (or built) once per process: the
+    parameter array and the bearing-table array of every model built need it."""
+    from recipsim.physics.mechanics.journal_table import finite_journal_table
+
+    table = finite_journal_table(length_over_diameter)
+    table.flags.writeable = False
+    return table
 
 
 def _table_offsets(spec: MechanismSpec) -> list[int]:

@@ -161,10 +161,12 @@ def _mechanism_part(t, y, m0, par, ipar, dydt, aux, p_gas) -> None:
     dydt[q + MQ_DRIVE] = aux[A_MECH + lay.A_DRIVE_POWER]
     dydt[q + MQ_BEARINGS] = aux[A_MECH + lay.A_BEARING_POWER]
     dydt[q + MQ_GAS] = aux[A_MECH + lay.A_GAS_POWER]
-    # torques in the cylinder block, so every scene reports them in one place
+    # torques in the cylinder block, so every scene reports them in one place and one
+    # convention (reports/README.md): positive along the rotation, the gas torque the
+    # gas force's power over the crank speed (negative while compressing)
     omega = ym[lay.Y_CRANK_SPEED]
     torque = aux[A_MECH + lay.A_DRIVE_TORQUE]
-    gas_torque = -aux[A_MECH + lay.A_GAS_POWER] / omega if omega != 0.0 else 0.0
+    gas_torque = aux[A_MECH + lay.A_GAS_POWER] / omega if omega != 0.0 else 0.0
     aux[cyl.A_TORQUE_SHAFT] = torque
     aux[cyl.A_TORQUE_GAS] = gas_torque
     aux[cyl.A_TORQUE_INERTIA] = torque + gas_torque

@@ -57,7 +57,8 @@ def flexible_columns(mech_aux: np.ndarray, mech_par: np.ndarray) -> dict[str, np
     cols["piston_lateral_displacement [m]"] = mech_aux[:, lay.A_PISTON_LATERAL]
     cols["piston_tilt [rad]"] = mech_aux[:, lay.A_PISTON_TILT]
     cols["bearing_power_loss [W]"] = mech_aux[:, lay.A_BEARING_POWER]
-    for name, clearance in film_clearances(mech_par).items():
+    films = film_clearances(mech_par)
+    for name, clearance in films.items():
         i = lay.BEARING_NAMES.index(name)
         e = np.hypot(d[:, 3 * i], d[:, 3 * i + 1])
         cols[f"film_thickness_{name} [m]"] = clearance - e
@@ -66,7 +67,7 @@ def flexible_columns(mech_aux: np.ndarray, mech_par: np.ndarray) -> dict[str, np
         cols[f"bearing_power_loss_{name} [W]"] = mech_aux[:, lay.A_BEARING_DISSIPATION + i]
         cols[f"contact_force_{name} [N]"] = mech_aux[:, lay.A_BEARING_CONTACT + i]
         cols[f"film_peak_pressure_{name} [Pa]"] = mech_aux[:, lay.A_BEARING_PEAK_PRESSURE + i]
-    if "piston_skirt" in film_clearances(mech_par):
+    if "piston_skirt" in films:
         cols["piston_friction_force [N]"] = mech_aux[:, lay.A_PISTON_FRICTION]
         cols["piston_friction_power [W]"] = mech_aux[:, lay.A_PISTON_FRICTION_POWER]
     return cols

@@ -136,33 +136,12 @@ def cycle_table(solution: PeriodicSolution) -> pd.DataFrame:
         mech, _ = pinned_columns(grid, data["cylinder_pressure [Pa]"], omega, par)
     else:
         mech = flexible_columns(values[:, scenes.A_MECH :], model.mechanism_par)
-        mech.update(flexible_torques(values, data["shaft_torque [N m]"]))
     data.update(mech)
     data["time [s]"] = _time_from_tdc(grid, np.asarray(data["crank_speed [rad/s]"]))
     frame = pd.DataFrame(data)
     frame.insert(1, "time [s]", frame.pop("time [s]"))
     frame["crank_angle [deg]"] = np.round(frame["crank_angle [deg]"].to_numpy(), 9)
     return frame
-
-
-def flexible_torques(values: np.ndarray, shaft_torque: np.ndarray) -> dict[str, np.ndarray]:
-    """Gas and inertia torque of a flexible scene in the report's sign convention [N m].
-
-    The convention of every report (``reports/README.md``, "Torques"): positive along
-    the rotation. The gas torque is the power of the gas force on the piston over the
-    crank speed (negative while compressing), as ``(p - p_shell) A dx/dtheta`` on the
-    rigid crank; the inertia torque is the driving torque plus the gas torque.
-
-    Parameters
-    ----------
-    values : numpy.ndarray
-        Output rows of the scene (:func:`recipsim.solve.periodic.sample_outputs`).
-    shaft_torque : numpy.ndarray
-        Driving torque at the same rows [N m].
-    """
-    mech = values[:, scenes.A_MECH :]
-    gas = mech[:, mlay.A_GAS_POWER] / mech[:, mlay.A_CRANK_SPEED]
-    return {"gas_torque [N m]": gas, "inertia_torque [N m]": np.asarray(shaft_torque) + gas}
 
 
 def pinned_tabulated_cycle(case: Case) -> pd.DataFrame:
