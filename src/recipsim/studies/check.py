@@ -70,6 +70,11 @@ FAST_OVERRIDES = ("solver.rtol=1e-5", "solver.samples_per_revolution=360")
 #: Cycle metrics that an expectation may bound from below.
 METRICS = ("suction_reed_openings", "discharge_reed_openings", "volumetric_efficiency")
 
+#: The largest eccentricity ratio over the lubricated bearings of a run (``cycle_metrics``);
+#: a converged run reaching 1 fails the check whatever its expectation says: a journal
+#: never passes its sleeve (the film law and the asperity contact keep it inside).
+ORBIT_METRIC = "largest_eccentricity_ratio"
+
 # a reed is "closed" below this fraction of its stop height and "open" above the second
 # (hysteresis, so that sampling noise near the seat is not counted as an opening)
 _REED_CLOSED, _REED_OPEN = 0.02, 0.10
@@ -368,9 +373,13 @@ def non_finite_results(run: CaseRun) -> tuple[str, ...]:
 def cycle_metrics(run: CaseRun) -> dict[str, float]:
     """Metrics of the converged revolution that expectations may bound (:data:`METRICS`)."""
     case = run.case
+    out: dict[str, float] = {}
+    ratios = [float(v) for k, v in run.row.items() if k.startswith("max_eccentricity_ratio_")]
+    if ratios:
+        out[ORBIT_METRIC] = max(ratios)
     if run.solution is None or not run.solution.model.has_gas:
-        return {}
-    out = {"volumetric_efficiency": float(run.row["volumetric_efficiency [-]"])}
+        return out
+    out["volumetric_efficiency"] = float(run.row["volumetric_efficiency [-]"])
     if case.options.valves == "reed":
         for side in ("suction", "discharge"):
             lift = run.cycle[f"{side}_valve_lift [m]"].to_numpy()
@@ -410,6 +419,10 @@ def judge(row: CheckRow, expectation: Expectation) -> tuple[bool, str]:
             value = row.metrics.get(metric)
             if value is None or not value >= minimum:
                 notes.append(f"{metric} {value} < {minimum:g}")
+    if row.outcome in ("converged", "not_converged"):
+        ratio = row.metrics.get(ORBIT_METRIC)
+        if ratio is not None and not ratio < 1.0:
+            notes.append(f"a journal left its clearance (eccentricity ratio {ratio:.3g})")
     return not notes, "; ".join(notes)
 
 
@@ -600,7 +613,7 @@ def rows_frame(rows: Sequence[CheckRow]) -> pd.DataFrame:
         data["non_finite"] = " ".join(data["non_finite"])
         data["finite"] = row.finite
         record = {units.get(k, k): v for k, v in data.items()}
-        for metric in METRICS:
+        for metric in (*METRICS, ORBIT_METRIC):
             if metric not in units:  # volumetric efficiency has its column already
                 record[f"{metric} [-]"] = metrics.get(metric)
         records.append(record)

@@ -136,3 +136,23 @@ def test_quick_bench_writes_every_column(tmp_path):
     assert np.isfinite(done[numbers].to_numpy(dtype=float)).all()
     assert (out / "work_precision.png").stat().st_size > 0
     assert (out / "bench.json").stat().st_size > 0
+
+
+def test_rung_selection_by_regular_expression(tmp_path):
+    """``--rungs`` keeps the matching rungs (searched), refuses a pattern that matches none
+    (naming the rungs) or is not a regular expression, before anything is integrated."""
+    from recipsim.errors import RecipsimError
+    from recipsim.studies.bench.ladder import select_rungs
+
+    ladder = build_ladder(load_case(REFERENCE), quick=True)
+    assert select_rungs(ladder, None) == ladder
+    stiff = select_rungs(ladder, "dopri5_stiff")
+    assert [r.name for r in stiff] == [r.name for r in ladder if "dopri5_stiff" in r.name]
+    assert stiff and len(stiff) < len(ladder)
+    with pytest.raises(RecipsimError, match="matches no rung.*dopri5 rtol"):
+        select_rungs(ladder, "no-such-rung")
+    with pytest.raises(RecipsimError, match="not a regular expression"):
+        select_rungs(ladder, "(")
+    # the CLI refuses before the reference runs: no directory is written
+    assert main(["bench", str(REFERENCE), "--quick", "--rungs", "(", "--out", str(tmp_path)]) == 1
+    assert not any(tmp_path.iterdir())

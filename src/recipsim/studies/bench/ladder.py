@@ -28,10 +28,12 @@ from __future__ import annotations
 
 import itertools
 import math
+import re
 from dataclasses import dataclass
 from typing import Any
 
 from recipsim.case.load import Case, parse_override
+from recipsim.errors import RecipsimError
 
 DOPRI5 = "dopri5"
 #: the compiled DOPRI5 switching to the Rosenbrock-W step on stiff stretches
@@ -220,6 +222,28 @@ def build_ladder(case: Case, quick: bool = False, baseline: bool = True) -> list
             for rtol, cycle in ((1e-5, 1e-3), (1e-6, 1e-3), (1e-6, 1e-4)):
                 rungs.append(_rung(method, rtol, cycle, baseline=True))
     return rungs
+
+
+def select_rungs(rungs: list[Rung], pattern: str | None) -> list[Rung]:
+    """The rungs whose name matches the regular expression ``pattern`` (all if None).
+
+    Raises
+    ------
+    RecipsimError
+        If ``pattern`` is not a regular expression or matches no rung (the message lists
+        the rung names).
+    """
+    if pattern is None:
+        return rungs
+    try:
+        regex = re.compile(pattern)
+    except re.error as exc:
+        raise RecipsimError(f"--rungs {pattern!r} is not a regular expression: {exc}") from exc
+    kept = [r for r in rungs if regex.search(r.name)]
+    if not kept:
+        names = "; ".join(r.name for r in rungs)
+        raise RecipsimError(f"--rungs {pattern!r} matches no rung of this ladder: {names}")
+    return kept
 
 
 def _degrees(value: Any) -> Any:
