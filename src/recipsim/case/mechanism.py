@@ -343,15 +343,17 @@ def _parse_rotor(t: _Table) -> RotorSpec:
     z2 = t.quantity(
         "secondary_z", "m", lambda v: v != z1, f"any finite value other than primary_z ({z1:g} m)"
     )
+    extra = [k for k in _COUNTERWEIGHT_KEYS[1:] if k in t.data]
+    if extra and "counterweight_mass" not in t.data:
+        raise CaseError(t.file, t.key(extra[0]), "needs counterweight_mass")
     m_u = t.quantity("counterweight_mass", "kg", _non_negative, ">= 0", 0.0)
-    if m_u == 0.0:
-        extra = [k for k in _COUNTERWEIGHT_KEYS[1:] if k in t.data]
-        if extra:
-            raise CaseError(t.file, t.key(extra[0]), "needs counterweight_mass > 0")
+    if not extra and m_u == 0.0:
         return RotorSpec(mass, ip, it, zg, z1, z2)
     r_u = t.quantity("counterweight_radius", "m", _positive, "> 0")
     ang = t.quantity("counterweight_angle", "rad", _any, "any angle", math.pi)
     z_u = t.quantity("counterweight_z", "m", _any, "any finite value", 0.0)
+    if m_u == 0.0:  # a sweep's zero point: the other keys are checked, nothing is added
+        return RotorSpec(mass, ip, it, zg, z1, z2)
     return RotorSpec(mass, ip, it, zg, z1, z2, m_u, r_u, ang, z_u)
 
 
