@@ -26,6 +26,7 @@ __all__ = [
     "Result",
     "SolverError",
     "__version__",
+    "calibrate",
     "compare",
     "load_case",
     "simulate",
@@ -39,6 +40,7 @@ _API = {
     "simulate": "recipsim.api",
     "sweep": "recipsim.api",
     "compare": "recipsim.api",
+    "calibrate": "recipsim.api",
     "CaseError": "recipsim.errors",
     "SolverError": "recipsim.errors",
 }

@@ -29,7 +29,7 @@ if TYPE_CHECKING:
 
     from recipsim.solve.periodic import PeriodicSolution
 
-__all__ = ["Case", "Result", "compare", "load_case", "simulate", "sweep"]
+__all__ = ["Case", "Result", "calibrate", "compare", "load_case", "simulate", "sweep"]
 
 
 @dataclass(frozen=True)
@@ -243,6 +243,57 @@ def sweep(
         return run_sweep(spec, out=Path(directory), **options).table
     with tempfile.TemporaryDirectory(prefix="recipsim-sweep-") as tmp:
         return run_sweep(spec, out=Path(tmp), **options).table
+
+
+def calibrate(
+    case: Case,
+    data: str | Path,
+    parameters: Sequence[str],
+    *,
+    points: Sequence[int] | None = None,
+    targets: Sequence[str] | None = None,
+    directory: str | Path | None = None,
+) -> Any:
+    """Fit uncertain parameters of ``case`` to measured points: ``recipsim calibrate``.
+
+    Parameters
+    ----------
+    case : Case
+        The case to calibrate.
+    data : str or Path
+        CSV of measured points: inputs ``<key> [<unit>]`` (operating-point keys, or any
+        dotted key), an optional ``standard``, and the targets (docs/calibration.md).
+    parameters : sequence of str
+        ``KEY=LOWER:UPPER`` (bounds bare in SI or with units), or ``KEY`` for a tenth to
+        ten times the case's value.
+    points : sequence of int, optional
+        Data rows (1-based) to fit on; the others are predicted. Default: all.
+    targets : sequence of str, optional
+        Target columns; default ``cooling_capacity [W]`` and ``COP [-]``.
+    directory : str or Path, optional
+        Write the result there (replaced whole): ``parameters.csv``, ``points.csv``,
+        ``calibration.json``, the calibrated ``case.toml``.
+
+    Returns
+    -------
+    Calibration
+        ``.calibrated`` (the case with the fitted values), ``.parameters`` (fitted
+        values, standard deviations, 95 % intervals) and ``.points`` (measured,
+        predicted and error per point) as DataFrames.
+
+    Raises
+    ------
+    CalibrationError
+        An ill-posed fit: more parameters than measured values, a parameter without
+        influence, or parameters whose effects cannot be told apart.
+    """
+    from recipsim.studies.calibrate.report import write_calibration
+    from recipsim.studies.calibrate.run import calibrate_case
+
+    result = calibrate_case(case, data, parameters, points, targets)
+    if directory is not None:
+        write_calibration(result, directory)
+    return result
 
 
 def toml_key(dotted: str) -> str:

@@ -24,6 +24,7 @@ from typing import Any
 
 from recipsim import __version__
 from recipsim.cli.bench import add_bench_parser
+from recipsim.cli.calibrate import add_calibrate_parser
 from recipsim.cli.check import add_check_parser
 from recipsim.cli.compare import add_compare_parser
 from recipsim.cli.options import add_common_options, exit_status
@@ -37,6 +38,7 @@ _SUBCOMMANDS = (
     add_compare_parser,
     add_bench_parser,
     add_check_parser,
+    add_calibrate_parser,
 )
 
 

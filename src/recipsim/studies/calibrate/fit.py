@@ -1,0 +1,361 @@
+"""Bounded least-squares fit of case parameters to measured points.
+
+Residuals are relative, ``predicted / measured - 1``, one per measured target value of
+each calibration point. Parameters with positive bounds are fitted in their logarithm
+(conductances, coefficients and loss factors act multiplicatively), others linearly over
+their range. The Jacobian is a forward difference with a fixed step (1 % of the
+parameter, or of its range): well above the periodic solver's noise at the tightened
+cycle tolerance (:data:`SOLVER_OVERRIDES`), so the fit sees the model's trend, not its
+numerical noise.
+
+Before fitting, a problem is refused with a :class:`CalibrationError` when it is
+ill-posed: more parameters than measured values; a parameter whose 1 % change moves no
+residual by more than :data:`MIN_INFLUENCE`; parameters whose effects are linearly
+dependent (the scaled Jacobian's condition number above :data:`MAX_CONDITION`, the
+message names the combination). Confidence: the parameters' covariance from the
+linearisation at the optimum, ``(J^T W J)^-1``, with ``W`` from the data's printed
+resolution (a rounded catalogue figure is uniformly uncertain within half its last
+digit, standard deviation ``resolution / sqrt(3)``) and, when there are more residuals
+than parameters, also scaled by the residual variance (model error); the larger of the
+two is reported, as a 95 % interval.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.optimize import least_squares
+
+from recipsim.case.load import Case
+from recipsim.errors import RecipsimError
+from recipsim.studies.calibrate.data import MeasuredPoint
+
+#: Relative step of the finite-difference Jacobian (of the parameter or of its range).
+STEP = 0.01
+#: A parameter moving no residual by more than this per 1 % step has no influence.
+MIN_INFLUENCE = 1e-5
+#: Largest condition number of the scaled Jacobian of an identifiable problem.
+MAX_CONDITION = 1e6
+#: Solver settings of the fit's runs: a cycle tolerance well below the step's effect.
+SOLVER_OVERRIDES = {"solver.cycle_tolerance": 1e-6, "solver.max_revolutions": 400}
+#: Residual of a point whose run failed: far from any fit, so the fit steers away.
+FAILED_RESIDUAL = 10.0
+
+
+class CalibrationError(RecipsimError):
+    """An ill-posed or failed calibration (the message says why)."""
+
+
+@dataclass(frozen=True)
+class Parameter:
+    """A case value to fit, in SI.
+
+    Attributes
+    ----------
+    key : str
+        Dotted case key (``"heat_transfer.coefficient"``).
+    lower, upper : float
+        Bounds [SI unit of the key].
+    initial : float
+        Starting value (the case's own, else the bounds' geometric or plain mean).
+    """
+
+    key: str
+    lower: float
+    upper: float
+    initial: float
+
+    @property
+    def logarithmic(self) -> bool:
+        """Fitted in its logarithm (positive bounds)."""
+        return self.lower > 0.0
+
+    def to_x(self, value: float) -> float:
+        return math.log(value) if self.logarithmic else (value - self.lower) / self.span
+
+    def from_x(self, x: float) -> float:
+        return math.exp(x) if self.logarithmic else self.lower + x * self.span
+
+    @property
+    def span(self) -> float:
+        return self.upper - self.lower
+
+
+def _si(text: str, where: str) -> float:
+    """A bound or value as written (bare number in SI, or a quantity with its unit)."""
+    from recipsim.case.units import _registry
+
+    text = text.strip()
+    try:
+        return float(text)
+    except ValueError:
+        pass
+    try:
+        quantity = _registry().Quantity(text).to_base_units()
+        return float(quantity.magnitude)
+    except Exception:  # pint raises several unrelated types for bad strings
+        raise CalibrationError(f"{where}: cannot read {text!r} as a number or quantity") from None
+
+
+def case_value(case: Case, key: str) -> float | None:
+    """The case's own value of a dotted key, in SI (None when the file leaves it to its
+    default or it is not a number)."""
+    node: object = case.raw
+    for part in key.split("."):
+        if not isinstance(node, dict) or part not in node:
+            return None
+        node = node[part]
+    if isinstance(node, bool) or not isinstance(node, int | float | str):
+        return None
+    try:
+        return _si(str(node), key)
+    except CalibrationError:
+        return None
+
+
+def parse_parameter(text: str, case: Case) -> Parameter:
+    """``KEY`` or ``KEY=LOWER:UPPER`` (bounds bare in SI or with units, e.g.
+    ``thermal.shell_ua=0.5:10`` or ``valves.discharge.preload=0 N:0.5 N``).
+
+    Without bounds the case's value must be positive; the bounds are then a tenth and
+    ten times it.
+    """
+    key, _, bounds = text.partition("=")
+    key = key.strip()
+    if not re.fullmatch(r"[A-Za-z_]\w*(\.[A-Za-z_]\w*)+", key):
+        raise CalibrationError(f"--parameters {text!r}: expected a dotted case key")
+    value = case_value(case, key)
+    if bounds:
+        low_text, sep, high_text = bounds.partition(":")
+        if not sep:
+            raise CalibrationError(f"--parameters {text!r}: bounds are written LOWER:UPPER")
+        lower, upper = _si(low_text, key), _si(high_text, key)
+        if not lower < upper:
+            raise CalibrationError(f"{key}: lower bound {lower:g} is not below {upper:g}")
+    elif value is not None and value > 0.0:
+        lower, upper = 0.1 * value, 10.0 * value
+    else:
+        raise CalibrationError(
+            f"{key}: the case has no positive value to start from ({value}); give bounds "
+            f"as {key}=LOWER:UPPER"
+        )
+    if value is None or not lower <= value <= upper:
+        value = math.sqrt(lower * upper) if lower > 0.0 else 0.5 * (lower + upper)
+    return Parameter(key, lower, upper, value)
+
+
+@dataclass(frozen=True)
+class FitResult:
+    """Outcome of :func:`fit_parameters` (values in SI)."""
+
+    parameters: tuple[Parameter, ...]
+    values: tuple[float, ...]
+    std_resolution: tuple[float, ...]
+    std_residual: tuple[float, ...]  # NaN when residuals = parameters
+    residuals: tuple[float, ...]
+    evaluations: int
+    message: str
+
+    @property
+    def ci95(self) -> tuple[tuple[float, float], ...]:
+        """95 % interval of each parameter from the larger standard deviation."""
+        out = []
+        for p, v, a, b in zip(
+            self.parameters, self.values, self.std_resolution, self.std_residual, strict=True
+        ):
+            s = max(a, b) if math.isfinite(b) else a
+            if p.logarithmic:  # std of log(value)
+                out.append((v * math.exp(-1.96 * s), v * math.exp(1.96 * s)))
+            else:
+                out.append((v - 1.96 * s * p.span, v + 1.96 * s * p.span))
+        return tuple(out)
+
+
+class Residuals:
+    """Relative residuals of the calibration points as a function of the fitted
+    variables ``x`` (cached by ``x``: the Jacobian's base point is not run twice).
+
+    ``sigma`` is each residual's standard deviation from the data's printed resolution
+    (relative); ``evaluations`` counts the parameter sets run.
+    """
+
+    def __init__(
+        self,
+        case: Case,
+        points: Sequence[MeasuredPoint],
+        targets: Sequence[str],
+        parameters: Sequence[Parameter],
+        simulate: Callable[[Case], dict[str, float]],
+    ) -> None:
+        self.case, self.points, self.targets = case, points, targets
+        self.parameters, self.simulate = parameters, simulate
+        self.sigma = np.array(
+            [
+                p.resolution[t] / math.sqrt(3.0) / abs(p.targets[t])
+                for p in points
+                for t in targets
+                if t in p.targets
+            ]
+        )
+        self._cache: dict[tuple[float, ...], np.ndarray] = {}
+
+    @property
+    def evaluations(self) -> int:
+        return len(self._cache)
+
+    def __call__(self, x: np.ndarray) -> np.ndarray:
+        key = tuple(float(v) for v in x)
+        if key not in self._cache:
+            fitted = {p.key: p.from_x(v) for p, v in zip(self.parameters, key, strict=True)}
+            out = []
+            for point in self.points:
+                row = _run_point(self.case, point, fitted, self.simulate)
+                for t in self.targets:
+                    if t in point.targets:
+                        predicted = row.get(t, math.nan) if row is not None else math.nan
+                        r = predicted / point.targets[t] - 1.0
+                        out.append(r if math.isfinite(r) else FAILED_RESIDUAL)
+            self._cache[key] = np.array(out)
+        return self._cache[key]
+
+
+def _run_point(
+    case: Case,
+    point: MeasuredPoint,
+    fitted: dict[str, float],
+    simulate: Callable[[Case], dict[str, float]],
+) -> dict[str, float] | None:
+    try:
+        return simulate(case.with_({**point.overrides, **SOLVER_OVERRIDES, **fitted}))
+    except RecipsimError:
+        return None
+
+
+def forward_jacobian(f: Callable[[np.ndarray], np.ndarray], x: np.ndarray) -> np.ndarray:
+    """Forward differences with the fixed step :data:`STEP` in the fitted variables
+    (the log for logarithmic parameters: a 1 % change; else 1 % of the range)."""
+    f0 = f(x)
+    jac = np.empty((f0.size, x.size))
+    for j in range(x.size):
+        step = np.array(x, dtype=float)
+        step[j] += STEP
+        jac[:, j] = (f(step) - f0) / STEP
+    return jac
+
+
+def check_identifiable(jac: np.ndarray, parameters: Sequence[Parameter]) -> None:
+    """Refuse parameters without influence or with linearly dependent effects."""
+    names = [p.key for p in parameters]
+    influence = np.abs(jac).max(axis=0) * STEP
+    dead = [n for n, i in zip(names, influence, strict=True) if not i > MIN_INFLUENCE]
+    if dead:
+        raise CalibrationError(
+            f"{', '.join(dead)}: no influence on the fitted data (a {STEP:.0%} change moves "
+            f"no fitted quantity by more than {MIN_INFLUENCE:g} relative); remove it"
+        )
+    if len(names) > 1:
+        scaled = jac / np.linalg.norm(jac, axis=0)
+        _, s, vt = np.linalg.svd(scaled, full_matrices=False)
+        if s[-1] <= 0.0 or s[0] / s[-1] > MAX_CONDITION:
+            weights = vt[-1]
+            combo = " + ".join(
+                f"{w:+.2f} {n}" for w, n in zip(weights, names, strict=True) if abs(w) > 0.1
+            )
+            raise CalibrationError(
+                "the parameters are not separately identifiable from these data (condition "
+                f"number {s[0] / max(s[-1], 1e-300):.2g}); no data constrain the combination "
+                f"{combo}: fit fewer parameters or add points"
+            )
+
+
+def fit_parameters(
+    case: Case,
+    points: Sequence[MeasuredPoint],
+    targets: Sequence[str],
+    parameters: Sequence[Parameter],
+    simulate: Callable[[Case], dict[str, float]],
+    max_evaluations: int = 60,
+) -> FitResult:
+    """Fit ``parameters`` so the simulated ``targets`` match the measured ones.
+
+    Parameters
+    ----------
+    case : Case
+        The case to calibrate (its overrides included).
+    points : sequence of MeasuredPoint
+        The calibration points (their inputs are applied as overrides).
+    targets : sequence of str
+        Summary columns compared with the measurements.
+    parameters : sequence of Parameter
+        What is fitted, with bounds.
+    simulate : callable
+        ``Case -> summary row`` (:func:`recipsim.simulate`'s summary as a dict).
+    max_evaluations : int
+        Largest number of least-squares iterations' function evaluations.
+
+    Returns
+    -------
+    FitResult
+
+    Raises
+    ------
+    CalibrationError
+        Ill-posed (more parameters than measured values, a parameter without influence,
+        dependent parameters) or no successful run at the optimum.
+    """
+    n_data = sum(t in p.targets for p in points for t in targets)
+    if len(parameters) > n_data:
+        raise CalibrationError(
+            f"{len(parameters)} parameters cannot be fitted to {n_data} measured values: "
+            "fit fewer parameters or use more points"
+        )
+    f = Residuals(case, points, targets, parameters, simulate)
+    lower = np.array([p.to_x(p.lower) for p in parameters])
+    upper = np.array([p.to_x(p.upper) for p in parameters])
+    x0 = np.array([p.to_x(p.initial) for p in parameters])
+    x0 = np.clip(x0, lower + 1e-6 * (upper - lower), upper - 1e-6 * (upper - lower))
+    check_identifiable(forward_jacobian(f, x0), parameters)
+    result = least_squares(
+        f,
+        x0,
+        jac=lambda x: forward_jacobian(f, x),
+        bounds=(lower, upper),
+        method="trf",
+        xtol=1e-4,
+        ftol=1e-8,
+        max_nfev=max_evaluations,
+    )
+    r = f(result.x)
+    if np.any(r == FAILED_RESIDUAL):
+        raise CalibrationError("a calibration point does not run at the fitted values")
+    jac = forward_jacobian(f, result.x)
+    std_res = _std(jac, r, f.sigma, len(parameters))
+    return FitResult(
+        parameters=tuple(parameters),
+        values=tuple(p.from_x(v) for p, v in zip(parameters, result.x, strict=True)),
+        std_resolution=std_res[0],
+        std_residual=std_res[1],
+        residuals=tuple(float(v) for v in r),
+        evaluations=f.evaluations,
+        message=str(result.message),
+    )
+
+
+def _std(
+    jac: np.ndarray, r: np.ndarray, sigma: np.ndarray, n: int
+) -> tuple[tuple[float, ...], tuple[float, ...]]:
+    """Standard deviations of the fitted variables: from the data's resolution, and
+    (more residuals than parameters) from the residual variance."""
+    weighted = jac / sigma[:, None]
+    cov_data = np.linalg.pinv(weighted.T @ weighted)
+    by_data = tuple(float(math.sqrt(max(v, 0.0))) for v in np.diag(cov_data))
+    dof = r.size - n
+    if dof <= 0:
+        return by_data, (math.nan,) * n
+    variance = float(r @ r) / dof
+    cov = variance * np.linalg.pinv(jac.T @ jac)
+    return by_data, tuple(float(math.sqrt(max(v, 0.0))) for v in np.diag(cov))

@@ -1,0 +1,53 @@
+"""Write a calibration: ``parameters.csv``, ``points.csv``, ``calibration.json`` and the
+calibrated case (``case.toml``, fully resolved, with its refrigerant file), into one
+directory replaced atomically."""
+
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+from typing import Any
+
+from recipsim.atomic import atomic_directory
+from recipsim.studies.calibrate.run import Calibration
+
+
+def _finite(value: Any) -> Any:
+    return None if isinstance(value, float) and not math.isfinite(value) else value
+
+
+def write_calibration(calibration: Calibration, out_dir: str | Path) -> Path:
+    """Write ``calibration`` into ``out_dir`` (replaced whole); returns the directory."""
+    from recipsim.report.resolved_case import resolved_case
+
+    target = Path(out_dir)
+    text, files = resolved_case(calibration.calibrated)
+    fit = calibration.fit
+    header = [
+        f"# Calibrated by `recipsim calibrate` against {Path(calibration.data).name}:",
+    ] + [
+        f"#   {p.key} = {v:.6g} (from {p.initial:.6g}, bounds {p.lower:g}..{p.upper:g})"
+        for p, v in zip(fit.parameters, fit.values, strict=True)
+    ]
+    meta = {
+        "case": calibration.case.path,
+        "overrides": list(calibration.case.overrides),
+        "data": calibration.data,
+        "fit_message": fit.message,
+        "evaluations": fit.evaluations,
+        "residuals": [_finite(r) for r in fit.residuals],
+        "parameters": {
+            p.key: {"fitted": v, "initial": p.initial, "lower": p.lower, "upper": p.upper}
+            for p, v in zip(fit.parameters, fit.values, strict=True)
+        },
+    }
+    with atomic_directory(target) as tmp:
+        calibration.parameters.to_csv(tmp / "parameters.csv", index=False)
+        calibration.points.to_csv(tmp / "points.csv", index=False)
+        (tmp / "calibration.json").write_text(json.dumps(meta, indent=2) + "\n")
+        (tmp / "case.toml").write_text("\n".join(header) + "\n" + text)
+        for relative, content in files.items():
+            (tmp / relative).parent.mkdir(parents=True, exist_ok=True)
+            (tmp / relative).write_bytes(content)
+    return target

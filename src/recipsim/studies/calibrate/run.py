@@ -1,0 +1,175 @@
+"""A calibration from end to end: read the data, fit on the chosen points, predict every
+point with the calibrated case, tabulate (:class:`Calibration`)."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+import pandas as pd
+
+from recipsim.case.load import Case
+from recipsim.errors import RecipsimError
+from recipsim.studies.calibrate.data import MeasuredPoint, read_points
+from recipsim.studies.calibrate.fit import (
+    CalibrationError,
+    FitResult,
+    fit_parameters,
+    parse_parameter,
+)
+
+
+@dataclass(frozen=True)
+class Calibration:
+    """Result of :func:`calibrate_case`.
+
+    Attributes
+    ----------
+    case : Case
+        The case as given.
+    calibrated : Case
+        The case with the fitted values set (as overrides).
+    fit : FitResult
+        Fitted values, standard deviations, residuals.
+    parameters : pandas.DataFrame
+        One row per parameter: ``parameter``, ``initial``, ``lower``, ``upper``,
+        ``fitted``, ``std_from_resolution [-]``, ``std_from_residuals [-]`` (relative for
+        logarithmic parameters), ``ci95_low``, ``ci95_high`` (SI).
+    points : pandas.DataFrame
+        One row per data row: ``row``, ``point``, ``used_in_fit``, ``status``, and per
+        target ``measured <t>``, ``predicted <t>``, ``error <name> [-]``.
+    data : str
+        The data file.
+    """
+
+    case: Case
+    calibrated: Case
+    fit: FitResult
+    parameters: pd.DataFrame
+    points: pd.DataFrame
+    data: str
+
+
+def _summary_row(case: Case) -> dict[str, Any]:
+    from recipsim.results.run import simulate_case
+
+    run = simulate_case(case)
+    if not run.row.get("converged [-]", True):
+        raise RecipsimError(f"{case.name}: not converged")
+    return dict(run.row)
+
+
+def calibrate_case(
+    case: Case,
+    data: str | Path,
+    parameters: Sequence[str],
+    points: Sequence[int] | None = None,
+    targets: Sequence[str] | None = None,
+    ignore: Sequence[str] = (),
+    simulate: Callable[[Case], dict[str, Any]] = _summary_row,
+) -> Calibration:
+    """Fit ``parameters`` of ``case`` to the measured points of ``data``.
+
+    Parameters
+    ----------
+    case : Case
+        The case to calibrate.
+    data : str or Path
+        CSV of measured points (:mod:`recipsim.studies.calibrate.data`).
+    parameters : sequence of str
+        ``KEY`` or ``KEY=LOWER:UPPER`` (:func:`.fit.parse_parameter`).
+    points : sequence of int, optional
+        Data rows (1-based) to fit on; the others are predicted only. Default: all.
+    targets : sequence of str, optional
+        Target columns; default ``cooling_capacity [W]`` and ``COP [-]``.
+    ignore : sequence of str
+        Data columns to leave out.
+    simulate : callable
+        ``Case -> summary row``; raises :class:`~recipsim.errors.RecipsimError` for a
+        failed or non-converged run.
+
+    Returns
+    -------
+    Calibration
+
+    Raises
+    ------
+    CaseError
+        An invalid data file or case key.
+    CalibrationError
+        An ill-posed problem (see :mod:`.fit`).
+    """
+    measured, chosen = read_points(data, targets, ignore)
+    rows = {p.row for p in measured}
+    used = set(points) if points else rows
+    unknown = sorted(used - rows)
+    if unknown:
+        raise CalibrationError(f"--points {unknown}: the data file has rows {sorted(rows)}")
+    specs = [parse_parameter(text, case) for text in parameters]
+    if len({p.key for p in specs}) < len(specs):
+        raise CalibrationError("a parameter is named twice")
+    fitting = [p for p in measured if p.row in used]
+    fit = fit_parameters(case, fitting, chosen, specs, simulate)
+    calibrated = case.with_({p.key: v for p, v in zip(specs, fit.values, strict=True)})
+    table = _parameter_table(fit)
+    return Calibration(
+        case,
+        calibrated,
+        fit,
+        table,
+        _point_table(calibrated, measured, used, chosen, simulate),
+        str(data),
+    )
+
+
+def _parameter_table(fit: FitResult) -> pd.DataFrame:
+    rows = []
+    for p, value, a, b, (low, high) in zip(
+        fit.parameters, fit.values, fit.std_resolution, fit.std_residual, fit.ci95, strict=True
+    ):
+        rows.append(
+            {
+                "parameter": p.key,
+                "initial": p.initial,
+                "lower": p.lower,
+                "upper": p.upper,
+                "fitted": value,
+                "at_bound": bool(math.isclose(value, p.lower) or math.isclose(value, p.upper)),
+                "std_from_resolution [-]": a,
+                "std_from_residuals [-]": b,
+                "ci95_low": low,
+                "ci95_high": high,
+            }
+        )
+    return pd.DataFrame(rows)
+
+
+def _point_table(
+    case: Case,
+    measured: Sequence[MeasuredPoint],
+    used: set[int],
+    targets: Sequence[str],
+    simulate: Callable[[Case], dict[str, Any]],
+) -> pd.DataFrame:
+    rows = []
+    for point in measured:
+        row: dict[str, Any] = {"row": point.row, "point": point.label}
+        row["used_in_fit"] = point.row in used
+        try:
+            predicted = simulate(case.with_(point.overrides))
+            row["status"] = "ok"
+        except RecipsimError as exc:
+            predicted, row["status"] = {}, f"failed: {exc}"
+        for t in targets:
+            name = t.split(" [")[0]
+            value = float(predicted.get(t, math.nan))
+            row[f"predicted {t}"] = value
+            row[f"measured {t}"] = point.targets.get(t, math.nan)
+            row[f"error {name} [-]"] = (
+                value / point.targets[t] - 1.0 if t in point.targets else math.nan
+            )
+        rows.append(row)
+    return pd.DataFrame(rows)
