@@ -2,12 +2,14 @@
 
 The directive ``case-reference`` writes one table per case-file table: every key with
 its SI unit, default, allowed range, whether it is required and its meaning, read from
-the :mod:`recipsim.case.schema` declarations (``Field``, ``Choice``, ``Text``) that
-validate the files. Tables validated by hand instead (``[mechanism.*]``, ``[bearings.*]``,
-the top-level keys, the refrigerant file's top) list their keys from the parser's key
-tuples, their units from :data:`recipsim.report.resolved_case.MECHANISM_UNITS`, and say
-that the ranges are checked in code. A key added to a declaration appears here without
-editing the documentation.
+the declarations that validate the files: :mod:`recipsim.case.schema` ``Field``,
+``Choice``, ``Text`` for the tables read by :func:`~recipsim.case.schema.read_table`, and
+``Described`` (unit and range words that the loader's checks and messages use) for the
+tables validated in code: ``[mechanism.*]``, ``[bearings.<name>]``
+(:mod:`recipsim.case.mechanism_schema`) and ``[oil]`` (:mod:`recipsim.case.lubrication`).
+Only the top-level keys are listed by hand. A key added to a declaration appears here
+without editing the documentation; a top-level table without a declaration is listed
+with a note, and the docs test fails on it.
 """
 
 from __future__ import annotations
@@ -62,31 +64,31 @@ def declared_rows(table: str, spec: Any) -> list[list[str]]:
     return rows
 
 
-def hand_rows(table: str, keys: tuple[str, ...], optional: dict[str, str]) -> list[list[str]]:
-    """Rows of a table validated by hand: unit from MECHANISM_UNITS, range in code."""
-    from recipsim.report.resolved_case import MECHANISM_UNITS
-
+def described_rows(table: str, spec: Any, keys: tuple[str, ...] | None = None) -> list[list[str]]:
+    """Rows of a table validated in code, from its ``Described`` declarations."""
     rows = []
-    for key in keys:
-        unit = _unit(MECHANISM_UNITS.get(key, "dimensionless"))
-        if key == "law":
-            unit, allowed = "-", "``linear``"
-        else:
-            allowed = "checked in code (positive masses, inertias, stiffnesses)"
-        default = optional.get(key, "")
-        required = "no" if key in optional else "yes"
-        meaning = MEANINGS.get(f"{table}.{key}", "")
-        rows.append([f"``{key}``", unit, default, allowed, required, meaning])
+    for key in keys or tuple(spec):
+        field = spec[key]
+        unit = _unit(field.unit) if field.unit else "-"
+        default = field.default or ""
+        meaning = field.doc or MEANINGS.get(f"{table}.{key}", "")
+        rows.append([f"``{key}``", unit, default, field.allowed, field.requirement(), meaning])
     return rows
 
 
 def tables() -> list[tuple[str, str, list[list[str]]]]:
     """(heading, note, rows) of every table of a case file and of a refrigerant file."""
-    from recipsim.case import load, mechanism
+    from recipsim.case import load, mechanism_schema
+    from recipsim.case.lubrication import OIL_SPEC
+    from recipsim.case.mechanism import PISTON_BEARING_KEYS
     from recipsim.case.motor import MOTOR_SPEC
     from recipsim.case.refrigerant import LIMITS_SPEC, RATING_POINT_SPEC
 
-    hand = "Validated by hand in :mod:`recipsim.case.mechanism`, not by a declaration."
+    coded = (
+        "Validated in :mod:`recipsim.case.mechanism` against the declarations of "
+        ":mod:`recipsim.case.mechanism_schema` (the rules that involve other keys are "
+        "checked in code, their words are these)."
+    )
     declared = [
         ("[options]", "", load.OPTION_SPEC),
         ("[operating_point]", _OP_NOTE, load.OPERATING_POINT_SPEC),
@@ -120,30 +122,44 @@ def tables() -> list[tuple[str, str, list[list[str]]]]:
         (head, note, declared_rows(head.split(".")[0].split(",")[0].strip("[]"), spec))
         for head, note, spec in declared
     ]
-    piston_optional = {
-        "centre_of_mass_from_crown": "length / 2",
-        "transverse_inertia": "solid cylinder of the bore",
-    }
+    journals = [n for n in _bearing_names() if n not in ("pin", "piston_top", "piston_skirt")]
     out += [
         (
             "[mechanism.piston]",
-            hand,
-            hand_rows("mechanism.piston", mechanism._PISTON_KEYS, piston_optional),
+            coded,
+            described_rows("mechanism.piston", mechanism_schema.PISTON_SPEC),
         ),
         (
             "[mechanism.connecting_rod]",
-            hand,
-            hand_rows("mechanism.connecting_rod", mechanism._ROD_KEYS, {}),
+            coded,
+            described_rows("mechanism.connecting_rod", mechanism_schema.ROD_SPEC),
         ),
-        ("[mechanism.rotor]", hand, hand_rows("mechanism.rotor", mechanism._ROTOR_KEYS, {})),
+        (
+            "[mechanism.rotor]",
+            coded + " Give ``counterweight_radius`` (and optionally its angle and z) only with "
+            "``counterweight_mass > 0``.",
+            described_rows("mechanism.rotor", mechanism_schema.ROTOR_SPEC),
+        ),
         (
             "[bearings.<name>]",
-            hand
+            coded
             + " ``<name>``: "
             + ", ".join(f"``{n}``" for n in _bearing_names())
-            + "; ``position_from_crown`` only for the "
-            "piston bearings.",
-            hand_rows("bearings", mechanism._PISTON_BEARING_KEYS, {}),
+            + ". The film keys (``diameter`` to ``contact_friction``) are read for a "
+            "bearing on a film law (and kept on a linear journal that gives them, so "
+            "``options.bearing_law`` can switch it); the journals ("
+            + ", ".join(f"``{n}``" for n in journals)
+            + ") take all of them, the piston bearings only "
+            + ", ".join(f"``{k}``" for k in PISTON_BEARING_KEYS[3:])
+            + " (the piston film's diameter is the bore, its length the piston's).",
+            described_rows("bearings", mechanism_schema.BEARING_SPEC),
+        ),
+        (
+            "[oil]",
+            "Validated in :func:`recipsim.case.lubrication.parse_oil`; read when a bearing "
+            "runs on a film law (and checked whenever present). Without ``law`` only "
+            "``name`` and ``film_temperature`` may be given.",
+            described_rows("oil", OIL_SPEC),
         ),
         (
             "Refrigerant file: [limits]",
@@ -171,6 +187,7 @@ def tables() -> list[tuple[str, str, list[list[str]]]]:
         "bearings",
         "pressure_curve",
         "motor",
+        "oil",
     }
     for extra in sorted(load.TOP_KEYS - known):  # a table added later, not documented here yet
         out.append((f"[{extra}]", "Accepted by the loader; not described here yet.", []))

@@ -97,11 +97,12 @@ class Result:
         return plot_bearing_loads({self.case.name: self.cycle}).axes
 
     def plot_orbits(self) -> Any:
-        """Journal orbits of the primary and secondary bearings (flexible mechanics);
-        returns the figure's Axes."""
-        from recipsim.report.mechanics_plots import plot_orbits
+        """Journal orbits (flexible mechanics): the bearings on oil films inside their
+        clearance circles, else the primary and secondary; returns the figure's Axes."""
+        from recipsim.report.mechanics_plots import film_bearings, plot_orbits
 
-        return plot_orbits({self.case.name: self.cycle}).axes
+        bearings = film_bearings(self.cycle) or ("primary", "secondary")
+        return plot_orbits({self.case.name: self.cycle}, bearings=bearings).axes
 
     # ---- report -------------------------------------------------------------------------
     def write(self, directory: str | Path, plots: bool = True) -> Path:

@@ -65,6 +65,28 @@ def test_case_reference_lists_every_declared_key(site):
     assert "rad/s" in html and "3.14159" in html  # shaft_speed's unit, max_step's range
 
 
+def test_case_reference_describes_the_mechanism_bearing_and_oil_keys(site):
+    """The tables validated in code come from their ``Described`` declarations: every
+    key with its unit, range words, default and requirement; no table is left
+    "not described"."""
+    from html import unescape
+
+    from recipsim.case.lubrication import OIL_SPEC
+    from recipsim.case.mechanism_schema import BEARING_SPEC, PISTON_SPEC, ROD_SPEC, ROTOR_SPEC
+
+    html = (site / "case-reference.html").read_text()
+    text = " ".join(unescape(html).split())
+    assert "not described here yet" not in html
+    assert "[oil]" in html
+    for spec in (PISTON_SPEC, ROD_SPEC, ROTOR_SPEC, BEARING_SPEC, OIL_SPEC):
+        for key, field in spec.items():
+            assert f'<span class="pre">{key}</span>' in html, key
+            words = {field.allowed, field.allowed.replace("...", "\u2026")}  # smartquotes
+            assert any(w in text for w in words), (key, field.allowed)
+            if field.unit and field.unit != "dimensionless":
+                assert field.unit.replace("**", "^") in html, (key, field.unit)
+
+
 def test_api_reference_documents_the_public_names(site):
     import recipsim
 

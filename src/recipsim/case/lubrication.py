@@ -25,30 +25,78 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any
 
+from recipsim.case.schema import Described, DescribedSpec
 from recipsim.case.table_reader import TableReader
 from recipsim.case.units import to_si
 from recipsim.errors import CaseError
 
-FILM_KEYS = (
-    "diameter",
-    "length",
-    "radial_clearance",
-    "film_temperature",
-    "contact_film",
-    "contact_stiffness",
-    "contact_friction",
-)
-_OIL_KEYS = (
-    "name",
-    "law",
-    "temperatures",
-    "viscosities",
-    "kinematic_viscosities",
-    "density",
-    "film_temperature",
-)
 #: Default film temperature [K] (60 C).
 DEFAULT_FILM_TEMPERATURE = 333.15
+_FILM = "with a film law"
+_OWN = "with law"
+#: The film keys of a lubricated bearing, read by :func:`parse_film` (units and range
+#: words from here; the contact defaults are
+#: :mod:`recipsim.physics.mechanics.journal`'s).
+FILM_SPEC: DescribedSpec = {
+    "diameter": Described(
+        "m", "1 mm ... 1 m", required=f"journals {_FILM}",
+        doc="journal diameter (the piston film: the bore)",
+    ),
+    "length": Described(
+        "m", "0.1 ... 3 diameters", required=f"journals {_FILM}",
+        doc="bearing length (the piston film: between piston_top and piston_skirt)",
+    ),
+    "radial_clearance": Described(
+        "m", "1e-4 ... 1e-2 of the diameter", required=_FILM,
+        doc="radial clearance, sleeve radius minus journal radius",
+    ),
+    "film_temperature": Described(
+        "K", "200 ... 500 K", "oil.film_temperature",
+        doc="film temperature at which the oil's viscosity is taken",
+    ),
+    "contact_film": Described(
+        "m", "0 ... the radial clearance", "1 um",
+        doc="film below which the asperity contact law acts",
+    ),
+    "contact_stiffness": Described(
+        "N/m", "> 0", "1e10 N/m", doc="stiffness of the asperity contact (penalty) law"
+    ),
+    "contact_friction": Described(
+        "dimensionless", "0 ... 1", "0.1", doc="friction coefficient of the asperity contact"
+    ),
+}  # fmt: skip
+#: ``[oil]``: read by :func:`parse_oil`.
+OIL_SPEC: DescribedSpec = {
+    "name": Described(
+        "", "iso_vg10, spindle_oil (a label with law)", "iso_vg10",
+        doc="a named oil of recipsim.physics.lubricant, or a label for an oil given by law",
+    ),
+    "law": Described(
+        "", "vogel (3 points), walther (2 points)", "not set (the named oil)",
+        doc="viscosity-temperature law fitted through the points",
+    ),
+    "temperatures": Described(
+        "K", "a list of 3 (vogel) or 2 (walther) temperatures", required=_OWN,
+        doc="temperatures of the viscosity points",
+    ),
+    "viscosities": Described(
+        "Pa*s", "a list, one per temperature", required=f"{_OWN} (or kinematic_viscosities)",
+        doc="dynamic viscosity at the temperatures",
+    ),
+    "kinematic_viscosities": Described(
+        "m**2/s", "a list, one per temperature", required=f"{_OWN} (or viscosities)",
+        doc="kinematic viscosity at the temperatures (with density)",
+    ),
+    "density": Described(
+        "kg/m**3", "500 ... 2000", required=_OWN, doc="oil density"
+    ),
+    "film_temperature": Described(
+        "K", "200 ... 500 K", "60 degC",
+        doc="film temperature of every lubricated bearing that gives none",
+    ),
+}  # fmt: skip
+_OIL_KEYS = tuple(OIL_SPEC)
+FILM_KEYS = tuple(FILM_SPEC)
 
 
 @dataclass(frozen=True)
@@ -119,10 +167,9 @@ def parse_oil(data: Any, file: str) -> OilSpec:
     """Read the ``[oil]`` table (``None``: the default oil at the default temperature)."""
     t = TableReader({} if data is None else data, file, "oil")
     t.check_keys(_OIL_KEYS)
-    temperature = t.quantity(
-        "film_temperature", "K", lambda v: 200.0 < v < 500.0, "200 ... 500 K",
-        DEFAULT_FILM_TEMPERATURE,
-    )  # fmt: skip
+    temperature = t.described(
+        OIL_SPEC, "film_temperature", lambda v: 200.0 < v < 500.0, DEFAULT_FILM_TEMPERATURE
+    )
     named = _named_oils()
     if "law" not in t.data:
         name = t.choice("name", tuple(named), "iso_vg10")
@@ -134,7 +181,7 @@ def parse_oil(data: Any, file: str) -> OilSpec:
 
     law = t.choice("law", ("vogel", "walther"))
     label = str(t.data.get("name", "oil of the case"))
-    density = t.quantity("density", "kg/m**3", lambda v: 500.0 < v < 2000.0, "500 ... 2000")
+    density = t.described(OIL_SPEC, "density", lambda v: 500.0 < v < 2000.0)
     temps = _points(t, "temperatures", "K")
     kinematic = "kinematic_viscosities" in t.data
     key = "kinematic_viscosities" if kinematic else "viscosities"
@@ -171,31 +218,24 @@ def parse_film(
         DEFAULT_FRICTION_COEFFICIENT,
     )
 
-    positive = "> 0"
+    spec = FILM_SPEC
     if diameter is None:
-        diameter = t.quantity("diameter", "m", lambda v: 1e-3 < v < 1.0, "1 mm ... 1 m")
+        diameter = t.described(spec, "diameter", lambda v: 1e-3 < v < 1.0)
     if length is None:
-        length = t.quantity("length", "m", lambda v: 0.1 * diameter <= v <= 3.0 * diameter,
-                            f"0.1 ... 3 diameters ({diameter:g} m)")  # fmt: skip
-    clearance = t.quantity(
-        "radial_clearance", "m", lambda v: 1e-4 * diameter <= v <= 1e-2 * diameter,
-        "1e-4 ... 1e-2 of the diameter",
-    )  # fmt: skip
-    temperature = t.quantity(
-        "film_temperature", "K", lambda v: 200.0 < v < 500.0, "200 ... 500 K",
-        oil.film_temperature,
-    )  # fmt: skip
-    contact_film = t.quantity(
-        "contact_film", "m", lambda v: 0.0 <= v < clearance,
-        f"0 ... the radial clearance ({clearance:g} m)", DEFAULT_CONTACT_FILM,
-    )  # fmt: skip
-    stiffness = t.quantity(
-        "contact_stiffness", "N/m", lambda v: v > 0.0, positive, DEFAULT_CONTACT_STIFFNESS
+        length = t.described(spec, "length", lambda v: 0.1 * diameter <= v <= 3.0 * diameter,
+                             None, f"diameter {diameter:g} m")  # fmt: skip
+    clearance = t.described(
+        spec, "radial_clearance", lambda v: 1e-4 * diameter <= v <= 1e-2 * diameter
     )
-    friction = t.quantity(
-        "contact_friction", "dimensionless", lambda v: 0.0 <= v <= 1.0, "0 ... 1",
-        DEFAULT_FRICTION_COEFFICIENT,
-    )  # fmt: skip
+    temperature = t.described(
+        spec, "film_temperature", lambda v: 200.0 < v < 500.0, oil.film_temperature
+    )
+    contact_film = t.described(spec, "contact_film", lambda v: 0.0 <= v < clearance,
+                               DEFAULT_CONTACT_FILM, f"{clearance:g} m")  # fmt: skip
+    stiffness = t.described(spec, "contact_stiffness", lambda v: v > 0.0,
+                            DEFAULT_CONTACT_STIFFNESS)  # fmt: skip
+    friction = t.described(spec, "contact_friction", lambda v: 0.0 <= v <= 1.0,
+                           DEFAULT_FRICTION_COEFFICIENT)  # fmt: skip
     return FilmSpec(
         diameter, length, clearance, temperature, oil.viscosity(temperature),
         contact_film, stiffness, friction,

@@ -33,6 +33,7 @@ from recipsim.case.lubrication import (
     parse_film,
     parse_oil,
 )
+from recipsim.case.mechanism_schema import BEARING_SPEC, PISTON_SPEC, ROD_SPEC, ROTOR_SPEC
 from recipsim.case.table_reader import TableReader as _Table
 from recipsim.errors import CaseError
 from recipsim.physics.mechanics.layout import BEARING_LAWS, BEARING_NAMES
@@ -271,46 +272,34 @@ def _any(v: float) -> bool:
     return True
 
 
-_PISTON_KEYS = (
-    "mass",
-    "length",
-    "pin_offset_from_crown",
-    "centre_of_mass_from_crown",
-    "transverse_inertia",
-)
-_ROD_KEYS = ("mass", "centre_of_mass_fraction", "inertia")
+_PISTON_KEYS = tuple(PISTON_SPEC)
+_ROD_KEYS = tuple(ROD_SPEC)
 _COUNTERWEIGHT_KEYS = (
     "counterweight_mass",
     "counterweight_radius",
     "counterweight_angle",
     "counterweight_z",
 )
-_ROTOR_KEYS = (
-    "mass",
-    "polar_inertia",
-    "transverse_inertia",
-    "centre_of_mass_z",
-    "primary_z",
-    "secondary_z",
-    *_COUNTERWEIGHT_KEYS,
-)
+_ROTOR_KEYS = tuple(ROTOR_SPEC)
 _BEARING_KEYS = ("law", "stiffness", "damping", *FILM_KEYS)
-_PISTON_BEARING_KEYS = ("law", "stiffness", "damping", "position_from_crown",
-                        "radial_clearance", "film_temperature", "contact_film",
-                        "contact_stiffness", "contact_friction")  # fmt: skip
+#: Keys of the piston bearings (the film's diameter and length come from the piston).
+PISTON_BEARING_KEYS = ("law", "stiffness", "damping", "position_from_crown",
+                       "radial_clearance", "film_temperature", "contact_film",
+                       "contact_stiffness", "contact_friction")  # fmt: skip
 
 
 def _parse_piston(t: _Table, bore: float | None) -> PistonSpec:
     t.check_keys(_PISTON_KEYS)
-    mass = t.quantity("mass", "kg", _positive, "> 0")
-    length = t.quantity("length", "m", _positive, "> 0")
-    within = f"0 ... length ({length:g} m)"
-    pin = t.quantity("pin_offset_from_crown", "m", lambda v: 0.0 <= v <= length, within)
-    com = t.quantity(
-        "centre_of_mass_from_crown", "m", lambda v: 0.0 <= v <= length, within, 0.5 * length
+    spec = PISTON_SPEC
+    mass = t.described(spec, "mass", _positive)
+    length = t.described(spec, "length", _positive)
+    within = f"{length:g} m"
+    pin = t.described(spec, "pin_offset_from_crown", lambda v: 0.0 <= v <= length, None, within)
+    com = t.described(
+        spec, "centre_of_mass_from_crown", lambda v: 0.0 <= v <= length, 0.5 * length, within
     )
     if "transverse_inertia" in t.data:
-        inertia = t.quantity("transverse_inertia", _INERTIA, _positive, "> 0")
+        inertia = t.described(spec, "transverse_inertia", _positive)
     elif bore is None:
         raise CaseError(
             t.file,
@@ -325,33 +314,30 @@ def _parse_piston(t: _Table, bore: float | None) -> PistonSpec:
 
 def _parse_rod(t: _Table) -> ConnectingRodSpec:
     t.check_keys(_ROD_KEYS)
-    mass = t.quantity("mass", "kg", _positive, "> 0")
-    frac = t.quantity(
-        "centre_of_mass_fraction", "dimensionless", lambda v: 0.0 < v < 1.0, "between 0 and 1"
-    )
-    inertia = t.quantity("inertia", _INERTIA, _positive, "> 0")
+    mass = t.described(ROD_SPEC, "mass", _positive)
+    frac = t.described(ROD_SPEC, "centre_of_mass_fraction", lambda v: 0.0 < v < 1.0)
+    inertia = t.described(ROD_SPEC, "inertia", _positive)
     return ConnectingRodSpec(mass, frac, inertia)
 
 
 def _parse_rotor(t: _Table) -> RotorSpec:
     t.check_keys(_ROTOR_KEYS)
-    mass = t.quantity("mass", "kg", _positive, "> 0")
-    ip = t.quantity("polar_inertia", _INERTIA, _positive, "> 0")
-    it = t.quantity("transverse_inertia", _INERTIA, _positive, "> 0")
-    zg = t.quantity("centre_of_mass_z", "m", _any, "any finite value")
-    z1 = t.quantity("primary_z", "m", _any, "any finite value")
-    z2 = t.quantity(
-        "secondary_z", "m", lambda v: v != z1, f"any finite value other than primary_z ({z1:g} m)"
-    )
+    spec = ROTOR_SPEC
+    mass = t.described(spec, "mass", _positive)
+    ip = t.described(spec, "polar_inertia", _positive)
+    it = t.described(spec, "transverse_inertia", _positive)
+    zg = t.described(spec, "centre_of_mass_z", _any)
+    z1 = t.described(spec, "primary_z", _any)
+    z2 = t.described(spec, "secondary_z", lambda v: v != z1, None, f"primary_z = {z1:g} m")
     extra = [k for k in _COUNTERWEIGHT_KEYS[1:] if k in t.data]
     if extra and "counterweight_mass" not in t.data:
         raise CaseError(t.file, t.key(extra[0]), "needs counterweight_mass")
-    m_u = t.quantity("counterweight_mass", "kg", _non_negative, ">= 0", 0.0)
+    m_u = t.described(spec, "counterweight_mass", _non_negative, 0.0)
     if not extra and m_u == 0.0:
         return RotorSpec(mass, ip, it, zg, z1, z2)
-    r_u = t.quantity("counterweight_radius", "m", _positive, "> 0")
-    ang = t.quantity("counterweight_angle", "rad", _any, "any angle", math.pi)
-    z_u = t.quantity("counterweight_z", "m", _any, "any finite value", 0.0)
+    r_u = t.described(spec, "counterweight_radius", _positive)
+    ang = t.described(spec, "counterweight_angle", _any, math.pi)
+    z_u = t.described(spec, "counterweight_z", _any, 0.0)
     if m_u == 0.0:  # a sweep's zero point: the other keys are checked, nothing is added
         return RotorSpec(mass, ip, it, zg, z1, z2)
     return RotorSpec(mass, ip, it, zg, z1, z2, m_u, r_u, ang, z_u)
@@ -378,20 +364,22 @@ def _parse_bearing(
     """One ``[bearings.<name>]`` table; ``default_law`` (``options.bearing_law``) applies
     to the journals that name no law of their own."""
     is_piston = name in ("piston_top", "piston_skirt")
-    t.check_keys(_PISTON_BEARING_KEYS if is_piston else _BEARING_KEYS)
+    t.check_keys(PISTON_BEARING_KEYS if is_piston else _BEARING_KEYS)
     allowed = BEARING_LAWS[name]
     fallback = default_law if default_law in allowed and not is_piston else "linear"
     law = t.choice("law", allowed, None if is_piston or name == "pin" else fallback)
     needs_spring = law == "linear"
-    k = t.quantity("stiffness", "N/m", _positive, "> 0", None if needs_spring else 0.0)
-    c = t.quantity("damping", "N*s/m", _non_negative, ">= 0", None if needs_spring else 0.0)
+    spec = BEARING_SPEC
+    k = t.described(spec, "stiffness", _positive, None if needs_spring else 0.0)
+    c = t.described(spec, "damping", _non_negative, None if needs_spring else 0.0)
     position = None
     if is_piston:
-        position = t.quantity(
+        position = t.described(
+            spec,
             "position_from_crown",
-            "m",
             lambda v: 0.0 <= v <= piston.length,
-            f"0 ... piston length ({piston.length:g} m)",
+            None,
+            f"{piston.length:g} m",
         )
     film = None
     if law == "skirt_film" or (is_piston and "radial_clearance" in t.data):

@@ -83,7 +83,44 @@ class Text:
     doc: str = ""
 
 
+@dataclass(frozen=True)
+class Described:
+    """A key of a table validated in code, where a rule may involve other keys (the
+    piston pin within the piston length, a clearance relative to the diameter).
+
+    The loader reads its unit and the words of its range from here (its messages say
+    them) and checks the rule in code; the case-file reference prints the same.
+
+    Parameters
+    ----------
+    unit : str
+        SI unit in pint syntax (``"dimensionless"`` for pure numbers, ``""`` for a
+        string key).
+    allowed : str
+        The allowed values in words (``"> 0"``, ``"0 ... length"``).
+    default : str
+        The value when absent, in words; ``""``: none (see ``required``).
+    required : str
+        ``"yes"``, ``"no"`` or the condition under which the key is required; default
+        ``"yes"`` without a default, else ``"no"``.
+    doc : str
+        What the key is.
+    """
+
+    unit: str
+    allowed: str
+    default: str = ""
+    required: str = ""
+    doc: str = ""
+
+    def requirement(self) -> str:
+        """Whether the key is required: ``"yes"``, ``"no"`` or a condition."""
+        return self.required or ("no" if self.default else "yes")
+
+
 Spec = Mapping[str, Field | Choice | Text]
+#: Keys of a table validated in code, in the order of the table.
+DescribedSpec = Mapping[str, Described]
 
 
 def check_keys(raw: Mapping[str, Any], allowed: set[str] | Spec, file: str, prefix: str) -> None:

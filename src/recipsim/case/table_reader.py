@@ -64,6 +64,21 @@ class TableReader:
             )
         return value
 
+    def described(
+        self,
+        spec: Mapping[str, Any],
+        name: str,
+        check: Callable[[float], bool],
+        default: float | None = None,
+        context: str = "",
+    ) -> float:
+        """Key ``name`` with the unit and the range words of its declaration
+        (:class:`recipsim.case.schema.Described` in ``spec``); ``context`` (e.g. the
+        length a range refers to) is appended to the range in messages."""
+        key = spec[name]
+        allowed = f"{key.allowed} ({context})" if context else key.allowed
+        return self.quantity(name, key.unit, check, allowed, default)
+
     def choice(self, name: str, allowed: Collection[str], default: str | None = None) -> str:
         """Key ``name`` as one of the names in ``allowed``."""
         value = self.data.get(name, default)

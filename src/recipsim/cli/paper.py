@@ -11,6 +11,13 @@ The undamped flexible runs (a), (b) are their periodic response at constant spee
 found by shooting (``--undamped-start periodic``, the default), or a transient of
 ``--undamped-revolutions`` from the unloaded (or quasi-static) pose.
 
+The hydrodynamic column (default; ``--no-hydrodynamic`` leaves it out) runs loads (a)
+and (b) with the primary, secondary and eccentric journals on oil films
+(``--bearing-law``, default ``finite_journal``; the case's journal geometry, clearance and
+``[oil]``) at constant speed, through the ordinary case solve
+(:mod:`recipsim.studies.paper_hydrodynamic`), and prints whether the paper's conclusion 3
+(hydrodynamic loads close to the pinned ones) holds.
+
 The pressure curve is the case's table (``options.pressure = "tabulated"``) or, for a
 cylinder case, the cylinder pressure of its rigid-crank run.
 """
@@ -54,6 +61,17 @@ def add_paper_parser(sub: Any) -> None:
             "(default), or a transient from the unloaded or quasi-static pose (default "
             "unloaded when --undamped-revolutions is given)"
         ),
+    )
+    p.add_argument(
+        "--no-hydrodynamic",
+        action="store_true",
+        help="leave out the hydrodynamic column (journals on oil films)",
+    )
+    p.add_argument(
+        "--bearing-law",
+        choices=("finite_journal", "short_journal"),
+        default="finite_journal",
+        help="film law of the hydrodynamic column's journals (default finite_journal)",
     )
     p.add_argument(
         "--undamped-revolutions",
@@ -106,6 +124,8 @@ def run_paper_command(args: argparse.Namespace) -> int:
         undamped_revolutions=8 if args.undamped_revolutions is None else args.undamped_revolutions,
         undamped_start=start,
         plots=not args.no_plots,
+        hydrodynamic=None if args.no_hydrodynamic else case,
+        bearing_law=args.bearing_law,
     )
     rpm = op.shaft_speed * 60.0 / (2.0 * math.pi)
     print(f"{case.name}: paper study at {rpm:.0f} rpm, drive {drive}, pressure from {source}")
@@ -113,5 +133,9 @@ def run_paper_command(args: argparse.Namespace) -> int:
     rms = [c for c in study.table1.columns if c == "bearing" or c.endswith("_rms [N]")]
     print("RMS bearing loads [N] (the layout of the paper's Table 1):")
     print(study.table1[rms].round(1).to_string(index=False))
+    if study.hydrodynamic:
+        from recipsim.studies.paper_report import conclusion_three
+
+        print(conclusion_three(study.table1))
     print(f"-> {out}")
     return 0

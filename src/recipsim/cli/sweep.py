@@ -37,7 +37,8 @@ def add_sweep_parser(sub: Any) -> argparse.ArgumentParser:
         help="run an operating map (a sweep file) in parallel, resumable",
         description=(
             "Run every point of a sweep file (a base case, axes combined as a grid, "
-            "explicit points) and write <out>/<name>/summary.csv and map plots. Each "
+            "explicit points) and write <out>/<name>/summary.csv (<out>/<name>+<digest>/ "
+            "with --set) and map plots. Each "
             "finished point is kept on disk: rerunning an interrupted sweep computes "
             "only the missing points. See docs/sweeps.md."
         ),
@@ -75,7 +76,8 @@ def add_sweep_parser(sub: Any) -> argparse.ArgumentParser:
     add_common_options(
         parser,
         Path("reports/sweeps"),
-        "parent directory of the sweep: it goes to OUT/<sweep name>/ (default: reports/sweeps/)",
+        "parent directory of the sweep: it goes to OUT/<sweep name>/ "
+        "(OUT/<sweep name>+<digest of the --set values>/ with --set) (default: reports/sweeps/)",
     )
     for flag, help_text in _SWITCHES:
         parser.add_argument(flag, action="store_true", help=help_text)

@@ -97,6 +97,38 @@ def displacement(table: pd.DataFrame, bearing: str) -> np.ndarray | None:
     return xy
 
 
+def film_clearance(table: pd.DataFrame, bearing: str) -> float | None:
+    """Radial clearance of a bearing on an oil film, from its cycle columns [m], or None.
+
+    The report's ``film_thickness_<bearing> [m]`` is the clearance less the journal's
+    displacement from the sleeve centre, so their sum is the clearance at every sample
+    (the median is taken against round-off).
+
+    Parameters
+    ----------
+    table : pandas.DataFrame
+        Report table.
+    bearing : str
+        Bearing name.
+
+    Returns
+    -------
+    float or None
+        [m]; None when the bearing has no film columns (a linear or pinned bearing).
+    """
+    column = f"film_thickness_{bearing} [m]"
+    xy = displacement(table, bearing)
+    if column not in table or xy is None:
+        return None
+    film = table[column].to_numpy(dtype=float)
+    return float(np.median(film + np.hypot(xy[:, 0], xy[:, 1])))
+
+
+def film_bearings(table: pd.DataFrame) -> tuple[str, ...]:
+    """The bearings of a report table that run on an oil film, ``BEARING_NAMES`` order."""
+    return tuple(b for b in BEARING_NAMES if f"film_thickness_{b} [m]" in table)
+
+
 def has_orbits(table: pd.DataFrame, bearings: Sequence[str] = ("primary", "secondary")) -> bool:
     """Whether a table has a non-zero displacement for at least one of ``bearings``."""
     return any(displacement(table, b) is not None for b in bearings)
@@ -170,7 +202,10 @@ def plot_orbits(
     Tables without displacement columns, or with all-zero displacements (pinned
     tables), are skipped. In each panel every bearing has its own colour (primary
     red, secondary blue, as in the paper's Fig. 11), equal aspect, and a dot at the
-    first sample (TDC).
+    first sample (TDC). A bearing on an oil film (``film_thickness_<name> [m]`` in the
+    table) is drawn inside its clearance circle (dashed, radius the radial clearance,
+    :func:`film_clearance`) with a cross at its smallest film, and the panel is
+    framed on the largest circle; linear bearings are drawn as before.
 
     Parameters
     ----------
@@ -197,6 +232,7 @@ def plot_orbits(
     fig = Figure(figsize=(3.9 * n + 0.4, 4.3), layout="constrained")
     axes = np.atleast_1d(fig.subplots(1, n, squeeze=False)).ravel()
     for ax, (label, table) in zip(axes, panels.items(), strict=True):
+        largest = 0.0
         for bearing in bearings:
             xy = displacement(table, bearing)
             if xy is None:
@@ -205,9 +241,17 @@ def plot_orbits(
             colour = ORBIT_COLOURS.get(bearing)
             ax.plot(um[:, 0], um[:, 1], color=colour, lw=1.0, label=bearing)
             ax.plot(um[0, 0], um[0, 1], "o", color=colour, ms=3.5)
+            clearance = film_clearance(table, bearing)
+            if clearance is not None:
+                largest = max(largest, _clearance_circle(ax, table, bearing, clearance, um))
         ax.axhline(0.0, color="0.6", lw=0.5)
         ax.axvline(0.0, color="0.6", lw=0.5)
-        ax.set_aspect("equal", adjustable="datalim")
+        if largest > 0.0:
+            ax.set_xlim(-1.08 * largest, 1.08 * largest)
+            ax.set_ylim(-1.08 * largest, 1.08 * largest)
+            ax.set_aspect("equal", adjustable="box")
+        else:
+            ax.set_aspect("equal", adjustable="datalim")
         ax.set_xlabel("displacement X [um]")
         ax.set_ylabel("displacement Y [um]")
         ax.set_title(label)
@@ -215,6 +259,31 @@ def plot_orbits(
         ax.legend(fontsize="small")
     fig.suptitle(title or "bearing orbits (journal relative to bushing; dot: TDC)")
     return fig
+
+
+def _clearance_circle(
+    ax: Any, table: pd.DataFrame, bearing: str, clearance: float, um: np.ndarray
+) -> float:
+    """Draw a film bearing's clearance circle and mark its smallest film; returns the
+    circle's radius [um]."""
+    from matplotlib.patches import Circle
+
+    colour = ORBIT_COLOURS.get(bearing)
+    radius = 1e6 * clearance
+    circle = Circle((0.0, 0.0), radius, fill=False, ls="--", lw=0.8, color=colour)
+    circle.set_gid(f"clearance_{bearing}")
+    ax.add_patch(circle)
+    film = table[f"film_thickness_{bearing} [m]"].to_numpy(dtype=float)
+    k = int(np.argmin(film))
+    ax.plot(
+        um[k, 0],
+        um[k, 1],
+        "x",
+        color=colour,
+        ms=6.0,
+        label=f"{bearing}: smallest film {1e6 * film[k]:.2f} um of {radius:.3g}",
+    )
+    return radius
 
 
 def plot_drive_torque(tables: Mapping[str, pd.DataFrame], title: str = "") -> Figure:

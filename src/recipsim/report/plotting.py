@@ -125,12 +125,19 @@ def save_cycle_figures(
     if "suction_valve_lift [m]" in cycle:  # the gas is simulated (not a tabulated pressure)
         figures["valves.png"] = plot_valves(cycle)
     if "bearing_force_primary [N]" in cycle:
-        from recipsim.report.mechanics_plots import has_orbits, plot_bearing_loads, plot_orbits
+        from recipsim.report.mechanics_plots import (
+            film_bearings,
+            has_orbits,
+            plot_bearing_loads,
+            plot_orbits,
+        )
 
         label = "flexible" if has_orbits(cycle) else "pinned"
         figures["bearing_loads.png"] = plot_bearing_loads({label: cycle})
         if label == "flexible":
-            figures["orbits.png"] = plot_orbits({label: cycle})
+            # lubricated journals: every film bearing inside its clearance circle
+            orbit_bearings = film_bearings(cycle) or ("primary", "secondary")
+            figures["orbits.png"] = plot_orbits({label: cycle}, bearings=orbit_bearings)
     for name, fig in figures.items():
         if title:
             fig.suptitle(title, fontsize="medium")

@@ -114,6 +114,8 @@ def cycle_table(solution: PeriodicSolution) -> pd.DataFrame:
     rev = solution.final
     out = sample_outputs(model, rev)
     theta = np.mod(out[:, cyl.A_THETA], 2.0 * math.pi)
+    # the TDC sample can land a round-off below 2 pi (then it would sort last as 360 deg)
+    theta = np.where(theta > 2.0 * math.pi - 1e-9, 0.0, theta)
     if model.free_speed:
         grid = _uniform_angles(model.case.solver.samples_per_revolution)
         values = _periodic_resample(theta, out, grid)

@@ -33,19 +33,34 @@ periodicity is tested like the damped run's. ``undamped_start="quasi_static"`` o
 pinned pose at TDC, or from the pinned pose with undeflected bearings, the last one
 reported.
 
+The hydrodynamic column (``hydrodynamic=case``): the ``inertia`` and ``gas`` loads with
+the primary, secondary and eccentric journals on oil films (``finite_journal`` by
+default, the case's film geometry and oil), run like any case through
+:mod:`recipsim.studies.paper_hydrodynamic` at constant speed; its RMS and peak loads
+against pinned answer the paper's conclusion 3 (:func:`.paper_report.conclusion_three`).
+
 :func:`run_paper_study` returns a :class:`PaperStudy` and writes into ``out_dir``
 atomically (built in a temporary directory beside it, then swapped in):
 
 - ``table1.csv``: one row per bearing (``bearing``, ``BEARING_NAMES`` order), RMS loads
   ``<config>_<model>_rms [N]``, relative differences ``<config>_flexible_vs_pinned [-]``
   (flexible RMS / pinned RMS - 1), peak loads ``<config>_<model>_peak [N]`` and largest
-  orbit radii ``<config>_flexible_orbit_max [m]``;
+  orbit radii ``<config>_flexible_orbit_max [m]``; with the hydrodynamic column also
+  ``<config>_hydrodynamic_rms [N]``, ``_vs_pinned [-]``, ``_peak [N]``, ``_orbit_max [m]``
+  and ``_min_film [m]`` (nan for the bearings without a film) for ``inertia`` and ``gas``;
 - ``cycle_<config>_<model>.csv``: the reported revolution of every run (report columns
   of :meth:`recipsim.physics.mechanics.MechanismResult.columns` plus ``cylinder_pressure [Pa]``;
   pinned tables have zero displacements);
-- ``bearing_loads_<config>.png``, ``orbits.png``, ``drive_torque.png``;
-- ``study.json`` (settings, and per run its revolutions, convergence and wall time) and
-  ``README.md`` (the same, readable).
+  ``cycle_<config>_hydrodynamic.csv`` are ``recipsim run``'s cycle tables;
+- ``bearing_loads_<config>.png``, ``orbits.png``, ``orbits_hydrodynamic.png`` (with the
+  column: the journals inside their clearance circles), ``drive_torque.png``;
+- ``study.json`` (settings, and per run its revolutions, convergence and wall time; the
+  films and the conclusion-3 answer) and ``README.md`` (the same, readable).
+
+The module is over 400 lines because the study is one table built from three kinds of
+run; its data types (:mod:`.paper_runs`), the undamped shooting (:mod:`.paper_undamped`),
+the hydrodynamic runs (:mod:`.paper_hydrodynamic`) and the files (:mod:`.paper_report`)
+live apart.
 """
 
 from __future__ import annotations
@@ -53,129 +68,69 @@ from __future__ import annotations
 import json
 import math
 import time
-from dataclasses import dataclass, field, replace
+from dataclasses import replace
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 import pandas as pd
-from scipy.integrate import solve_ivp
 
 from recipsim import __version__
 from recipsim.atomic import atomic_directory
 from recipsim.case.mechanism import CrankGeometry, MechanismSpec, with_damping
 from recipsim.model.mechanism_parameters import mechanism_parameters
 from recipsim.model.pinned import pinned_loads
-from recipsim.physics.mechanics import layout as lay
-from recipsim.physics.mechanics.flexible import flexible_rhs_tabulated
-from recipsim.physics.mechanics.flexible_setup import initial_state, state_scales
+from recipsim.physics.mechanics.flexible_setup import initial_state
 from recipsim.physics.mechanics.layout import BEARING_NAMES
 from recipsim.physics.mechanics.pinned import PinnedLoads
 from recipsim.physics.mechanics.tabulated import PressureCurve, tabulated_pressure
 from recipsim.solve.mechanism_ivp import MechanismResult, simulate_mechanism
-from recipsim.solve.shooting import newton_fixed_point
+from recipsim.studies.paper_hydrodynamic import (
+    DEFAULT_LAW,
+    JOURNALS,
+    SOLVER_METHOD,
+    HydrodynamicRun,
+    constant_curve,
+    run_hydrodynamic,
+)
+from recipsim.studies.paper_runs import (
+    CONFIGURATIONS,
+    HYDRODYNAMIC_RUNS,
+    LABELS,  # noqa: F401 (re-exported)
+    PINNED_OF,
+    PRESSURE_COLUMN,
+    RUNS,
+    UNDAMPED_STARTS,
+    PaperStudy,
+    RunRecord,
+)
+from recipsim.studies.paper_undamped import (  # noqa: F401 (re-exported)
+    undamped_periodic,
+    undamped_periodic_response,
+)
 
-#: Load configurations, in the paper's order.
-CONFIGURATIONS = ("inertia", "gas", "gas_damped")
-#: How the undamped runs are made: their periodic response (shooting), or a transient
-#: of fixed revolutions from the quasi-static or the unloaded pose.
-UNDAMPED_STARTS = ("periodic", "quasi_static", "unloaded")
-#: Finite-difference step of the undamped shooting, relative to each state's size.
-_FD_STEP = 0.2
+if TYPE_CHECKING:
+    from recipsim.case.load import Case
+
+__all__ = [
+    "CONFIGURATIONS",
+    "HYDRODYNAMIC_RUNS",
+    "RUNS",
+    "PaperStudy",
+    "RunRecord",
+    "flexible_table",
+    "pinned_table",
+    "run_paper_study",
+    "simulate_mechanism",
+    "table1_columns",
+    "undamped_periodic_response",
+    "write_paper_study",
+]
+
 #: The undamped shooting integrates at this times the study's ``rtol``: an undamped
 #: revolution's end state jumps with the step sequence by ~1e-3 of the vibration
 #: amplitude at rtol 1e-6 under LSODA (the periodicity tolerance), ~1e-4 at 1e-7.
 _PERIODIC_RTOL_FACTOR = 0.1
-#: Runs, as ``<config>_<model>`` (``gas_damped`` reuses the ``gas`` pinned run).
-RUNS = ("inertia_pinned", "inertia_flexible", "gas_pinned", "gas_flexible", "gas_damped_flexible")
-_PINNED_OF = {"inertia": "inertia_pinned", "gas": "gas_pinned", "gas_damped": "gas_pinned"}
-_LABELS = {
-    "inertia": "inertia load only",
-    "gas": "gas (compressive) load",
-    "gas_damped": "gas load with dissipation",
-}
-PRESSURE_COLUMN = "cylinder_pressure [Pa]"
-
-
-@dataclass(frozen=True)
-class RunRecord:
-    """How one run of the study went.
-
-    Attributes
-    ----------
-    name : str
-        ``<config>_<model>``, e.g. ``gas_flexible``.
-    configuration : str
-        One of :data:`CONFIGURATIONS`.
-    model : str
-        ``"pinned"`` or ``"flexible"``.
-    mode : str
-        ``"algebraic"`` (pinned), ``"shooting"`` (undamped flexible, periodic
-        response), ``"fixed_revolutions"`` (undamped flexible transient) or
-        ``"until_periodic"`` (damped flexible).
-    revolutions : int
-        Revolutions integrated (0 for pinned; with shooting every revolution, the
-        Jacobian's included).
-    converged : bool or None
-        Periodicity test passed (damped and shooting runs); True for pinned (exactly
-        periodic); None for fixed-revolution runs (not tested).
-    cycle_change : float or None
-        Largest state change over the last revolution relative to its scale [-]
-        (flexible runs).
-    nfev : int
-        Right-hand-side evaluations (0 for pinned).
-    wall_time : float
-        Wall time of the run including its report table [s].
-    """
-
-    name: str
-    configuration: str
-    model: str
-    mode: str
-    revolutions: int
-    converged: bool | None
-    cycle_change: float | None
-    nfev: int
-    wall_time: float
-
-
-@dataclass(frozen=True)
-class PaperStudy:
-    """Results of :func:`run_paper_study`.
-
-    Attributes
-    ----------
-    table1 : pandas.DataFrame
-        One row per bearing (column ``bearing``), the columns of ``table1.csv``.
-    cycles : dict of str to pandas.DataFrame
-        Reported revolution of each run in :data:`RUNS`, report columns.
-    runs : dict of str to RunRecord
-        Per run: revolutions, convergence, wall time.
-    timings : dict of str to float
-        Wall time per run, ``"compute"`` (all runs), ``"write"`` (files and figures)
-        and ``"total"`` [s]; ``study.json`` holds the runs' and ``"compute"``.
-    settings : dict
-        The study's settings (as written to ``study.json``).
-    flexible : dict of str to MechanismResult
-        The flexible runs (``inertia_flexible``, ``gas_flexible``, ``gas_damped_flexible``).
-    pinned : dict of str to PinnedLoads
-        The pinned runs (``inertia_pinned``, ``gas_pinned``).
-    out_dir : pathlib.Path or None
-        Where the study was written.
-    files : tuple of pathlib.Path
-        Files written (under ``out_dir``).
-    """
-
-    table1: pd.DataFrame
-    cycles: dict[str, pd.DataFrame]
-    runs: dict[str, RunRecord]
-    timings: dict[str, float]
-    settings: dict[str, Any]
-    flexible: dict[str, MechanismResult] = field(repr=False)
-    pinned: dict[str, PinnedLoads] = field(repr=False)
-    out_dir: Path | None = None
-    files: tuple[Path, ...] = ()
-
 
 # ----------------------------------------------------------------------------- tables
 
@@ -249,225 +204,50 @@ def flexible_table(
     return pd.DataFrame(cols)
 
 
-def table1_columns() -> list[str]:
-    """Column names of ``table1.csv``, in order (``bearing`` first)."""
-    rms = [
-        "inertia_pinned_rms [N]",
-        "inertia_flexible_rms [N]",
-        "gas_pinned_rms [N]",
-        "gas_flexible_rms [N]",
-        "gas_damped_flexible_rms [N]",
-    ]
-    rel = [f"{c}_flexible_vs_pinned [-]" for c in CONFIGURATIONS]
-    peak = [c.replace("_rms [N]", "_peak [N]") for c in rms]
-    orbit = [f"{c}_flexible_orbit_max [m]" for c in CONFIGURATIONS]
-    return ["bearing", *rms, *rel, *peak, *orbit]
-
-
-def _table1(pinned: dict[str, PinnedLoads], flexible: dict[str, MechanismResult]) -> pd.DataFrame:
-    rms: dict[str, np.ndarray] = {k: v.force_rms() for k, v in pinned.items()}
-    peak: dict[str, np.ndarray] = {k: v.force_peak() for k, v in pinned.items()}
-    rms.update({k: v.force_rms for k, v in flexible.items()})
-    peak.update({k: v.force_peak for k, v in flexible.items()})
-    cols: dict[str, Any] = {"bearing": list(BEARING_NAMES)}
-    for run in RUNS:
-        cols[f"{run}_rms [N]"] = rms[run]
-    for config in CONFIGURATIONS:
-        ref = rms[_PINNED_OF[config]]
-        cols[f"{config}_flexible_vs_pinned [-]"] = rms[f"{config}_flexible"] / ref - 1.0
-    for run in RUNS:
-        cols[f"{run}_peak [N]"] = peak[run]
-    for config in CONFIGURATIONS:
-        cols[f"{config}_flexible_orbit_max [m]"] = flexible[f"{config}_flexible"].orbit_radius_max
-    table = pd.DataFrame(cols)
-    return table[table1_columns()]
-
-
-# -------------------------------------------------------------------- undamped periodic
-
-
-def undamped_periodic_response(
-    spec: MechanismSpec,
-    geometry: CrankGeometry,
-    pressure_angles: np.ndarray,
-    pressures: np.ndarray,
-    shell_pressure: float,
-    omega: float,
-    *,
-    rtol: float = 1e-6,
-    method: str = "LSODA",
-    samples_per_revolution: int = 360,
-    periodic_tolerance: float = 1e-3,
-    max_revolutions: int = 60,
-) -> MechanismResult:
-    """Periodic response of the flexible mechanism at constant speed, by shooting.
-
-    See :func:`_undamped_periodic` (which also returns the Jacobian, for reuse).
-    """
-    return _undamped_periodic(
-        spec,
-        geometry,
-        pressure_angles,
-        pressures,
-        shell_pressure,
-        omega,
-        rtol=rtol,
-        method=method,
-        samples_per_revolution=samples_per_revolution,
-        periodic_tolerance=periodic_tolerance,
-        max_revolutions=max_revolutions,
-    )[0]
-
-
-def _undamped_periodic(
-    spec: MechanismSpec,
-    geometry: CrankGeometry,
-    pressure_angles: np.ndarray,
-    pressures: np.ndarray,
-    shell_pressure: float,
-    omega: float,
-    *,
-    rtol: float,
-    method: str,
-    samples_per_revolution: int,
-    periodic_tolerance: float,
-    max_revolutions: int,
-    jacobian: tuple[np.ndarray, np.ndarray] | None = None,
-) -> tuple[MechanismResult, tuple[np.ndarray, np.ndarray] | None]:
-    """Periodic response of the flexible mechanism at constant speed, by shooting.
-
-    Newton (:func:`recipsim.solve.shooting.newton_fixed_point`) on the map from the
-    state at TDC to the state one revolution later (``solve_ivp`` with ``method`` at
-    ``rtol``, absolute tolerances ``rtol`` times :func:`state_scales`), over every state
-    but the crank angle and speed (prescribed), from the quasi-static pose; finite
-    differences of a fifth of each state's size over the revolution (the map is nearly
-    linear in the deflections). It works whatever the damping, undamped included,
-    unless a forcing harmonic sits exactly on a natural frequency. The reported
-    revolution is integrated once more from the periodic state by
-    :func:`recipsim.physics.mechanics.simulate_mechanism`, whose periodicity test (the largest
-    state change over it relative to the state's size, below ``periodic_tolerance``)
-    decides ``converged``.
+def table1_columns(hydrodynamic: bool = False) -> list[str]:
+    """Column names of ``table1.csv``, in order (``bearing`` first).
 
     Parameters
     ----------
-    spec : MechanismSpec
-        The mechanism (its bearings' damping as given; zero for the paper's study).
-    geometry : CrankGeometry
-    pressure_angles, pressures : numpy.ndarray
-        Periodic cylinder pressure table [rad], [Pa].
-    shell_pressure : float
-        [Pa].
-    omega : float
-        Crank speed [rad/s].
-    rtol : float
-        Relative tolerance of the integration [-].
-    method : str
-        ``solve_ivp`` method.
-    samples_per_revolution : int
-        Samples of the reported revolution.
-    periodic_tolerance : float
-        Periodicity tolerance [-]; Newton aims at half of it.
-    max_revolutions : int
-        Revolutions the shooting may integrate (a Jacobian costs 20).
-
-    jacobian : (numpy.ndarray, numpy.ndarray), optional
-        Scaled Jacobian and its scales from a run of the same mechanism and speed:
-        at constant speed the pressure table only adds a forcing, so the map's linear
-        part is the same for every load and the Jacobian carries over.
-
-    Returns
-    -------
-    MechanismResult
-        The periodic revolution; ``revolutions`` and ``nfev`` count the shooting's too.
-    (numpy.ndarray, numpy.ndarray) or None
-        The Jacobian and its scales, for the next load.
-
-    Raises
-    ------
-    RuntimeError
-        If the reported revolution fails to integrate.
+    hydrodynamic : bool
+        With the hydrodynamic column's entries (after the flexible ones of each kind).
     """
-    pa = np.ascontiguousarray(pressure_angles, dtype=float)
-    pp = np.ascontiguousarray(pressures, dtype=float)
-    par = mechanism_parameters(
-        spec, geometry, shell_pressure=shell_pressure, speed=omega, drive="constant_speed"
-    )
-    scales = state_scales(par)
-    period = 2.0 * math.pi / omega
-    no_drive = np.zeros(1)
-    dydt = np.zeros(lay.N_STATE)
-    aux = np.zeros(lay.N_AUX)
+    runs = [*RUNS, *(HYDRODYNAMIC_RUNS if hydrodynamic else ())]
+    compared = [f"{c}_flexible" for c in CONFIGURATIONS]
+    if hydrodynamic:
+        compared += list(HYDRODYNAMIC_RUNS)
+    rms = [f"{run}_rms [N]" for run in runs]
+    rel = [f"{run}_vs_pinned [-]" for run in compared]
+    peak = [f"{run}_peak [N]" for run in runs]
+    orbit = [f"{run}_orbit_max [m]" for run in compared]
+    film = [f"{run}_min_film [m]" for run in HYDRODYNAMIC_RUNS] if hydrodynamic else []
+    return ["bearing", *rms, *rel, *peak, *orbit, *film]
 
-    def fun(t: float, state: np.ndarray) -> np.ndarray:
-        flexible_rhs_tabulated(t, state, dydt, aux, par, pa, pp, no_drive, no_drive, no_drive)
-        return dydt.copy()
 
-    y0 = initial_state(par, 0.0, omega, tabulated_pressure(0.0, pa, pp))
-    fixed = (lay.Y_CRANK_ANGLE, lay.Y_CRANK_SPEED)
-    idx = np.array([i for i in range(lay.N_STATE) if i not in fixed])
-    nfev = 0
-
-    def one_revolution(z: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        nonlocal nfev
-        y = y0.copy()
-        y[idx] = z
-        sol = solve_ivp(
-            fun,
-            (0.0, period),
-            y,
-            method=method,
-            rtol=rtol,
-            atol=rtol * scales,
-            dense_output=True,
-            first_step=1e-5 * period,
-        )
-        if not sol.success:
-            raise RuntimeError(f"integration failed: {sol.message}")
-        nfev += sol.nfev
-        return sol.y[idx, -1].copy(), sol.sol(np.linspace(0.0, period, 64))
-
-    def change(z: np.ndarray, g: np.ndarray, samples: np.ndarray) -> float:
-        # simulate_mechanism's periodicity measure
-        size = np.maximum(np.abs(samples).max(axis=1), scales)[idx]
-        return float(np.max(np.abs(g - z) / size))
-
-    z = y0[idx]
-    g, samples = one_revolution(z)
-    ref = np.maximum(np.abs(samples).max(axis=1), scales)[idx] if jacobian is None else jacobian[1]
-    result = newton_fixed_point(
-        one_revolution,
-        z,
-        (g, samples),
-        ref,
-        np.full(idx.size, _FD_STEP),
-        lambda zz, gg, smp: change(zz, gg, smp) < 0.5 * periodic_tolerance,
-        max(max_revolutions - 1, 0),
-        jacobian=None if jacobian is None else jacobian[0],
-        failures=(RuntimeError,),
-    )
-    start = y0.copy()
-    start[idx] = result.z
-    final = simulate_mechanism(
-        spec,
-        geometry,
-        pa,
-        pp,
-        shell_pressure,
-        omega,
-        drive="constant_speed",
-        revolutions=1,
-        rtol=rtol,
-        method=method,
-        samples_per_revolution=samples_per_revolution,
-        y0=start,
-    )
-    periodic = replace(
-        final,
-        revolutions=2 + result.evaluations,
-        converged=bool(final.cycle_change < periodic_tolerance),
-        nfev=final.nfev + nfev,
-    )
-    return periodic, None if result.jacobian is None else (result.jacobian, ref)
+def _table1(
+    pinned: dict[str, PinnedLoads],
+    flexible: dict[str, MechanismResult],
+    hydrodynamic: dict[str, HydrodynamicRun],
+) -> pd.DataFrame:
+    rms: dict[str, np.ndarray] = {k: v.force_rms() for k, v in pinned.items()}
+    peak: dict[str, np.ndarray] = {k: v.force_peak() for k, v in pinned.items()}
+    orbit: dict[str, np.ndarray] = {}
+    for k, v in flexible.items():
+        rms[k], peak[k], orbit[k] = v.force_rms, v.force_peak, v.orbit_radius_max
+    cols: dict[str, Any] = {"bearing": list(BEARING_NAMES)}
+    for config, h in hydrodynamic.items():
+        run = f"{config}_hydrodynamic"
+        rms[run], peak[run], orbit[run] = h.force_rms, h.force_peak, h.orbit_radius_max
+        cols[f"{run}_min_film [m]"] = h.min_film_thickness
+    for run in [*RUNS, *(f"{c}_hydrodynamic" for c in hydrodynamic)]:
+        config, model = run.rsplit("_", 1)
+        cols[f"{run}_rms [N]"] = rms[run]
+        cols[f"{run}_peak [N]"] = peak[run]
+        if model != "pinned":
+            cols[f"{run}_vs_pinned [-]"] = rms[run] / rms[PINNED_OF[config]] - 1.0
+            cols[f"{run}_orbit_max [m]"] = orbit[run]
+    table = pd.DataFrame(cols)
+    return table[table1_columns(bool(hydrodynamic))]
 
 
 # ------------------------------------------------------------------------------- study
@@ -490,6 +270,8 @@ def run_paper_study(
     undamped_start: str = "periodic",
     periodic_tolerance: float = 1e-3,
     max_revolutions: int = 30,
+    hydrodynamic: Case | None = None,
+    bearing_law: str = DEFAULT_LAW,
 ) -> PaperStudy:
     """Run the paper's pinned-against-flexible study and write its report.
 
@@ -527,13 +309,20 @@ def run_paper_study(
         The undamped runs: their periodic response at constant speed, by shooting
         (``periodic``); or a transient of ``undamped_revolutions`` from TDC with the
         bearings deflected by the pinned loads (``quasi_static``, the default of
-        :func:`recipsim.physics.mechanics.simulate_mechanism`) or undeflected (``unloaded``),
-        which starts a much larger free vibration.
+        :func:`recipsim.solve.mechanism_ivp.simulate_mechanism`) or undeflected
+        (``unloaded``), which starts a much larger free vibration.
     periodic_tolerance : float
         Periodicity tolerance of the damped and the shooting runs [-].
     max_revolutions : int
         Revolution limit of the damped run; of a shooting run, twice this (its
         Jacobian costs one revolution per state).
+    hydrodynamic : Case, optional
+        Adds the hydrodynamic column: the case whose journals' film data and oil the
+        ``inertia`` and ``gas`` loads run on (its shell pressure and speed are used;
+        :func:`recipsim.studies.paper_hydrodynamic.run_hydrodynamic`); its mechanism
+        should be ``spec``, whose pinned runs it is compared with.
+    bearing_law : {"finite_journal", "short_journal"}
+        Film law of the hydrodynamic journals.
 
     Returns
     -------
@@ -546,30 +335,104 @@ def run_paper_study(
         4 samples.
     RuntimeError
         If an integration fails.
+    CaseError
+        If the ``hydrodynamic`` case's journals lack film data.
     """
-    if drive not in ("torque_profile", "constant_speed"):
-        raise ValueError(f"drive {drive!r}; allowed: 'torque_profile', 'constant_speed'")
-    if undamped_start not in UNDAMPED_STARTS:
-        raise ValueError(f"undamped_start {undamped_start!r}; allowed: {UNDAMPED_STARTS}")
-    if undamped_revolutions < 1:
-        raise ValueError(f"undamped_revolutions {undamped_revolutions}; allowed: >= 1")
-    if samples_per_revolution < 4:
-        raise ValueError(f"samples_per_revolution {samples_per_revolution}; allowed: >= 4")
+    _check_settings(drive, undamped_start, undamped_revolutions, samples_per_revolution)
     start = time.perf_counter()
     angles = np.ascontiguousarray(curve.crank_angle, dtype=float)
     loads = {
         "inertia": np.full(angles.shape, float(shell_pressure)),
         "gas": np.ascontiguousarray(curve.pressure, dtype=float),
     }
-    theta = 2.0 * math.pi * np.arange(samples_per_revolution) / samples_per_revolution
-    undamped = with_damping(spec, 0.0)
-
-    pinned: dict[str, PinnedLoads] = {}
-    flexible: dict[str, MechanismResult] = {}
+    options: dict[str, Any] = {
+        "drive": drive,
+        "rtol": rtol,
+        "method": method,
+        "undamped_revolutions": undamped_revolutions,
+        "undamped_start": undamped_start,
+        "samples_per_revolution": samples_per_revolution,
+        "periodic_tolerance": periodic_tolerance,
+        "max_revolutions": max_revolutions,
+    }
     cycles: dict[str, pd.DataFrame] = {}
     runs: dict[str, RunRecord] = {}
-    timings: dict[str, float] = {}
+    pinned = _pinned_runs(spec, geometry, angles, loads, shell_pressure, omega, options)
+    for name, (table, _, record) in pinned.items():
+        cycles[name], runs[name] = table, record
+    flexible = _flexible_runs(spec, geometry, angles, loads, shell_pressure, omega, options)
+    for name, (result_f, record) in flexible.items():
+        gas = _pressures(result_f.crank_angle, angles, loads[_load_of(record.configuration)])
+        cycles[name], runs[name] = flexible_table(result_f, gas), record
+    films: dict[str, HydrodynamicRun] = {}
+    settings = _settings(spec, geometry, curve, shell_pressure, omega, **options)
+    if hydrodynamic is not None:
+        inertia_curve = constant_curve(shell_pressure)
+        films = run_hydrodynamic(
+            hydrodynamic,
+            {"inertia": inertia_curve, "gas": curve},
+            law=bearing_law,
+            samples_per_revolution=samples_per_revolution,
+        )
+        for config, h in films.items():
+            name = f"{config}_hydrodynamic"
+            cycles[name] = h.cycle
+            runs[name] = RunRecord(
+                name, config, "hydrodynamic", "case", h.revolutions, h.converged, h.residual,
+                h.nfev, h.wall_time,
+            )  # fmt: skip
+        settings["hydrodynamic"] = _hydrodynamic_settings(hydrodynamic, bearing_law)
+    order = [*RUNS, *(HYDRODYNAMIC_RUNS if films else ())]
+    timings = {name: runs[name].wall_time for name in order}
+    loads_p = {k: v[1] for k, v in pinned.items()}
+    study = PaperStudy(
+        table1=_table1(loads_p, {k: v[0] for k, v in flexible.items()}, films),
+        cycles={k: cycles[k] for k in order},
+        runs={k: runs[k] for k in order},
+        timings=timings,
+        settings=settings,
+        flexible={k: v[0] for k, v in flexible.items()},
+        pinned=loads_p,
+        hydrodynamic=films,
+    )
+    files: tuple[Path, ...] = ()
+    if out_dir is not None:
+        t0 = time.perf_counter()
+        timings["compute"] = t0 - start
+        files = tuple(write_paper_study(study, out_dir, plots=plots))
+        timings["write"] = time.perf_counter() - t0
+    timings["total"] = time.perf_counter() - start
+    return replace(study, out_dir=None if out_dir is None else Path(out_dir), files=files)
 
+
+def _check_settings(drive: str, undamped_start: str, revolutions: int, samples: int) -> None:
+    if drive not in ("torque_profile", "constant_speed"):
+        raise ValueError(f"drive {drive!r}; allowed: 'torque_profile', 'constant_speed'")
+    if undamped_start not in UNDAMPED_STARTS:
+        raise ValueError(f"undamped_start {undamped_start!r}; allowed: {UNDAMPED_STARTS}")
+    if revolutions < 1:
+        raise ValueError(f"undamped_revolutions {revolutions}; allowed: >= 1")
+    if samples < 4:
+        raise ValueError(f"samples_per_revolution {samples}; allowed: >= 4")
+
+
+def _load_of(config: str) -> str:
+    return "inertia" if config == "inertia" else "gas"
+
+
+def _pinned_runs(
+    spec: MechanismSpec,
+    geometry: CrankGeometry,
+    angles: np.ndarray,
+    loads: dict[str, np.ndarray],
+    shell_pressure: float,
+    omega: float,
+    options: dict[str, Any],
+) -> dict[str, tuple[pd.DataFrame, PinnedLoads, RunRecord]]:
+    """The pinned runs at constant speed (inverse dynamics): table, loads, record."""
+    n = options["samples_per_revolution"]
+    theta = 2.0 * math.pi * np.arange(n) / n
+    out = {}
     for load, pressures in loads.items():
         name = f"{load}_pinned"
         t0 = time.perf_counter()
@@ -582,106 +445,110 @@ def run_paper_study(
             pressures=pressures,
             shell_pressure=shell_pressure,
         )
-        pinned[name] = result
-        cycles[name] = pinned_table(result, omega, _pressures(theta, angles, pressures))
-        timings[name] = time.perf_counter() - t0
-        runs[name] = RunRecord(name, load, "pinned", "algebraic", 0, True, None, 0, timings[name])
+        table = pinned_table(result, omega, _pressures(theta, angles, pressures))
+        wall = time.perf_counter() - t0
+        out[name] = (
+            table,
+            result,
+            RunRecord(name, load, "pinned", "algebraic", 0, True, None, 0, wall),
+        )
+    return out
 
+
+def _flexible_runs(
+    spec: MechanismSpec,
+    geometry: CrankGeometry,
+    angles: np.ndarray,
+    loads: dict[str, np.ndarray],
+    shell_pressure: float,
+    omega: float,
+    options: dict[str, Any],
+) -> dict[str, tuple[MechanismResult, RunRecord]]:
+    """The three flexible runs on linear bearings (``solve_ivp`` driver), in order."""
+    undamped = with_damping(spec, 0.0)
+    out: dict[str, tuple[MechanismResult, RunRecord]] = {}
     jacobian: tuple[np.ndarray, np.ndarray] | None = None
     for config in CONFIGURATIONS:
         name = f"{config}_flexible"
-        pressures = loads["inertia" if config == "inertia" else "gas"]
+        pressures = loads[_load_of(config)]
         damped = config == "gas_damped"
         t0 = time.perf_counter()
         converged: bool | None
-        if not damped and undamped_start == "periodic":
-            result_f, jacobian = _undamped_periodic(
+        if not damped and options["undamped_start"] == "periodic":
+            result, jacobian = undamped_periodic(
                 undamped,
                 geometry,
                 angles,
                 pressures,
                 shell_pressure,
                 omega,
-                rtol=_PERIODIC_RTOL_FACTOR * rtol,
-                method=method,
-                samples_per_revolution=samples_per_revolution,
-                periodic_tolerance=periodic_tolerance,
-                max_revolutions=2 * max_revolutions,
+                rtol=_PERIODIC_RTOL_FACTOR * options["rtol"],
+                method=options["method"],
+                samples_per_revolution=options["samples_per_revolution"],
+                periodic_tolerance=options["periodic_tolerance"],
+                max_revolutions=2 * options["max_revolutions"],
                 jacobian=jacobian,
             )
-            mode, converged = "shooting", result_f.converged
+            mode, converged = "shooting", result.converged
         else:
-            options: dict[str, Any] = {}
-            if not damped and undamped_start == "unloaded":
+            extra: dict[str, Any] = {}
+            if not damped and options["undamped_start"] == "unloaded":
                 par = mechanism_parameters(undamped, geometry, shell_pressure=shell_pressure)
-                options["y0"] = initial_state(par, 0.0, omega, static_deflection=False)
-            result_f = simulate_mechanism(
+                extra["y0"] = initial_state(par, 0.0, omega, static_deflection=False)
+            result = simulate_mechanism(
                 spec if damped else undamped,
                 geometry,
                 angles,
                 pressures,
                 shell_pressure,
                 omega,
-                drive=drive,
-                revolutions=None if damped else undamped_revolutions,
-                rtol=rtol,
-                method=method,
-                samples_per_revolution=samples_per_revolution,
-                periodic_tolerance=periodic_tolerance,
-                max_revolutions=max_revolutions,
-                **options,
+                drive=options["drive"],
+                revolutions=None if damped else options["undamped_revolutions"],
+                rtol=options["rtol"],
+                method=options["method"],
+                samples_per_revolution=options["samples_per_revolution"],
+                periodic_tolerance=options["periodic_tolerance"],
+                max_revolutions=options["max_revolutions"],
+                **extra,
             )
             mode = "until_periodic" if damped else "fixed_revolutions"
-            converged = result_f.converged if damped else None
-        flexible[name] = result_f
-        gas = _pressures(result_f.crank_angle, angles, pressures)
-        cycles[name] = flexible_table(result_f, gas)
-        timings[name] = time.perf_counter() - t0
-        runs[name] = RunRecord(
-            name,
-            config,
-            "flexible",
-            mode,
-            result_f.revolutions,
-            converged,
-            result_f.cycle_change,
-            result_f.nfev,
-            timings[name],
-        )
+            converged = result.converged if damped else None
+        wall = time.perf_counter() - t0
+        record = RunRecord(
+            name, config, "flexible", mode, result.revolutions, converged,
+            result.cycle_change, result.nfev, wall,
+        )  # fmt: skip
+        out[name] = (result, record)
+    return out
 
-    cycles = {k: cycles[k] for k in RUNS}
-    settings = _settings(
-        spec,
-        geometry,
-        curve,
-        shell_pressure,
-        omega,
-        drive=drive,
-        rtol=rtol,
-        method=method,
-        undamped_revolutions=undamped_revolutions,
-        undamped_start=undamped_start,
-        samples_per_revolution=samples_per_revolution,
-        periodic_tolerance=periodic_tolerance,
-        max_revolutions=max_revolutions,
-    )
-    study = PaperStudy(
-        table1=_table1(pinned, flexible),
-        cycles=cycles,
-        runs={k: runs[k] for k in RUNS},
-        timings=timings,
-        settings=settings,
-        flexible=flexible,
-        pinned=pinned,
-    )
-    files: tuple[Path, ...] = ()
-    if out_dir is not None:
-        t0 = time.perf_counter()
-        timings["compute"] = t0 - start
-        files = tuple(write_paper_study(study, out_dir, plots=plots))
-        timings["write"] = time.perf_counter() - t0
-    timings["total"] = time.perf_counter() - start
-    return replace(study, out_dir=None if out_dir is None else Path(out_dir), files=files)
+
+def _hydrodynamic_settings(case: Case, law: str) -> dict[str, Any]:
+    journals = {}
+    for name in JOURNALS:
+        film = case.mechanism.bearing(name).film
+        journals[name] = (
+            None
+            if film is None
+            else {
+                "diameter [m]": film.diameter,
+                "length [m]": film.length,
+                "radial_clearance [m]": film.radial_clearance,
+                "film_temperature [K]": film.film_temperature,
+                "viscosity [Pa s]": film.viscosity,
+            }
+        )
+    return {
+        "case": case.name,
+        "law": law,
+        "journals": journals,
+        "drive": "constant_speed",
+        "solver": SOLVER_METHOD,
+        "description": (
+            f"the case `{case.name}` with primary, secondary and eccentric on `{law}` films, "
+            "at constant speed (the pinned torque profile supplies no friction), solved "
+            f"like a case (`{SOLVER_METHOD}`, cycle tolerance {case.solver.cycle_tolerance:g})"
+        ),
+    }
 
 
 def _settings(
@@ -746,6 +613,8 @@ def write_paper_study(study: PaperStudy, out_dir: str | Path, *, plots: bool = T
     list of pathlib.Path
         The files written, as paths under ``out_dir``.
     """
+    from recipsim.studies.paper_report import readme, study_summary
+
     out_dir = Path(out_dir)
     with atomic_directory(out_dir) as tmp:
         names = ["table1.csv"]
@@ -756,100 +625,13 @@ def write_paper_study(study: PaperStudy, out_dir: str | Path, *, plots: bool = T
         if plots:
             names.extend(p.name for p in _write_figures(study, tmp))
         names.extend(["study.json", "README.md"])
-        (tmp / "study.json").write_text(json.dumps(_summary(study, names), indent=2) + "\n")
-        (tmp / "README.md").write_text(_readme(study, names))
+        info = study_summary(study, names)
+        (tmp / "study.json").write_text(json.dumps(info, indent=2) + "\n")
+        (tmp / "README.md").write_text(readme(study, names))
     return [out_dir / n for n in names]
 
 
 def _write_figures(study: PaperStudy, directory: Path) -> list[Path]:
-    from recipsim.report.mechanics_plots import (
-        plot_bearing_loads,
-        plot_drive_torque,
-        plot_orbits,
-        save_figure,
-    )
+    from recipsim.studies.paper_report import write_figures
 
-    c = study.cycles
-    written = []
-    for config in CONFIGURATIONS:
-        tables = {"pinned": c[_PINNED_OF[config]], "flexible": c[f"{config}_flexible"]}
-        fig = plot_bearing_loads(tables, title=f"bearing loads: {_LABELS[config]}")
-        written.append(save_figure(fig, directory / f"bearing_loads_{config}.png"))
-    orbit_tables = {_LABELS[k]: c[f"{k}_flexible"] for k in CONFIGURATIONS}
-    fig = plot_orbits(orbit_tables, title="orbits of the primary and secondary bearings")
-    written.append(save_figure(fig, directory / "orbits.png"))
-    torque_tables = {
-        "pinned, inertia": c["inertia_pinned"],
-        "pinned, gas": c["gas_pinned"],
-        "flexible, inertia": c["inertia_flexible"],
-        "flexible, gas": c["gas_flexible"],
-        "flexible, gas + damping": c["gas_damped_flexible"],
-    }
-    written.append(save_figure(plot_drive_torque(torque_tables), directory / "drive_torque.png"))
-    return written
-
-
-def _json_value(value: Any) -> Any:
-    if isinstance(value, float) and not math.isfinite(value):
-        return None
-    return value
-
-
-def _summary(study: PaperStudy, files: list[str]) -> dict[str, Any]:
-    runs = [
-        {k: _json_value(v) for k, v in record.__dict__.items()} for record in study.runs.values()
-    ]
-    table = {
-        row["bearing"]: {k: float(v) for k, v in row.items() if k != "bearing"}
-        for row in study.table1.to_dict(orient="records")
-    }
-    return {
-        "settings": study.settings,
-        "runs": runs,
-        "timings [s]": study.timings,
-        "table1": table,
-        "files": files,
-    }
-
-
-def _readme(study: PaperStudy, files: list[str]) -> str:
-    s = study.settings
-    lines = [
-        "# Bearing loads: pinned against flexible crank train",
-        "",
-        "The study of Kurka, Paulino & Izuka (ISMA 2010), section 4 and Table 1, run by",
-        f"`recipsim.studies.paper.run_paper_study` (recipsim {s['recipsim']}).",
-        "",
-        f"- speed {s['crank_speed [rpm]']:.1f} rpm,"
-        f" shell pressure {s['shell_pressure [Pa]']:.4g} Pa,"
-        f" drive `{s['drive']}`, `{s['method']}` at rtol {s['rtol']:g},"
-        f" {s['samples_per_revolution']} samples per revolution;",
-        f"- undamped runs: {s['undamped_runs']};",
-        f"- damped run: {s['damped_run']} (tolerance {s['periodic_tolerance']:g}).",
-        "",
-        "| run | mode | revolutions | converged | wall time [s] |",
-        "| --- | --- | --- | --- | --- |",
-    ]
-    for r in study.runs.values():
-        converged = "n/a (not tested)" if r.converged is None else ("yes" if r.converged else "NO")
-        lines.append(f"| {r.name} | {r.mode} | {r.revolutions} | {converged} | {r.wall_time:.2f} |")
-    lines += [
-        "",
-        "RMS bearing loads [N] (flexible against pinned in brackets):",
-        "",
-        "| bearing | inertia pinned | inertia flexible | gas pinned | gas flexible "
-        "| gas damped flexible |",
-        "| --- | --- | --- | --- | --- | --- |",
-    ]
-    t = study.table1
-    for _, row in t.iterrows():
-        cells = [str(row["bearing"])]
-        for run in RUNS:
-            cell = f"{row[f'{run}_rms [N]']:.1f}"
-            config = run.rsplit("_", 1)[0]
-            if run.endswith("_flexible"):
-                cell += f" ({100.0 * row[f'{config}_flexible_vs_pinned [-]']:+.1f} %)"
-            cells.append(cell)
-        lines.append("| " + " | ".join(cells) + " |")
-    lines += ["", "Files: " + ", ".join(f"`{f}`" for f in files) + ".", ""]
-    return "\n".join(lines)
+    return write_figures(study, directory)

@@ -20,8 +20,9 @@ from typing import Any
 import pandas as pd
 
 from recipsim import __version__
-from recipsim.atomic import atomic_file, atomic_write, mark_output, output_dir
+from recipsim.atomic import atomic_file, atomic_write, mark_output
 from recipsim.errors import RecipsimError
+from recipsim.report.case_report import report_dir
 from recipsim.studies.sweep.plan import PlannedPoint, plan_sweep
 from recipsim.studies.sweep.spec import SweepSpec, load_sweep
 from recipsim.studies.sweep.store import PointStore
@@ -46,7 +47,7 @@ class SweepOutcome:
     spec : SweepSpec
         The sweep file as read.
     directory : Path
-        Output directory ``<out>/<name>``.
+        Output directory ``<out>/<name>`` (``<out>/<name>+<digest>`` with overrides).
     table : DataFrame
         The summary table (one row per point, in sweep order).
     axes : list of str
@@ -185,7 +186,8 @@ def run_sweep(
     scheduler : str, optional
         Address of a Dask distributed scheduler to run the points on.
     out : str or Path
-        Parent of the sweep's output directory (default ``reports/sweeps``).
+        Parent of the sweep's output directory (default ``reports/sweeps``): the sweep
+        goes to ``<out>/<name>``, or ``<out>/<name>+<digest of the overrides>``.
     overrides : iterable of str
         ``KEY=VALUE`` overrides for every point (``--set``).
     reports : bool
@@ -221,7 +223,8 @@ def run_sweep(
     ------
     CaseError
         Invalid sweep file (or an unknown case key in it), more points than allowed,
-        or an output directory that recipsim did not write.
+        an output directory that recipsim did not write, or one that recorded other
+        overrides (unless ``fresh``).
     SweepInterrupted
         Ctrl-C; finished points are kept and a rerun resumes.
     WorkerLost
@@ -232,10 +235,14 @@ def run_sweep(
     if parquet:
         _check_parquet()
     spec.check_size(max_points)
-    root = output_dir(Path(out), spec.name)  # a new, empty or earlier sweep directory
+    overrides = list(overrides)
+    # <name>+<digest> with --set, as `recipsim run` names reports: other overrides never
+    # share (or resume into) one directory; a new, empty or earlier sweep directory
+    root = report_dir(Path(out), spec.name, overrides)
     planned = plan_sweep(spec, overrides, max_points, allow_external_paths)
     mark_output(root)
     store = PointStore(root)
+    store.claim(overrides, fresh)
     store.clean_temporaries()
     if fresh:
         store.clear()

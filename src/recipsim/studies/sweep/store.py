@@ -1,7 +1,9 @@
 """Finished points on disk and the sweep's tables, all written atomically.
 
-Layout of a sweep's output directory ``<out>/<name>/``::
+Layout of a sweep's output directory ``<out>/<name>/``, ``<out>/<name>+<digest>/`` with
+``--set`` overrides (:func:`recipsim.report.case_report.report_name`, as ``recipsim run``)::
 
+    overrides.json           the --set overrides the sweep runs with (and their digest)
     points/<point_id>.json   one file per finished point (status, message, summary)
     reports/<point_id>/      per-point reports (with --reports)
     summary.csv              one row per point, in sweep order
@@ -28,6 +30,7 @@ from pathlib import Path
 from typing import Any
 
 from recipsim.atomic import atomic_file
+from recipsim.errors import CaseError
 from recipsim.studies.sweep.worker import STATUSES
 
 #: A point file larger than this is not read (it was not written by recipsim) [bytes].
@@ -70,6 +73,40 @@ class PointStore:
         if self.points.is_dir():
             for tmp in self.points.glob(".*.tmp"):
                 tmp.unlink(missing_ok=True)
+
+    def claim(self, overrides: Sequence[str], fresh: bool = False) -> None:
+        """Record the sweep's ``--set`` overrides in ``overrides.json``, refusing to
+        resume into a directory that recorded other ones.
+
+        Overrides are compared by their digest
+        (:func:`recipsim.report.case_report.overrides_digest`: order, spacing and
+        repetition do not matter). A directory without the file (new, or written
+        before it existed) is claimed. ``fresh`` (every point recomputed) claims a
+        directory whatever it recorded.
+
+        Raises
+        ------
+        CaseError
+            The directory holds a sweep run with other overrides (and not ``fresh``).
+        """
+        from recipsim.report.case_report import overrides_digest
+
+        path = self.root / "overrides.json"
+        digest = overrides_digest(overrides)
+        try:
+            recorded = json.loads(path.read_text(encoding="utf-8"))
+        except (OSError, ValueError):
+            recorded = None
+        if isinstance(recorded, dict) and recorded.get("digest") != digest and not fresh:
+            raise CaseError(
+                str(self.root),
+                "--set",
+                f"this sweep directory was run with other overrides "
+                f"({recorded.get('overrides')!r}, not {list(overrides)!r}): refusing to "
+                "resume into it; choose another --out, or --fresh to recompute every point",
+            )
+        with atomic_file(path) as handle:
+            json.dump({"overrides": list(overrides), "digest": digest}, handle, indent=2)
 
     def clear(self) -> None:
         """Forget every finished point (``--fresh``)."""

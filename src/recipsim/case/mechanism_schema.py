@@ -1,0 +1,78 @@
+"""The keys of the ``[mechanism.*]`` and ``[bearings.<name>]`` tables: SI unit, range in
+words, default, when required, meaning (:class:`recipsim.case.schema.Described`).
+
+:mod:`recipsim.case.mechanism` reads every key with the unit and the range words declared
+here (its messages say them) and checks the rules in code; the case-file reference
+(``docs/_ext/case_reference.py``) prints the same declarations.
+"""
+
+from __future__ import annotations
+
+from recipsim.case.lubrication import FILM_SPEC
+from recipsim.case.schema import Described, DescribedSpec
+
+_INERTIA = "kg*m**2"
+_D = Described
+#: ``[mechanism.piston]``: read by :func:`_parse_piston` (units and range words from here).
+PISTON_SPEC: DescribedSpec = {
+    "mass": _D("kg", "> 0", doc="piston with its pin"),
+    "length": _D("m", "> 0", doc="crown to skirt end"),
+    "pin_offset_from_crown": _D("m", "0 ... length", doc="pin axis below the crown"),
+    "centre_of_mass_from_crown": _D(
+        "m", "0 ... length", "length / 2", doc="centre of mass below the crown"
+    ),
+    "transverse_inertia": _D(
+        _INERTIA, "> 0", "solid cylinder of the bore and the length",
+        doc="about the pin axis through the centre of mass",
+    ),
+}  # fmt: skip
+#: ``[mechanism.connecting_rod]``.
+ROD_SPEC: DescribedSpec = {
+    "mass": _D("kg", "> 0", doc="connecting rod"),
+    "centre_of_mass_fraction": _D(
+        "dimensionless", "0 < value < 1", doc="centre of mass from the big end, over the length"
+    ),
+    "inertia": _D(_INERTIA, "> 0", doc="about the rotor-parallel axis through the centre of mass"),
+}
+_COUNTERWEIGHT = "with counterweight_mass"
+#: ``[mechanism.rotor]``.
+ROTOR_SPEC: DescribedSpec = {
+    "mass": _D("kg", "> 0", doc="motor rotor plus crankshaft"),
+    "polar_inertia": _D(_INERTIA, "> 0", doc="about the spin axis"),
+    "transverse_inertia": _D(_INERTIA, "> 0", doc="about a diameter through the centre of mass"),
+    "centre_of_mass_z": _D("m", "any finite value", doc="axial position, eccentric plane at z = 0"),
+    "primary_z": _D("m", "any finite value", doc="axial position of the primary bearing"),
+    "secondary_z": _D(
+        "m", "any finite value other than primary_z", doc="axial position of the secondary bearing"
+    ),
+    "counterweight_mass": _D(
+        "kg", ">= 0", "0 (none)", doc="rotating unbalance on the crank web (0: none; the placement keys are still checked)"
+    ),
+    "counterweight_radius": _D(
+        "m", "> 0", required=_COUNTERWEIGHT, doc="radius of the counterweight's centre of mass"
+    ),
+    "counterweight_angle": _D(
+        "rad", "any angle", "pi (opposite the crank pin)",
+        doc="from the crank pin, along the rotation",
+    ),
+    "counterweight_z": _D("m", "any finite value", "0", doc="axial position of the counterweight"),
+}  # fmt: skip
+_LINEAR = "with law = linear"
+#: ``[bearings.<name>]``: the law and the linear law's keys, then the film keys
+#: (:data:`recipsim.case.lubrication.FILM_SPEC`); ``position_from_crown`` and only some
+#: film keys on the piston bearings.
+BEARING_SPEC: DescribedSpec = {
+    "law": _D(
+        "", "journals: linear, short_journal, finite_journal; pin: linear; piston_top, "
+        "piston_skirt: linear, skirt_film",
+        "journals: options.bearing_law; others: required", required="pin, piston bearings",
+        doc="bearing force law",
+    ),
+    "stiffness": _D("N/m", "> 0", required=_LINEAR, doc="isotropic, normal to the bearing axis"),
+    "damping": _D("N*s/m", ">= 0", required=_LINEAR, doc="viscous, normal to the bearing axis"),
+    "position_from_crown": _D(
+        "m", "0 ... piston length", required="piston_top, piston_skirt",
+        doc="piston bearings: marker below the crown",
+    ),
+    **FILM_SPEC,
+}  # fmt: skip
