@@ -46,7 +46,8 @@ ROTOR_SPEC: DescribedSpec = {
         "m", "any finite value other than primary_z", doc="axial position of the secondary bearing"
     ),
     "counterweight_mass": _D(
-        "kg", ">= 0", "0 (none)", doc="rotating unbalance on the crank web (0: none; the placement keys are still checked)"
+        "kg", ">= 0", "0 (none)",
+        doc="rotating unbalance on the crank web (0: none, placement keys still checked)",
     ),
     "counterweight_radius": _D(
         "m", "> 0", required=_COUNTERWEIGHT, doc="radius of the counterweight's centre of mass"
