@@ -28,13 +28,23 @@ from recipsim.case.files import (
     shipped_path,
 )
 from recipsim.case.mechanism import MechanismSpec, mechanism_from_dict
-from recipsim.case.motor import motor_from_table
+from recipsim.case.motor import case_motor
+from recipsim.case.motor_losses import friction_option
 from recipsim.case.pressure_curve import read_pressure_curve
+from recipsim.case.rating import (
+    RATING_SPEC,
+    SATURATED_LIQUID_BAND,
+    ambient_temperature,
+    liquid_temperature,
+    rating_standard,
+    suction_gas_temperature,
+)
 from recipsim.case.refrigerant import RefrigerantSpec, case_fluid, load_refrigerant
 from recipsim.case.schema import Choice, Field, Spec, Text, check_keys, read_table
 from recipsim.errors import CaseError
 from recipsim.physics.mechanics.tabulated import PressureCurve
 from recipsim.physics.motor import MotorSpec
+from recipsim.physics.motor_circuit import MotorCircuit
 
 if TYPE_CHECKING:
     from recipsim.case.refrigerant import AnyFluid
@@ -52,6 +62,15 @@ OPTION_SPEC: Spec = {
         "law of the journal bearings (primary, secondary, eccentric) whose table names none",
     ),
     "drive": Choice(("constant_speed", "torque_profile", "induction_motor"), "constant_speed"),
+    "friction": Choice(
+        ("off", "mean", "films"),
+        None,
+        "mechanical friction: none, mean Petroff journals and viscous skirt, or the oil films "
+        "(default: films where a bearing runs on one, else off)",
+    ),
+    "motor": Choice(
+        ("lossless", "equivalent_circuit"), "lossless", "motor losses and electrical power"
+    ),
 }
 
 OPERATING_POINT_SPEC: Spec = {
@@ -64,6 +83,7 @@ OPERATING_POINT_SPEC: Spec = {
     "liquid_temperature": Field("K", None, lo=50.0, hi=700.0),
     "shell_pressure": Field("Pa", None, lo=0.0, open_lo=True, hi=1e9),
     "shaft_speed": Field("rad/s", lo=0.0, hi=2000.0, open_lo=True, doc="e.g. '3500 rpm'"),
+    **RATING_SPEC,
 }
 
 GEOMETRY_SPEC: Spec = {
@@ -162,6 +182,9 @@ class Options:
     mechanics: str
     bearing_law: str
     drive: str
+    #: "off", "mean" or "films" (resolved from the bearings when the case gives none)
+    friction: str = "off"
+    motor: str = "lossless"
 
 
 @dataclass(frozen=True)
@@ -180,6 +203,10 @@ class OperatingPoint:
     liquid_temperature: float
     shell_pressure: float
     shaft_speed: float  # [rad/s]
+    #: air around the compressor shell [K]
+    ambient_temperature: float = 305.35
+    #: rating standard that set the temperatures ("none": the case's own)
+    standard: str = "none"
 
     @property
     def pressure_ratio(self) -> float:
@@ -302,6 +329,8 @@ class Case:
     mechanism: MechanismSpec
     pressure_curve: PressureCurve | None = None
     motor: MotorSpec | None = None
+    #: equivalent circuit of the motor (``options.motor = "equivalent_circuit"``)
+    motor_circuit: MotorCircuit | None = None
     raw: dict[str, Any] = field(default_factory=dict, repr=False, compare=False)
     source_text: str = field(default="", repr=False, compare=False)
     #: the ``KEY=VALUE`` overrides applied on top of the file, in order
@@ -587,10 +616,13 @@ def case_from_dict(
             + mechanism.piston.length
             + geometry.clearance_volume / geometry.piston_area,
         )
+    options = replace(options, friction=friction_option(options, mechanism, file))
     _check_supported(options, file)
     _check_consistency(geometry, valves, options, file)
     curve = _pressure_curve(raw.get("pressure_curve"), options, file, allow_external_paths)
-    motor = _motor(raw.get("motor"), options, file)
+    motor, circuit = case_motor(
+        raw.get("motor"), options.drive, options.motor, op.shaft_speed, file
+    )
     return Case(
         name=top["name"],
         description=top["description"],
@@ -606,6 +638,7 @@ def case_from_dict(
         mechanism=mechanism,
         pressure_curve=curve,
         motor=motor,
+        motor_circuit=circuit,
         raw=raw,
         source_text=source_text,
     )
@@ -654,22 +687,6 @@ def _check_supported(options: Options, file: str) -> None:
         )
 
 
-def _motor(raw: dict[str, Any] | None, options: Options, file: str) -> MotorSpec | None:
-    """The ``[motor]`` table: required by the induction motor drive, validated whenever
-    present (a study may switch the drive with ``--set``)."""
-    if raw is None:
-        if options.drive == "induction_motor":
-            raise CaseError(
-                file,
-                "motor",
-                "options.drive = 'induction_motor' needs a [motor] table: rated_speed, "
-                "rated_torque, breakdown_torque (line_frequency, poles, "
-                "backward_field_ratio optional)",
-            )
-        return None
-    return motor_from_table(raw, file)
-
-
 PRESSURE_CURVE_SPEC: Spec = {
     "file": Text(None, "CSV with 'crank_angle [deg]' (from TDC) and 'cylinder_pressure [Pa]'"),
 }
@@ -713,6 +730,7 @@ def _operating_point(
         for key, value in ref.rating_points[name].items():
             if key in values and values[key] is None and key not in raw:
                 values[key] = value
+    standard = rating_standard(values, raw, file)
     t_lo, t_hi = ref.min_temperature, ref.max_temperature
 
     def need(key: str) -> float:
@@ -798,8 +816,10 @@ def _operating_point(
             f"{prefix}.{key}",
             f"discharge pressure {p_dis:.4g} Pa must exceed suction pressure {p_suc:.4g} Pa",
         )
-    t_suc = in_range("suction_temperature", need("suction_temperature"))
     t_dew = fluid.saturation_temperature(p_suc, 1.0)
+    t_suc = in_range(
+        "suction_temperature", suction_gas_temperature(values, raw, standard, t_dew, file)
+    )
     if t_suc <= t_dew + 1e-3:
         raise CaseError(
             file,
@@ -808,10 +828,14 @@ def _operating_point(
             f"{p_suc:.4g} Pa is {t_dew:.2f} K); wet suction is outside the model, allowed: "
             f"above {t_dew:.2f} K",
         )
-    t_liq = in_range("liquid_temperature", need("liquid_temperature"))
-    if p_dis < ref.critical_pressure:
-        t_bubble = fluid.saturation_temperature(p_dis, 0.0)
-        if t_liq > t_bubble:
+    subcritical = p_dis < ref.critical_pressure
+    t_bubble = fluid.saturation_temperature(p_dis, 0.0) if subcritical else math.nan
+    t_liq = in_range(
+        "liquid_temperature", liquid_temperature(values, raw, standard, t_bubble, file)
+    )
+    if subcritical:
+        # within SATURATED_LIQUID_BAND of the bubble point: saturated liquid
+        if t_liq > t_bubble + SATURATED_LIQUID_BAND:
             raise CaseError(
                 file,
                 f"{prefix}.liquid_temperature",
@@ -836,6 +860,8 @@ def _operating_point(
         liquid_temperature=t_liq,
         shell_pressure=p_shell,
         shaft_speed=float(values["shaft_speed"]),
+        ambient_temperature=ambient_temperature(values, raw, standard, file),
+        standard=values["standard"],
     )
 
 

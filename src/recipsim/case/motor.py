@@ -1,6 +1,10 @@
 """The ``[motor]`` table of a case: nameplate values of the induction motor, validated,
 and the breakdown slip fitted so that the torque curve
 (:func:`recipsim.physics.motor.induction_motor_torque`) passes through the rated point.
+
+The same table carries the equivalent circuit's keys (:mod:`recipsim.case.motor_losses`):
+:data:`MOTOR_SPEC` declares both; the torque curve's keys are required only where the
+curve is built.
 """
 
 from __future__ import annotations
@@ -8,20 +12,37 @@ from __future__ import annotations
 import math
 from typing import Any
 
+from recipsim.case.motor_losses import CIRCUIT_SPEC, motor_circuit_from_table
 from recipsim.case.schema import Field, Spec, read_table
 from recipsim.errors import CaseError
 from recipsim.physics.motor import MotorSpec, kloss
+from recipsim.physics.motor_circuit import MotorCircuit
 
-MOTOR_SPEC: Spec = {
+CURVE_SPEC: Spec = {
     "line_frequency": Field("Hz", 50.0, lo=1.0, hi=1000.0, doc="supply frequency"),
     "poles": Field("dimensionless", 2, lo=2, hi=24, integer=True, doc="even"),
-    "rated_speed": Field("rad/s", lo=0.0, open_lo=True, doc="e.g. '2900 rpm'"),
-    "rated_torque": Field("N*m", lo=0.0, open_lo=True),
-    "breakdown_torque": Field("N*m", lo=0.0, open_lo=True, doc="peak of the forward field"),
+    "rated_speed": Field("rad/s", None, lo=0.0, open_lo=True, doc="e.g. '2900 rpm'"),
+    "rated_torque": Field("N*m", None, lo=0.0, open_lo=True),
+    "breakdown_torque": Field("N*m", None, lo=0.0, open_lo=True, doc="peak of the forward field"),
     "backward_field_ratio": Field(
         "dimensionless", 0.0, lo=0.0, hi=1.0, doc="0 balanced capacitor motor, 1 main winding"
     ),
 }
+#: every key of ``[motor]``: the torque curve's and the equivalent circuit's
+MOTOR_SPEC: Spec = {**CURVE_SPEC, **CIRCUIT_SPEC}
+#: keys the torque curve needs (required where it is built)
+CURVE_REQUIRED = ("rated_speed", "rated_torque", "breakdown_torque")
+
+
+def read_motor_table(raw: Any, file: str) -> dict[str, Any]:
+    """Every key of the ``[motor]`` table in SI (None where not given).
+
+    Raises
+    ------
+    CaseError
+        For an unknown key, a value out of range or of the wrong dimension.
+    """
+    return read_table(raw, MOTOR_SPEC, file, "motor")
 
 
 def motor_from_table(raw: Any, file: str) -> MotorSpec:
@@ -34,7 +55,10 @@ def motor_from_table(raw: Any, file: str) -> MotorSpec:
         breakdown torque not above the rated torque, or a curve that cannot pass
         through the rated point.
     """
-    v = read_table(raw, MOTOR_SPEC, file, "motor")
+    v = read_motor_table(raw, file)
+    for key in CURVE_REQUIRED:
+        if v[key] is None:
+            raise CaseError(file, f"motor.{key}", "missing required key (the torque curve's)")
     poles = int(v["poles"])
     if poles % 2:
         raise CaseError(file, "motor.poles", f"{poles} is odd; a motor has pole pairs")
@@ -88,3 +112,58 @@ def motor_from_table(raw: Any, file: str) -> MotorSpec:
         backward_field_ratio=u,
         breakdown_slip=s_k,
     )
+
+
+def case_motor(
+    raw: Any, drive: str, motor: str, shaft_speed: float, file: str
+) -> tuple[MotorSpec | None, MotorCircuit | None]:
+    """The ``[motor]`` table of a case: the torque curve (required by the induction motor
+    drive, built whenever its keys are there: a study may switch the drive with ``--set``)
+    and the equivalent circuit (``options.motor = "equivalent_circuit"``).
+
+    Parameters
+    ----------
+    raw : mapping or None
+        The table as written (None: the case has none).
+    drive, motor : str
+        ``options.drive`` and ``options.motor``.
+    shaft_speed : float
+        The operating point's shaft speed [rad/s].
+    file : str
+        The case file, for messages.
+
+    Raises
+    ------
+    CaseError
+        A table missing where needed, its keys invalid, or a constant shaft speed at or
+        above the circuit's synchronous speed.
+    """
+    if raw is None:
+        if drive == "induction_motor" or motor == "equivalent_circuit":
+            need = "options.drive = 'induction_motor'"
+            if drive != "induction_motor":
+                need = "options.motor = 'equivalent_circuit'"
+            raise CaseError(
+                file,
+                "motor",
+                f"{need} needs a [motor] table: rated_speed, rated_torque, "
+                "breakdown_torque (line_frequency, poles, backward_field_ratio optional); the "
+                "equivalent circuit also voltage, rated_efficiency, rated_power_factor",
+            )
+        return None, None
+    values = read_motor_table(raw, file)
+    spec = None
+    if drive == "induction_motor" or all(values[k] is not None for k in CURVE_REQUIRED):
+        spec = motor_from_table(raw, file)
+    if motor != "equivalent_circuit":
+        return spec, None
+    circuit = motor_circuit_from_table(values, raw, file)
+    if drive == "constant_speed" and shaft_speed >= circuit.synchronous_speed:
+        raise CaseError(
+            file,
+            "operating_point.shaft_speed",
+            f"{shaft_speed * 30 / math.pi:.1f} rpm: an induction motor cannot drive the shaft "
+            f"at or above its synchronous speed {circuit.synchronous_speed * 30 / math.pi:.1f} "
+            "rpm ([motor] line_frequency, poles)",
+        )
+    return spec, circuit

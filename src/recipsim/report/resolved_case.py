@@ -148,13 +148,22 @@ def _operating_point(case: Case) -> dict[str, Any]:
     given = dict(case.raw.get("operating_point") or {})
     point = given.pop("rating_point", None)
     values = read_table(given, OPERATING_POINT_SPEC, case.path, "operating_point")
-    if point is not None:
+    if "ambient_temperature" not in given:
+        values["ambient_temperature"] = None  # the default, or the standard's
+    # a standard replaces the rating point's values (recipsim.case.rating)
+    if point is not None and values["standard"] == "none":
         for key, value in case.refrigerant.rating_points[point].items():
-            if key in values and values[key] is None:
+            if key in values and values[key] is None and not _relative_given(key, given):
                 values[key] = value
     values["rating_point"] = None
     values["shell_pressure"] = op.shell_pressure
     return _declared(values, "operating_point", OPERATING_POINT_SPEC)
+
+
+def _relative_given(key: str, given: Mapping[str, Any]) -> bool:
+    """Whether the case gives the superheat or subcooling that replaces ``key``."""
+    relative = {"suction_temperature": "superheat", "liquid_temperature": "subcooling"}
+    return relative.get(key) in given
 
 
 def _geometry(case: Case) -> dict[str, Any]:

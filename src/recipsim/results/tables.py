@@ -7,11 +7,14 @@ Definitions (per converged revolution, f = shaft speed in revolutions per second
 
 - mass flows: net mass through each path per revolution times f;
 - ``cooling_capacity``: discharge mass flow times (h of the suction gas at the
-  compressor inlet - h of the liquid at the discharge pressure and liquid
-  temperature), the ASHRAE 23 convention;
+  suction pressure and the suction temperature - h of the liquid at the discharge
+  pressure and liquid temperature), with the temperatures of the case's rating
+  standard where it names one (:mod:`recipsim.case.rating`);
 - ``indicated_power``: (-integral of p dV) f; ``shaft_power``: (integral of the
   driving torque times omega dt) f (equal to the indicated power on the frictionless
-  rigid crank);
+  rigid crank), plus the mean friction with ``options.friction = "mean"``;
+- ``COP``: cooling capacity / motor electrical power (:mod:`recipsim.results.electrical`);
+  ``indicated_COP``: cooling capacity / indicated power;
 - ``volumetric_efficiency``: discharge mass flow / (rho_suction V_swept f);
 - ``isentropic_efficiency``: discharge mass flow (h_2s - h_1) / shaft power;
 - ``discharge_temperature``: T at the discharge pressure and the mass-weighted
@@ -38,6 +41,7 @@ from recipsim.results.bearings import (
     mechanism_summary,
     pinned_columns,
 )
+from recipsim.results.electrical import loss_columns, rating_enthalpies
 from recipsim.solve.periodic import PeriodicSolution, sample_outputs
 
 CYCLE_COLUMNS: list[tuple[str, int]] = [
@@ -242,6 +246,7 @@ GAS_SUMMARY = (
     "isentropic_power [W]",
     "heat_to_wall [W]",
     "COP [-]",
+    "indicated_COP [-]",
     "volumetric_efficiency [-]",
     "isentropic_efficiency [-]",
     "indicated_isentropic_efficiency [-]",
@@ -255,7 +260,9 @@ def _ratio(a: float, b: float) -> float:
     return a / b if b > 0.0 else math.nan
 
 
-def _gas_metrics(solution: PeriodicSolution, freq: float, p_shaft: float) -> dict[str, Any]:
+def _gas_metrics(
+    solution: PeriodicSolution, freq: float, p_shaft: float, p_electrical: float
+) -> dict[str, Any]:
     """Mass flows, capacity, efficiencies and closures from the cylinder quadratures."""
     model = solution.model
     op = model.case.operating_point
@@ -270,10 +277,10 @@ def _gas_metrics(solution: PeriodicSolution, freq: float, p_shaft: float) -> dic
     h_in = y[cyl.Q_HSUC_IN] - y[cyl.Q_HSUC_OUT]
     fluid = model.fluid
     suction = model.suction
-    h_liquid = fluid.liquid_enthalpy(op.discharge_pressure, op.liquid_temperature)
+    h_gas, h_liquid = rating_enthalpies(fluid, op)
     h_2s = fluid.state_ps(op.discharge_pressure, suction.entropy)["h"]
     mdot_dis = m_dis * freq
-    capacity = mdot_dis * (suction.enthalpy - h_liquid)
+    capacity = mdot_dis * (h_gas - h_liquid)
     p_ind = work * freq
     p_isen = mdot_dis * (h_2s - suction.enthalpy)
     if y[cyl.Q_MDIS_OUT] > 0.0:
@@ -291,7 +298,8 @@ def _gas_metrics(solution: PeriodicSolution, freq: float, p_shaft: float) -> dic
         "indicated_power [W]": p_ind,
         "isentropic_power [W]": p_isen,
         "heat_to_wall [W]": -heat_in * freq,
-        "COP [-]": _ratio(capacity, p_shaft),
+        "COP [-]": _ratio(capacity, p_electrical),
+        "indicated_COP [-]": _ratio(capacity, p_ind),
         "volumetric_efficiency [-]": _ratio(mdot_dis, suction.density * geo.swept_volume * freq),
         "isentropic_efficiency [-]": _ratio(p_isen, p_shaft),
         "indicated_isentropic_efficiency [-]": _ratio(p_isen, p_ind),
@@ -341,9 +349,16 @@ def summary(
         torque = cycle["shaft_torque [N m]"].to_numpy()
         drive_work = float(np.mean(torque)) * 2.0 * math.pi
         bearing_loss = 0.0
-    p_shaft = drive_work * freq
+    p_drive = drive_work * freq
+    losses = loss_columns(case, cycle, p_drive, freq)
+    p_shaft = losses.pop("shaft_power [W]")
     if model is not None and model.has_gas:
-        gas = _gas_metrics(solution, freq, p_shaft)  # type: ignore[arg-type]
+        gas = _gas_metrics(
+            solution,  # type: ignore[arg-type]
+            freq,
+            p_shaft,
+            losses["motor_electrical_power [W]"],
+        )
     else:
         gas = dict.fromkeys(GAS_SUMMARY, math.nan)
         if model is not None:  # work of the gas on the piston, integrated with the motion
@@ -354,14 +369,15 @@ def summary(
     row.update(gas)
     row["shaft_power [W]"] = p_shaft
     row["bearing_dissipation_power [W]"] = bearing_loss * freq
-    row.update(_motor_metrics(case, cycle, freq, p_shaft))
+    row.update(_motor_metrics(case, cycle, freq, p_drive))
+    row.update(losses)
     row.update(mech)
     row.update(film_summary(cycle))
     if model is not None and model.scene != scenes.SCENE_CYLINDER:
         row["mechanical_efficiency [-]"] = _ratio(row["indicated_power [W]"], p_shaft)
-        # shaft power = indicated power + friction and bearing losses, over the revolution
+        # drive power = indicated power + friction and bearing losses, over the revolution
         row["mechanical_balance_residual [-]"] = _ratio(
-            p_shaft - row["indicated_power [W]"] - bearing_loss * freq, p_shaft
+            p_drive - row["indicated_power [W]"] - bearing_loss * freq, p_drive
         )
     row.update(_solver_metrics(solution))
 
@@ -385,7 +401,10 @@ def summary(
     row["minimum_cylinder_pressure [Pa]"] = float(p.min())
     row["discharge_overpressure [-]"] = float(p.max() / op.discharge_pressure - 1.0)
     row["suction_underpressure [-]"] = float(1.0 - p.min() / op.suction_pressure)
-    row["mean_shaft_torque [N m]"] = float(drive_work / (2.0 * math.pi))
+    # plus the mean friction's torque (options.friction = "mean"; else exactly 0)
+    row["mean_shaft_torque [N m]"] = float(
+        drive_work / (2.0 * math.pi) + (p_shaft - p_drive) / (2.0 * math.pi * freq)
+    )
     row["peak_shaft_torque [N m]"] = float(torque.max())
     row["minimum_shaft_torque [N m]"] = float(torque.min())
     return row

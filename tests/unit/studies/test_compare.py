@@ -118,6 +118,9 @@ def test_table_arithmetic_against_the_summary_rows(tab_vs_coupled):
         "valves",
         "heat_transfer",
         "leakage",
+        "standard",
+        "friction",
+        "motor",
         "converged [-]",
         "periodic_method",
     }

@@ -104,6 +104,11 @@ class Fluid:
         self.state.update(self._cp.PT_INPUTS, pressure, temperature)
         return float(self.state.hmass())
 
+    def saturated_liquid_enthalpy(self, pressure: float) -> float:
+        """Specific enthalpy [J/kg] of saturated liquid (bubble point) at ``pressure`` [Pa]."""
+        self.state.update(self._cp.PQ_INPUTS, pressure, 0.0)
+        return float(self.state.hmass())
+
     def transport(self, pressure: float, temperature: float) -> dict[str, float]:
         """Viscosity [Pa s] and thermal conductivity [W/(m K)] of a single-phase state."""
         self.state.update(self._cp.PT_INPUTS, pressure, temperature)

@@ -1,0 +1,219 @@
+"""From indicated to electrical: friction, motor losses and the rating standard's capacity.
+
+Summary columns (units in the names; ``reports/README.md`` documents them):
+
+- ``friction_power [W]``: mechanical friction of the bearings and the piston.
+  ``options.friction = "off"``: 0. ``"mean"``: Petroff's law for every journal with film
+  data (``diameter``, ``length``, ``radial_clearance``; primary and secondary turn at
+  the crank speed, the eccentric at crank minus rod spin, the pin at the rod's swing)
+  and the concentric skirt's Couette shear (piston length inside the bore, the piston
+  film's clearance or else ``leakage.radial_clearance``), time means over the cycle
+  (:mod:`recipsim.physics.mean_friction`), added to the shaft power; per bearing as
+  ``friction_power_<name> [W]`` and ``piston_friction_power [W]``, the names the film
+  scenes use. ``"films"``: the sum of the film scenes' own columns (already in the
+  shaft power, which the flexible crank integrates).
+- ``motor_electrical_power [W]``, ``motor_efficiency [-]``, ``motor_power_factor [-]``,
+  ``motor_loss_power [W]`` (electrical - shaft) and its split
+  ``motor_<loss>_loss_power [W]`` (main and auxiliary winding copper, rotor copper, core,
+  stray, windage), ``motor_current [A]``, ``motor_speed_at_load [rpm]``.
+  ``options.motor = "lossless"``: electrical = shaft power, efficiency 1, no losses.
+  ``"equivalent_circuit"``: the circuit at the load torque ``T = P_shaft / omega_mean``
+  (:func:`recipsim.physics.motor_circuit.motor_operating_point_at_torque`); its losses
+  at that point are added to the cycle's shaft power. At constant speed the cycle runs
+  at the case's shaft speed; the circuit's slip at that torque gives
+  ``motor_speed_at_load``, which may differ (the cycle is not re-run at it). With the
+  induction-motor drive the dynamics keep their torque curve and the losses come from
+  the circuit at the cycle's mean torque.
+- ``COP [-]``: cooling capacity over motor electrical power; ``indicated_COP [-]``:
+  over indicated power.
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+from typing import Any
+
+import numpy as np
+import pandas as pd
+
+from recipsim.case.load import Case, OperatingPoint
+from recipsim.case.lubrication import parse_oil
+from recipsim.case.rating import SATURATED_LIQUID_BAND
+from recipsim.physics.mean_friction import (
+    journal_petroff_power,
+    rod_swing_rate,
+    skirt_viscous_force,
+    time_mean,
+    wetted_skirt_length,
+)
+from recipsim.physics.motor_circuit import motor_operating_point_at_torque
+from recipsim.physics.thermo.table_states import TableFluid
+
+#: Loss columns of the motor and the operating-point attribute each one reads.
+MOTOR_LOSSES = {
+    "motor_main_copper_loss_power [W]": "main_copper_loss",
+    "motor_auxiliary_copper_loss_power [W]": "auxiliary_copper_loss",
+    "motor_rotor_copper_loss_power [W]": "rotor_copper_loss",
+    "motor_core_loss_power [W]": "core_loss",
+    "motor_stray_loss_power [W]": "stray_loss",
+    "motor_windage_loss_power [W]": "windage_loss",
+}
+#: Journals and the spin of journal relative to sleeve, in units of the crank speed, as a
+#: function of the rod angle's crank-angle derivative.
+_JOURNALS = {
+    "primary": lambda dphi: np.ones_like(dphi),
+    "secondary": lambda dphi: np.ones_like(dphi),
+    "eccentric": lambda dphi: 1.0 - dphi,
+    "pin": lambda dphi: dphi,
+}
+
+
+def rating_enthalpies(fluid: Any, op: OperatingPoint) -> tuple[float, float]:
+    """Suction-gas and liquid enthalpies the capacity is defined with [J/kg].
+
+    The suction gas at the suction pressure and ``op.suction_temperature`` (the
+    compressor inlet, or the standard's suction gas); the liquid at the discharge pressure
+    and ``op.liquid_temperature``, saturated liquid within 1 uK of the bubble point.
+    """
+    h_gas = float(fluid.state_pt(op.suction_pressure, op.suction_temperature)["h"])
+    p = op.discharge_pressure
+    if not math.isnan(op.condensing_temperature):
+        bubble = fluid.saturation_temperature(p, 0.0)
+        if op.liquid_temperature >= bubble - SATURATED_LIQUID_BAND:
+            heos = fluid.heos() if isinstance(fluid, TableFluid) else fluid
+            return h_gas, float(heos.saturated_liquid_enthalpy(p))
+    return h_gas, float(fluid.liquid_enthalpy(p, op.liquid_temperature))
+
+
+def _film_friction(cycle: pd.DataFrame) -> float:
+    """Total friction of the film scenes' bearings and piston [W] (time means)."""
+    speed = cycle["crank_speed [rad/s]"].to_numpy()
+    names = [c for c in cycle.columns if c.startswith("bearing_power_loss_")]
+    if "piston_friction_power [W]" in cycle:
+        names.append("piston_friction_power [W]")
+    return sum(time_mean(cycle[c].to_numpy(), speed) for c in names)
+
+
+def mean_friction_columns(case: Case, cycle: pd.DataFrame) -> dict[str, float]:
+    """Petroff journals and the viscous skirt over the cycle's samples [W] (time means)."""
+    geo = case.geometry
+    mech = case.mechanism
+    speed = cycle["crank_speed [rad/s]"].to_numpy()
+    theta = np.radians(cycle["crank_angle [deg]"].to_numpy())
+    dphi = rod_swing_rate(theta, geo.crank_radius, geo.connecting_rod_length)
+    row: dict[str, float] = {}
+    for name, relative in _JOURNALS.items():
+        film = mech.bearing(name).film
+        if film is None:
+            continue
+        power = journal_petroff_power(
+            film.viscosity,
+            film.diameter,
+            film.length,
+            film.radial_clearance,
+            relative(dphi) * speed,
+        )
+        row[f"friction_power_{name} [W]"] = time_mean(power, speed)
+    piston_film = mech.bearing("piston_skirt").film
+    if piston_film is not None:
+        viscosity, clearance = piston_film.viscosity, piston_film.radial_clearance
+    else:
+        oil = mech.oil if mech.oil is not None else parse_oil(None, case.path)
+        viscosity = oil.viscosity(oil.film_temperature)
+        clearance = case.leakage.radial_clearance
+    crown = geo.clearance_volume / geo.piston_area + cycle["piston_displacement [m]"].to_numpy()
+    wetted = wetted_skirt_length(mech.piston.length, geo.liner_length, crown)
+    velocity = cycle["piston_velocity [m/s]"].to_numpy()
+    force = skirt_viscous_force(viscosity, geo.bore, wetted, clearance, velocity)
+    row["piston_friction_power [W]"] = time_mean(-force * velocity, speed)
+    row["friction_power [W]"] = float(sum(row.values()))
+    return row
+
+
+def friction_columns(case: Case, cycle: pd.DataFrame) -> dict[str, float]:
+    """``friction_power [W]`` (and, for ``mean``, per bearing) of ``options.friction``."""
+    option = case.options.friction
+    if option == "mean":
+        return mean_friction_columns(case, cycle)
+    if option == "films":
+        return {"friction_power [W]": _film_friction(cycle)}
+    return {"friction_power [W]": 0.0}
+
+
+def _lossless(shaft_power: float) -> dict[str, float]:
+    row = {
+        "motor_electrical_power [W]": shaft_power,
+        "motor_efficiency [-]": 1.0,
+        "motor_power_factor [-]": math.nan,
+        "motor_loss_power [W]": 0.0,
+    }
+    row.update(dict.fromkeys(MOTOR_LOSSES, 0.0))
+    row["motor_current [A]"] = math.nan
+    row["motor_speed_at_load [rpm]"] = math.nan
+    return row
+
+
+def motor_columns(case: Case, shaft_power: float, mean_speed: float) -> dict[str, float]:
+    """Electrical power, efficiency, power factor and losses at the cycle's load.
+
+    Parameters
+    ----------
+    case : Case
+        Its ``options.motor`` and ``motor_circuit``.
+    shaft_power : float
+        Mean power the shaft takes [W].
+    mean_speed : float
+        Mean crank speed [rad/s] (one revolution over its duration).
+    """
+    circuit = case.motor_circuit
+    if case.options.motor == "lossless" or circuit is None:
+        return _lossless(shaft_power)
+    try:
+        point = motor_operating_point_at_torque(circuit, shaft_power / mean_speed)
+    except ValueError as exc:  # past breakdown: the motor stalls
+        warnings.warn(f"{case.name}: {exc}", stacklevel=2)
+        return {k: math.nan for k in _lossless(shaft_power)}
+    # the circuit's own input less output: its losses at this load, added to the cycle's
+    # shaft power (the same as the circuit's input when it turns at the cycle's speed)
+    electrical = shaft_power + (point.electrical_power - point.shaft_power)
+    row = {
+        "motor_electrical_power [W]": electrical,
+        "motor_efficiency [-]": shaft_power / electrical,
+        "motor_power_factor [-]": point.power_factor,
+        "motor_loss_power [W]": electrical - shaft_power,
+    }
+    row.update({column: float(getattr(point, name)) for column, name in MOTOR_LOSSES.items()})
+    row["motor_current [A]"] = point.line_current
+    row["motor_speed_at_load [rpm]"] = point.speed * 30.0 / math.pi
+    return row
+
+
+def loss_columns(
+    case: Case, cycle: pd.DataFrame, drive_power: float, freq: float
+) -> dict[str, Any]:
+    """The case's options, friction and motor columns, and ``shaft_power [W]``.
+
+    Parameters
+    ----------
+    case : Case
+        The case.
+    cycle : DataFrame
+        Its cycle table (uniform crank-angle samples).
+    drive_power : float
+        Mean power of the drive integrated with the motion [W] (the shaft power without
+        mean friction).
+    freq : float
+        Revolutions per second [1/s].
+    """
+    row: dict[str, Any] = {
+        "standard": case.operating_point.standard,
+        "ambient_temperature [K]": case.operating_point.ambient_temperature,
+        "friction": case.options.friction,
+        "motor": case.options.motor,
+    }
+    row.update(friction_columns(case, cycle))
+    shaft = drive_power + (row["friction_power [W]"] if case.options.friction == "mean" else 0.0)
+    row["shaft_power [W]"] = shaft
+    row.update(motor_columns(case, shaft, 2.0 * math.pi * freq))
+    return row
