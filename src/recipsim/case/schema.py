@@ -76,6 +76,14 @@ class Choice:
 
 
 @dataclass(frozen=True)
+class Flag:
+    """A boolean key (TOML ``true``/``false``)."""
+
+    default: Any = REQUIRED
+    doc: str = ""
+
+
+@dataclass(frozen=True)
 class Text:
     """A free string key."""
 
@@ -83,7 +91,7 @@ class Text:
     doc: str = ""
 
 
-Spec = Mapping[str, Field | Choice | Text]
+Spec = Mapping[str, Field | Choice | Flag | Text]
 
 
 def check_keys(raw: Mapping[str, Any], allowed: set[str] | Spec, file: str, prefix: str) -> None:
@@ -134,6 +142,10 @@ def read_table(raw: Mapping[str, Any] | None, spec: Spec, file: str, prefix: str
                     file, dotted, f"{value!r} is not allowed; choose one of {list(field.choices)}"
                 )
             out[key] = value
+        elif isinstance(field, Flag):
+            if not isinstance(value, bool):
+                raise CaseError(file, dotted, f"expected true or false, got {value!r}")
+            out[key] = value
         else:
             if not isinstance(value, str):
                 raise CaseError(file, dotted, f"expected a string, got {value!r}")
@@ -141,11 +153,13 @@ def read_table(raw: Mapping[str, Any] | None, spec: Spec, file: str, prefix: str
     return out
 
 
-def _describe(field: Field | Choice | Text) -> str:
+def _describe(field: Field | Choice | Flag | Text) -> str:
     if isinstance(field, Field):
         return f"allowed {field.allowed()}" + (f"; {field.doc}" if field.doc else "")
     if isinstance(field, Choice):
         return f"one of {list(field.choices)}"
+    if isinstance(field, Flag):
+        return "true or false"
     return "a string"
 
 
