@@ -148,3 +148,21 @@ def test_options_keep_the_closures(options):
     assert row["converged [-]"]
     assert abs(row["mass_balance_residual [-]"]) < 1e-3
     assert abs(row["energy_balance_residual [-]"]) < 1e-3
+
+
+def test_valve_and_leakage_keys_are_validated():
+    """Defaults keep the port curtain, no jet force and the isothermal gap; a non-boolean
+    momentum_force and an unknown law are refused naming the key."""
+    from recipsim.errors import CaseError
+
+    case = load_case(REFERENCE)
+    for valve in (case.valves.suction, case.valves.discharge):
+        assert valve.flow_area == "port" and valve.momentum_force is False
+        assert valve.curtain_diameter == valve.port_diameter
+    assert case.leakage.model == "isothermal"
+    rim = load_case(REFERENCE, ['valves.suction.flow_area="reed_diameter"']).valves.suction
+    assert rim.curtain_diameter == rim.reed_width
+    with pytest.raises(CaseError, match=r"valves\.discharge\.momentum_force.*true or false"):
+        load_case(REFERENCE, ['valves.discharge.momentum_force="yes"'])
+    with pytest.raises(CaseError, match=r"leakage\.model"):
+        load_case(REFERENCE, ['leakage.model="adiabatic"'])
