@@ -33,6 +33,8 @@ def _default(field: Any, required: object) -> str:
         return ""
     if default is None:
         return "not set"
+    if isinstance(default, bool):
+        return f"``{str(default).lower()}``"
     if default == "":
         return "empty"
     if isinstance(default, float):
@@ -46,7 +48,7 @@ def _cell(text: str) -> str:
 
 def declared_rows(table: str, spec: Any) -> list[list[str]]:
     """Rows (key, unit, default, allowed, required, meaning) of one declared table."""
-    from recipsim.case.schema import REQUIRED, Choice, Field
+    from recipsim.case.schema import REQUIRED, Choice, Field, Flag
 
     rows = []
     for key, field in spec.items():
@@ -57,6 +59,8 @@ def declared_rows(table: str, spec: Any) -> list[list[str]]:
         elif isinstance(field, Choice):
             allowed = ", ".join(f"``{c}``" for c in field.choices)
             unit = "-"
+        elif isinstance(field, Flag):
+            allowed, unit = "``true``, ``false``", "-"
         else:
             allowed, unit = "a string", "-"
         required = "yes" if field.default is REQUIRED else "no"

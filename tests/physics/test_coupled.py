@@ -139,15 +139,17 @@ def test_series_eccentricity_is_the_exact_land_average(e0, e1):
 
 
 def test_leakage_grows_with_eccentricity_as_the_annulus_formula():
-    """Rigid crank, piston_gap leakage: ``m = rho pi D [d^3 dp (1 + 1.5 eps^2)/(12 mu L)
-    - d U / 2]``, so the leaked mass per cycle is affine in (1 + 1.5 eps^2): the
-    pressure-driven part scales, the piston-drag (Couette) part does not. Fit the two
-    parts from eps = 0 and 0.5, predict eps = 0.9.
+    """Rigid crank, piston_gap leakage (isothermal law): ``m = pi D [d^3 (p_c^2 - p_s^2)
+    (1 + 1.5 eps^2)/(24 mu RT L) - rho_m d U / 2]``, so the leaked mass per cycle is affine
+    in (1 + 1.5 eps^2): the pressure-driven part scales, the piston-drag (Couette) part
+    does not. Fit the two parts from eps = 0 and 0.5, predict eps = 0.9.
 
-    The leak is ~1 % of the flow and barely changes the pressure history, so the
-    prediction holds to well within 1 %.
+    With a 4 um clearance the leak is 0.5-1.1 % of the flow and barely changes the
+    pressure history, so the prediction holds to 0.1 % (measured 7e-4; asserted 1 %).
+    With 12 um the leak is 14-28 % of the flow: the pressure history, hence the fit,
+    moves with eps by 2 %.
     """
-    base = ['options.leakage="piston_gap"', "leakage.radial_clearance=12e-6"]
+    base = ['options.leakage="piston_gap"', "leakage.radial_clearance=4e-6"]
     flows = {}
     for eps in (0.0, 0.5, 0.9):
         row = summary(solve_case(REFERENCE, [*base, f"leakage.eccentricity_ratio={eps}"]))

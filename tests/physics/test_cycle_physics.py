@@ -80,20 +80,29 @@ def test_mass_and_energy_close_over_a_converged_revolution(valves, heat):
 
 
 def test_tolerance_controls_the_error():
-    """Halving rtol moves the summary less than the previous halving did (DOPRI5 alone:
-    the stiff switcher's error, smaller, changes sign with the switching points and is
-    checked against DOPRI5 in test_stiff_switching)."""
+    """The delivered mass and the indicated work converge with rtol down to the floor
+    that the reed impacts leave (DOPRI5 alone: the stiff switcher's error, smaller,
+    changes sign with the switching points and is checked against DOPRI5 in
+    test_stiff_switching).
+
+    Against a tight solution (rtol 1e-9, 0.5 deg steps): rtol 1e-3 within 1e-3 and
+    rtol 1e-5 within 1e-4. Below ~1e-4 the error does not fall monotonically with rtol:
+    events are looked for only at accepted steps, so a reed bounce that grazes its seat
+    inside one 5 deg step is kept or missed depending on the step sequence (measured
+    with the household discharge reed: 3e-5 at rtol 1e-5, 1.2e-4 at 1e-3; with 0.5 deg
+    steps the floor falls to ~1e-7).
+    """
     base = ["solver.cycle_tolerance=1e-9", "solver.max_revolutions=80", "solver.method=dopri5"]
-    values = []
-    for rtol in (4e-5, 2e-5, 1e-5, 5e-6):
-        y = solve_case(REFERENCE, base + [f"solver.rtol={rtol}"]).final.y_end
-        values.append((y[cyl.Q_MDIS_OUT] - y[cyl.Q_MDIS_IN], y[cyl.Q_WORK]))
-    d1 = [abs(values[1][i] - values[0][i]) / values[0][i] for i in range(2)]
-    d2 = [abs(values[2][i] - values[1][i]) / values[1][i] for i in range(2)]
-    d3 = [abs(values[3][i] - values[2][i]) / values[2][i] for i in range(2)]
-    for i in range(2):
-        assert d2[i] < d1[i]
-        assert d3[i] < d2[i]
+
+    def delivered(extra: list[str]) -> tuple[float, float]:
+        y = solve_case(REFERENCE, base + extra).final.y_end
+        return y[cyl.Q_MDIS_OUT] - y[cyl.Q_MDIS_IN], y[cyl.Q_WORK]
+
+    exact = delivered(["solver.rtol=1e-9", 'solver.max_step="0.5 deg"'])
+    for rtol, bound in ((1e-3, 1e-3), (1e-5, 1e-4)):
+        values = delivered([f"solver.rtol={rtol}"])
+        for value, ref in zip(values, exact, strict=True):
+            assert value == pytest.approx(ref, rel=bound)
 
 
 def test_adiabatic_reed_cycle_is_plausible():

@@ -40,7 +40,7 @@ from recipsim.case.rating import (
     suction_gas_temperature,
 )
 from recipsim.case.refrigerant import RefrigerantSpec, case_fluid, load_refrigerant
-from recipsim.case.schema import Choice, Field, Spec, Text, check_keys, read_table
+from recipsim.case.schema import Choice, Field, Flag, Spec, Text, check_keys, read_table
 from recipsim.errors import CaseError
 from recipsim.physics.mechanics.tabulated import PressureCurve
 from recipsim.physics.motor import MotorSpec
@@ -109,6 +109,12 @@ VALVE_SPEC: Spec = {
     "preload": Field("N", 0.0, lo=0.0, hi=1e4),
     "flow_coefficient": Field("dimensionless", 0.8, lo=0.0, hi=2.0, open_lo=True),
     "force_coefficient": Field("dimensionless", 1.1, lo=0.0, hi=3.0, open_lo=True),
+    "flow_area": Choice(
+        ("port", "reed_diameter"),
+        "port",
+        "curtain pi d x on the port's diameter (edge of the port) or the reed's (its rim)",
+    ),
+    "momentum_force": Flag(False, "the jet's momentum flux mdot^2/(rho A) pushes on the reed"),
 }
 
 VALVES_TOP_SPEC: Spec = {
@@ -120,6 +126,11 @@ VALVES_TOP_SPEC: Spec = {
 }
 
 LEAKAGE_SPEC: Spec = {
+    "model": Choice(
+        ("isothermal", "incompressible"),
+        "isothermal",
+        "gap law: compressible isothermal (mean-pressure density) or upstream density",
+    ),
     "radial_clearance": Field("m", 6e-6, lo=0.0, hi=1e-3, open_lo=True),
     "eccentricity_ratio": Field(
         "dimensionless",
@@ -253,6 +264,15 @@ class ValveSpec:
     preload: float
     flow_coefficient: float
     force_coefficient: float
+    #: curtain of the flow area: "port" (pi d_port x) or "reed_diameter" (pi reed_width x)
+    flow_area: str = "port"
+    #: the jet's momentum flux adds to the pressure force on the reed
+    momentum_force: bool = False
+
+    @property
+    def curtain_diameter(self) -> float:
+        """Diameter of the curtain flow area pi d x [m]: the port's or the reed's."""
+        return self.reed_width if self.flow_area == "reed_diameter" else self.port_diameter
 
     @property
     def port_area(self) -> float:
@@ -289,6 +309,8 @@ class Valves:
 class Leakage:
     radial_clearance: float
     eccentricity_ratio: float
+    #: "isothermal" (compressible) or "incompressible" gap law
+    model: str = "isothermal"
 
 
 @dataclass(frozen=True)

@@ -76,6 +76,14 @@ class Choice:
 
 
 @dataclass(frozen=True)
+class Flag:
+    """A boolean key (TOML ``true``/``false``)."""
+
+    default: Any = REQUIRED
+    doc: str = ""
+
+
+@dataclass(frozen=True)
 class Text:
     """A free string key."""
 
@@ -118,7 +126,7 @@ class Described:
         return self.required or ("no" if self.default else "yes")
 
 
-Spec = Mapping[str, Field | Choice | Text]
+Spec = Mapping[str, Field | Choice | Flag | Text]
 #: Keys of a table validated in code, in the order of the table.
 DescribedSpec = Mapping[str, Described]
 
@@ -171,6 +179,10 @@ def read_table(raw: Mapping[str, Any] | None, spec: Spec, file: str, prefix: str
                     file, dotted, f"{value!r} is not allowed; choose one of {list(field.choices)}"
                 )
             out[key] = value
+        elif isinstance(field, Flag):
+            if not isinstance(value, bool):
+                raise CaseError(file, dotted, f"expected true or false, got {value!r}")
+            out[key] = value
         else:
             if not isinstance(value, str):
                 raise CaseError(file, dotted, f"expected a string, got {value!r}")
@@ -178,11 +190,13 @@ def read_table(raw: Mapping[str, Any] | None, spec: Spec, file: str, prefix: str
     return out
 
 
-def _describe(field: Field | Choice | Text) -> str:
+def _describe(field: Field | Choice | Flag | Text) -> str:
     if isinstance(field, Field):
         return f"allowed {field.allowed()}" + (f"; {field.doc}" if field.doc else "")
     if isinstance(field, Choice):
         return f"one of {list(field.choices)}"
+    if isinstance(field, Flag):
+        return "true or false"
     return "a string"
 
 

@@ -225,11 +225,13 @@ def cylinder_model(case: Case) -> Model:
         par[base + cyl.V_STOP] = valve.stop_height
         par[base + cyl.V_REST] = valve.restitution
         par[base + cyl.V_PRELOAD] = valve.preload
+        par[base + cyl.V_CURTAIN_D] = valve.curtain_diameter
+        par[base + cyl.V_MOMENTUM] = 1.0 if valve.momentum_force else 0.0
     ipar[cyl.I_SCENE] = 0
     ipar[cyl.I_VALVES] = _VALVE_CODES[opts.valves]
     ipar[cyl.I_FLOW] = _FLOW_CODES[case.valves.flow_model]
     ipar[cyl.I_HT] = ht_code
-    ipar[cyl.I_LEAK] = 0 if opts.leakage == "none" else 1
+    ipar[cyl.I_LEAK] = _leak_code(opts.leakage, case.leakage.model)
 
     transport = opts.heat_transfer != "adiabatic" or opts.leakage != "none"
     ref = case.refrigerant
@@ -275,6 +277,13 @@ def cylinder_model(case: Case) -> Model:
         discharge=discharge,
         shell=shell,
     )
+
+
+def _leak_code(option: str, law: str) -> int:
+    """Compiled code of the piston-gap leakage: none, incompressible or isothermal."""
+    if option == "none":
+        return cyl.LEAK_NONE
+    return cyl.LEAK_ISOTHERMAL if law == "isothermal" else cyl.LEAK_INCOMPRESSIBLE
 
 
 def crank_geometry(case: Case) -> CrankGeometry:

@@ -42,6 +42,7 @@ from recipsim.results.bearings import (
     pinned_columns,
 )
 from recipsim.results.electrical import loss_columns, rating_enthalpies
+from recipsim.results.valve_metrics import valve_summary
 from recipsim.solve.periodic import PeriodicSolution, sample_outputs
 
 CYCLE_COLUMNS: list[tuple[str, int]] = [
@@ -367,6 +368,7 @@ def summary(
         else:
             gas["indicated_power [W]"] = _loop_work(cycle) * freq
     row.update(gas)
+    row.update(valve_summary(case.name, solution))
     row["shaft_power [W]"] = p_shaft
     row["bearing_dissipation_power [W]"] = bearing_loss * freq
     row.update(_motor_metrics(case, cycle, freq, p_drive))

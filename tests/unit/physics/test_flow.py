@@ -97,9 +97,9 @@ def test_incompressible_limit_and_regularisation():
 def test_reed_flow_area_curtain_then_port():
     d = 5.9e-3
     x_tr = d / 4
-    assert reed_flow_area(0.5 * x_tr, d, 1.0) == pytest.approx(math.pi * d * 0.5 * x_tr)
-    assert reed_flow_area(3 * x_tr, d, 1.0) == pytest.approx(math.pi * d * d / 4)
-    assert reed_flow_area(-1e-4, d, 1.0) == 0.0
+    assert reed_flow_area(0.5 * x_tr, d, d, 1.0) == pytest.approx(math.pi * d * 0.5 * x_tr)
+    assert reed_flow_area(3 * x_tr, d, d, 1.0) == pytest.approx(math.pi * d * d / 4)
+    assert reed_flow_area(-1e-4, d, d, 1.0) == 0.0
 
 
 def test_gap_leakage_annulus_formula():

@@ -27,7 +27,18 @@ from recipsim.solve.integrator import (
 )
 from recipsim.solve.stiff import _lu_factor, _lu_solve
 
-TABLE = ["options.properties=table"]
+# The soft discharge reed on its 1.8 mm stop (the reference's before issue 16): wide open,
+# its port relaxes the cylinder pressure faster than DOPRI5's stability allows at rtol
+# 1e-6, the stiff stretch these tests need. The household reed (0.7 mm stop, half the
+# flow area) leaves no stretch stiff enough for the switch at these tolerances.
+TABLE = [
+    "options.properties=table",
+    'valves.discharge.reed_thickness="0.153 mm"',
+    'valves.discharge.reed_length="18 mm"',
+    'valves.discharge.port_position="14 mm"',
+    'valves.discharge.stop_height="1.8 mm"',
+    'valves.discharge.preload="0 N"',
+]
 
 
 def _solve(overrides, method, monkeypatch):

@@ -19,7 +19,14 @@ with ``h_i`` the upstream enthalpy. Valve models:
   closes when that flow would reverse. Both are events.
 - ``quasi_static``: nozzle flow through the port, no valve state, no back-flow.
 - ``reed``: 1-DOF spring-mass per valve, effective force and flow areas; seat and stop
-  are events with a restitution coefficient; slow impacts stick.
+  are events with a restitution coefficient; slow impacts stick. Per valve, the curtain
+  diameter (``V_CURTAIN_D``: the port's or the reed's, :func:`flow.reed_flow_area`) and
+  whether the jet's momentum (``V_MOMENTUM``, :func:`flow.jet_momentum_force`) adds to
+  the pressure force on the reed.
+
+Piston-gap leakage (``I_LEAK``): ``LEAK_INCOMPRESSIBLE`` (upstream density and
+viscosity) or ``LEAK_ISOTHERMAL`` (compressible, ``p/rho`` and viscosity the means of
+the cylinder gas and the shell gas).
 
 Modes (``mode[0]`` suction, ``mode[1]`` discharge): ideal 0 closed / 1 open; reed
 0 seated / 1 free / 2 at the stop.
@@ -34,8 +41,9 @@ from numba import njit
 from recipsim.physics.kinematics import inertia_torque, piston_displacement
 from recipsim.physics.thermo.flow import (
     gap_leakage_mass_flow,
+    isothermal_gap_leakage_mass_flow,
     reed_flow_area,
-    regularised_mass_flux,
+    valve_mass_flow_and_force,
 )
 from recipsim.physics.thermo.heat_transfer import HT_ADIABATIC, heat_transfer_coefficient
 from recipsim.physics.thermo.properties import (
@@ -96,6 +104,9 @@ VALVES_QUASI_STATIC = 1
 VALVES_REED = 2
 FLOW_REAL_GAS = 0
 FLOW_IDEAL_GAS = 1
+LEAK_NONE = 0
+LEAK_INCOMPRESSIBLE = 1
+LEAK_ISOTHERMAL = 2
 
 # ---- float parameters ----------------------------------------------------------------
 C_OMEGA = 0
@@ -137,7 +148,7 @@ C_AROD = 35
 C_IROD = 36
 C_BAUMGARTE = 37
 C_VALVE0 = 40  # first valve block; valve i starts at C_VALVE0 + i * VALVE_BLOCK
-VALVE_BLOCK = 10
+VALVE_BLOCK = 11
 V_PORT_D = 0
 V_CFLOW = 1
 V_AFORCE = 2
@@ -147,6 +158,8 @@ V_DAMP = 5
 V_STOP = 6
 V_REST = 7
 V_PRELOAD = 8
+V_CURTAIN_D = 9  # diameter of the curtain flow area [m]
+V_MOMENTUM = 10  # 1.0: the jet's momentum pushes on the reed
 N_PAR = C_VALVE0 + 2 * VALVE_BLOCK
 
 # ---- auxiliary outputs --------------------------------------------------------------
@@ -174,7 +187,7 @@ A_TORQUE_INERTIA = 20
 A_TORQUE_SHAFT = 21  # driving torque for constant speed [N m]
 A_DISPLACEMENT = 22  # piston displacement from TDC [m]
 A_PISTON_VELOCITY = 23  # dx/dt [m/s]
-A_FORCE_REED_S = 24  # net opening force on the suction reed [N]
+A_FORCE_REED_S = 24  # net opening force on the suction reed (spring excluded) [N]
 A_FORCE_REED_D = 25
 A_STATUS = 26
 A_LEAK_ECC = 27  # eccentricity ratio of the piston in the bore seen by the leak [-]
@@ -306,7 +319,21 @@ def cylinder_gas_rhs(
 
     # piston-gap leakage, positive out of the cylinder
     mdot_leak = 0.0
-    if ipar[I_LEAK] != 0:
+    if ipar[I_LEAK] == LEAK_ISOTHERMAL:
+        clear_height = par[C_VC] / ap
+        length = max(min(par[C_PISTON_LEN], par[C_LINER_LEN] - clear_height - x), 1e-4)
+        mdot_leak = isothermal_gap_leakage_mass_flow(
+            p,
+            par[C_PSHELL],
+            0.5 * (p / rho + par[C_PSHELL] / par[C_RHOSHELL]),
+            0.5 * (pbuf[PROP_VISCOSITY] + par[C_MUSHELL]),
+            par[C_BORE],
+            par[C_LEAK_DELTA],
+            length,
+            -xdot,
+            leak_ecc,
+        )
+    elif ipar[I_LEAK] == LEAK_INCOMPRESSIBLE:
         clear_height = par[C_VC] / ap
         length = min(par[C_PISTON_LEN], par[C_LINER_LEN] - clear_height - x)
         length = max(length, 1e-4)
@@ -335,24 +362,37 @@ def cylinder_gas_rhs(
     lift_s = y[Y_XS]
     lift_d = y[Y_XD]
     if valves == VALVES_REED:
-        a_s = reed_flow_area(lift_s, par[bs + V_PORT_D], par[bs + V_CFLOW])
-        a_d = reed_flow_area(lift_d, par[bd + V_PORT_D], par[bd + V_CFLOW])
+        a_s = reed_flow_area(lift_s, par[bs + V_PORT_D], par[bs + V_CURTAIN_D], par[bs + V_CFLOW])
+        a_d = reed_flow_area(lift_d, par[bd + V_PORT_D], par[bd + V_CURTAIN_D], par[bd + V_CFLOW])
     elif valves == VALVES_QUASI_STATIC:
         a_s = par[bs + V_CFLOW] * 0.25 * math.pi * par[bs + V_PORT_D] ** 2
         a_d = par[bd + V_CFLOW] * 0.25 * math.pi * par[bd + V_PORT_D] ** 2
     else:
         a_s = 0.0
         a_d = 0.0
+    # jet momentum on the reeds, along their opening direction [N]
+    fjet_s = 0.0
+    fjet_d = 0.0
+    jet_s = par[bs + V_MOMENTUM] > 0.5
+    jet_d = par[bd + V_MOMENTUM] > 0.5
     if a_s > 0.0:
         if p_s > p:
-            mdot_s = a_s * regularised_mass_flux(p_s, rho_s, p, kappa_s, dp_lam)
+            mdot_s, fjet_s = valve_mass_flow_and_force(a_s, p_s, rho_s, p, kappa_s, dp_lam, jet_s)
         elif valves == VALVES_REED:
-            mdot_s = -a_s * regularised_mass_flux(p, rho_up_cyl, p_s, kappa, dp_lam)
+            mdot_s, fjet_s = valve_mass_flow_and_force(
+                a_s, p, rho_up_cyl, p_s, kappa, dp_lam, jet_s
+            )
+            mdot_s = -mdot_s
+            fjet_s = -fjet_s
     if a_d > 0.0:
         if p > p_d:
-            mdot_d = a_d * regularised_mass_flux(p, rho_up_cyl, p_d, kappa, dp_lam)
+            mdot_d, fjet_d = valve_mass_flow_and_force(
+                a_d, p, rho_up_cyl, p_d, kappa, dp_lam, jet_d
+            )
         elif valves == VALVES_REED:
-            mdot_d = -a_d * regularised_mass_flux(p_d, rho_d, p, kappa_d, dp_lam)
+            mdot_d, fjet_d = valve_mass_flow_and_force(a_d, p_d, rho_d, p, kappa_d, dp_lam, jet_d)
+            mdot_d = -mdot_d
+            fjet_d = -fjet_d
 
     mdot_known = mdot_s - mdot_d - mdot_leak
     h_in_known = (
@@ -391,8 +431,8 @@ def cylinder_gas_rhs(
     dydt[Y_RHO] = a_rho
 
     # reed dynamics
-    f_s = _valve_force(p_s - p, par, bs)
-    f_d = _valve_force(p - p_d, par, bd)
+    f_s = _valve_force(p_s - p, par, bs) + fjet_s
+    f_d = _valve_force(p - p_d, par, bd) + fjet_d
     for i in range(2):
         base = C_VALVE0 + i * VALVE_BLOCK
         ix = Y_XS + 2 * i
