@@ -85,6 +85,7 @@ def tables() -> list[tuple[str, str, list[list[str]]]]:
     from recipsim.case import load, mechanism
     from recipsim.case.motor import MOTOR_SPEC
     from recipsim.case.refrigerant import LIMITS_SPEC, RATING_POINT_SPEC
+    from recipsim.case.thermal import THERMAL_SPEC
 
     hand = "Validated by hand in :mod:`recipsim.case.mechanism`, not by a declaration."
     declared = [
@@ -109,6 +110,12 @@ def tables() -> list[tuple[str, str, list[list[str]]]]:
         ),
         ("[solver]", "", load.SOLVER_SPEC),
         ("[motor]", 'Required with ``options.drive = "induction_motor"``.', MOTOR_SPEC),
+        (
+            "[thermal]",
+            'Used with ``options.thermal = "network"`` (:mod:`recipsim.case.thermal`: '
+            "what each default conductance stands for).",
+            THERMAL_SPEC,
+        ),
         (
             "[pressure_curve]",
             '``file`` is required with ``options.pressure = "tabulated"``.',

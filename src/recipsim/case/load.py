@@ -32,6 +32,7 @@ from recipsim.case.motor import motor_from_table
 from recipsim.case.pressure_curve import read_pressure_curve
 from recipsim.case.refrigerant import RefrigerantSpec, case_fluid, load_refrigerant
 from recipsim.case.schema import Choice, Field, Spec, Text, check_keys, read_table
+from recipsim.case.thermal import ThermalSpec, parse_thermal
 from recipsim.errors import CaseError
 from recipsim.physics.mechanics.tabulated import PressureCurve
 from recipsim.physics.motor import MotorSpec
@@ -52,6 +53,12 @@ OPTION_SPEC: Spec = {
         "law of the journal bearings (primary, secondary, eccentric) whose table names none",
     ),
     "drive": Choice(("constant_speed", "torque_profile", "induction_motor"), "constant_speed"),
+    "thermal": Choice(
+        ("fixed_wall", "network"),
+        "fixed_wall",
+        "suction plenum at the inlet state and the given wall temperature, or the shell's "
+        "thermal network ([thermal])",
+    ),
 }
 
 OPERATING_POINT_SPEC: Spec = {
@@ -64,6 +71,9 @@ OPERATING_POINT_SPEC: Spec = {
     "liquid_temperature": Field("K", None, lo=50.0, hi=700.0),
     "shell_pressure": Field("Pa", None, lo=0.0, open_lo=True, hi=1e9),
     "shaft_speed": Field("rad/s", lo=0.0, hi=2000.0, open_lo=True, doc="e.g. '3500 rpm'"),
+    "ambient_temperature": Field(
+        "K", 305.35, lo=200.0, hi=400.0, doc="air around the shell (default 32.2 C)"
+    ),
 }
 
 GEOMETRY_SPEC: Spec = {
@@ -147,6 +157,7 @@ TOP_KEYS = {
     "pressure_curve",
     "motor",
     "oil",
+    "thermal",
 }
 
 
@@ -162,6 +173,7 @@ class Options:
     mechanics: str
     bearing_law: str
     drive: str
+    thermal: str = "fixed_wall"
 
 
 @dataclass(frozen=True)
@@ -180,6 +192,7 @@ class OperatingPoint:
     liquid_temperature: float
     shell_pressure: float
     shaft_speed: float  # [rad/s]
+    ambient_temperature: float = 305.35  # air around the shell [K]
 
     @property
     def pressure_ratio(self) -> float:
@@ -302,6 +315,7 @@ class Case:
     mechanism: MechanismSpec
     pressure_curve: PressureCurve | None = None
     motor: MotorSpec | None = None
+    thermal: ThermalSpec = field(default_factory=lambda: parse_thermal(None, ""))
     raw: dict[str, Any] = field(default_factory=dict, repr=False, compare=False)
     source_text: str = field(default="", repr=False, compare=False)
     #: the ``KEY=VALUE`` overrides applied on top of the file, in order
@@ -548,7 +562,8 @@ def case_from_dict(
     valves = _valves(raw.get("valves"), options, file)
     leakage = Leakage(**read_table(raw.get("leakage"), LEAKAGE_SPEC, file, "leakage"))
     ht = read_table(raw.get("heat_transfer"), HEAT_TRANSFER_SPEC, file, "heat_transfer")
-    if options.heat_transfer != "adiabatic" and ht["wall_temperature"] is None:
+    network = options.thermal == "network"  # the network gives the wall temperature
+    if options.heat_transfer != "adiabatic" and ht["wall_temperature"] is None and not network:
         raise CaseError(
             file,
             "heat_transfer.wall_temperature",
@@ -591,6 +606,14 @@ def case_from_dict(
     _check_consistency(geometry, valves, options, file)
     curve = _pressure_curve(raw.get("pressure_curve"), options, file, allow_external_paths)
     motor = _motor(raw.get("motor"), options, file)
+    thermal = parse_thermal(raw.get("thermal"), file)
+    if network and op.shell_pressure != op.suction_pressure:
+        raise CaseError(
+            file,
+            "operating_point.shell_pressure",
+            f"{op.shell_pressure:.4g} Pa: options.thermal = 'network' models a low-side shell, "
+            f"at the suction pressure {op.suction_pressure:.4g} Pa; allowed: not set",
+        )
     return Case(
         name=top["name"],
         description=top["description"],
@@ -606,6 +629,7 @@ def case_from_dict(
         mechanism=mechanism,
         pressure_curve=curve,
         motor=motor,
+        thermal=thermal,
         raw=raw,
         source_text=source_text,
     )
@@ -836,6 +860,7 @@ def _operating_point(
         liquid_temperature=t_liq,
         shell_pressure=p_shell,
         shaft_speed=float(values["shaft_speed"]),
+        ambient_temperature=float(values["ambient_temperature"]),
     )
 
 

@@ -38,6 +38,7 @@ from recipsim.results.bearings import (
     mechanism_summary,
     pinned_columns,
 )
+from recipsim.results.thermal import thermal_columns
 from recipsim.solve.periodic import PeriodicSolution, sample_outputs
 
 CYCLE_COLUMNS: list[tuple[str, int]] = [
@@ -267,7 +268,7 @@ def _gas_metrics(solution: PeriodicSolution, freq: float, p_shaft: float) -> dic
     h_out = (y[cyl.Q_HDIS_OUT] - y[cyl.Q_HDIS_IN]) + (y[cyl.Q_HLEAK_OUT] - y[cyl.Q_HLEAK_IN])
     h_in = y[cyl.Q_HSUC_IN] - y[cyl.Q_HSUC_OUT]
     fluid = model.fluid
-    suction = model.suction
+    suction = model.compressor_inlet
     h_liquid = fluid.liquid_enthalpy(op.discharge_pressure, op.liquid_temperature)
     h_2s = fluid.state_ps(op.discharge_pressure, suction.entropy)["h"]
     mdot_dis = m_dis * freq
@@ -362,6 +363,7 @@ def summary(
             p_shaft - row["indicated_power [W]"] - bearing_loss * freq, p_shaft
         )
     row.update(_solver_metrics(solution))
+    row.update(thermal_columns(solution, case))
 
     angles = cycle["crank_angle [deg]"].to_numpy()
     p = cycle["cylinder_pressure [Pa]"].to_numpy()
