@@ -390,16 +390,8 @@ def muffler_pressure_drop(
 ) -> float:
     """Quasi-steady pressure drop of a muffler, K rho v^2 / 2 = K mdot^2 / (2 rho A^2) [Pa].
 
-    Parameters
-    ----------
-    loss_coefficient : float
-        K, referred to the velocity in ``flow_area`` [-].
-    mass_flow : float
-        Mean mass flow through the muffler [kg/s] (its sign is ignored).
-    density : float
-        Gas density in the muffler [kg/m3].
-    flow_area : float
-        Reference flow area [m2].
+    ``loss_coefficient`` K [-] refers to the velocity in ``flow_area`` [m2]; ``mass_flow``
+    the mean flow [kg/s] (sign ignored), ``density`` the muffler gas's [kg/m3].
     """
     if loss_coefficient == 0.0:
         return 0.0
