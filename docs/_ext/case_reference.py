@@ -87,6 +87,7 @@ def tables() -> list[tuple[str, str, list[list[str]]]]:
     from recipsim.case.mechanism import PISTON_BEARING_KEYS
     from recipsim.case.motor import MOTOR_SPEC
     from recipsim.case.refrigerant import LIMITS_SPEC, RATING_POINT_SPEC
+    from recipsim.case.thermal import THERMAL_SPEC
 
     coded = (
         "Validated in :mod:`recipsim.case.mechanism` against the declarations of "
@@ -115,6 +116,12 @@ def tables() -> list[tuple[str, str, list[list[str]]]]:
         ),
         ("[solver]", "", load.SOLVER_SPEC),
         ("[motor]", 'Required with ``options.drive = "induction_motor"``.', MOTOR_SPEC),
+        (
+            "[thermal]",
+            'Used with ``options.thermal = "network"`` (:mod:`recipsim.case.thermal`: '
+            "what each default conductance stands for).",
+            THERMAL_SPEC,
+        ),
         (
             "[pressure_curve]",
             '``file`` is required with ``options.pressure = "tabulated"``.',

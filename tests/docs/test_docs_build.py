@@ -43,6 +43,7 @@ def test_every_markdown_page_is_in_the_site(site):
 def test_case_reference_lists_every_declared_key(site):
     from recipsim.case import load
     from recipsim.case.motor import MOTOR_SPEC
+    from recipsim.case.thermal import THERMAL_SPEC
 
     html = (site / "case-reference.html").read_text()
     specs = [
@@ -55,6 +56,7 @@ def test_case_reference_lists_every_declared_key(site):
         load.HEAT_TRANSFER_SPEC,
         load.SOLVER_SPEC,
         MOTOR_SPEC,
+        THERMAL_SPEC,
     ]
     for spec in specs:
         for key, field in spec.items():

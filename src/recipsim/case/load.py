@@ -41,6 +41,7 @@ from recipsim.case.rating import (
 )
 from recipsim.case.refrigerant import RefrigerantSpec, case_fluid, load_refrigerant
 from recipsim.case.schema import Choice, Field, Flag, Spec, Text, check_keys, read_table
+from recipsim.case.thermal import ThermalSpec, parse_thermal
 from recipsim.errors import CaseError
 from recipsim.physics.mechanics.tabulated import PressureCurve
 from recipsim.physics.motor import MotorSpec
@@ -70,6 +71,12 @@ OPTION_SPEC: Spec = {
     ),
     "motor": Choice(
         ("lossless", "equivalent_circuit"), "lossless", "motor losses and electrical power"
+    ),
+    "thermal": Choice(
+        ("fixed_wall", "network"),
+        "fixed_wall",
+        "suction plenum at the inlet state and the given wall temperature, or the shell's "
+        "thermal network ([thermal])",
     ),
 }
 
@@ -178,6 +185,7 @@ TOP_KEYS = {
     "pressure_curve",
     "motor",
     "oil",
+    "thermal",
 }
 
 
@@ -196,6 +204,7 @@ class Options:
     #: "off", "mean" or "films" (resolved from the bearings when the case gives none)
     friction: str = "off"
     motor: str = "lossless"
+    thermal: str = "fixed_wall"
 
 
 @dataclass(frozen=True)
@@ -353,6 +362,7 @@ class Case:
     motor: MotorSpec | None = None
     #: equivalent circuit of the motor (``options.motor = "equivalent_circuit"``)
     motor_circuit: MotorCircuit | None = None
+    thermal: ThermalSpec = field(default_factory=lambda: parse_thermal(None, ""))
     raw: dict[str, Any] = field(default_factory=dict, repr=False, compare=False)
     source_text: str = field(default="", repr=False, compare=False)
     #: the ``KEY=VALUE`` overrides applied on top of the file, in order
@@ -599,7 +609,8 @@ def case_from_dict(
     valves = _valves(raw.get("valves"), options, file)
     leakage = Leakage(**read_table(raw.get("leakage"), LEAKAGE_SPEC, file, "leakage"))
     ht = read_table(raw.get("heat_transfer"), HEAT_TRANSFER_SPEC, file, "heat_transfer")
-    if options.heat_transfer != "adiabatic" and ht["wall_temperature"] is None:
+    network = options.thermal == "network"  # the network gives the wall temperature
+    if options.heat_transfer != "adiabatic" and ht["wall_temperature"] is None and not network:
         raise CaseError(
             file,
             "heat_transfer.wall_temperature",
@@ -645,6 +656,14 @@ def case_from_dict(
     motor, circuit = case_motor(
         raw.get("motor"), options.drive, options.motor, op.shaft_speed, file
     )
+    thermal = parse_thermal(raw.get("thermal"), file)
+    if network and op.shell_pressure != op.suction_pressure:
+        raise CaseError(
+            file,
+            "operating_point.shell_pressure",
+            f"{op.shell_pressure:.4g} Pa: options.thermal = 'network' models a low-side shell, "
+            f"at the suction pressure {op.suction_pressure:.4g} Pa; allowed: not set",
+        )
     return Case(
         name=top["name"],
         description=top["description"],
@@ -661,6 +680,7 @@ def case_from_dict(
         pressure_curve=curve,
         motor=motor,
         motor_circuit=circuit,
+        thermal=thermal,
         raw=raw,
         source_text=source_text,
     )

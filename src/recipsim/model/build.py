@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from functools import partial
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -18,8 +19,10 @@ from recipsim.case.load import Case
 from recipsim.case.mechanism import CrankGeometry
 from recipsim.case.refrigerant import case_fluid
 from recipsim.model import scenes
+from recipsim.model.loss_sources import constant_speed_mean_friction, network_loss_sources
 from recipsim.model.mechanism_parameters import bearing_tables, mechanism_parameters
 from recipsim.model.pinned import pinned_torque_profile
+from recipsim.model.thermal import ThermalCoupling
 from recipsim.physics.kinematics import piston_displacement
 from recipsim.physics.mechanics import layout as mlay
 from recipsim.physics.mechanics.flexible_setup import initial_state, state_scales
@@ -101,6 +104,16 @@ class Model:
     quadratures: np.ndarray = field(default_factory=lambda: np.arange(cyl.N_ERR, cyl.N_STATE))
     #: the crank speed is free (a revolution ends on the crank-angle event)
     free_speed: bool = False
+    #: the gas entering the shell (the operating point's suction state); None: the
+    #: suction plenum is that state (``options.thermal = "fixed_wall"``)
+    inlet: PlenumState | None = None
+    #: the shell's thermal network (``options.thermal = "network"``)
+    thermal: ThermalCoupling | None = None
+
+    @property
+    def compressor_inlet(self) -> PlenumState:
+        """The suction gas at the compressor inlet (capacity and efficiencies refer to it)."""
+        return self.suction if self.inlet is None else self.inlet
 
     @property
     def has_gas(self) -> bool:
@@ -124,6 +137,37 @@ class Model:
         _write_plenum(
             self.par, state, cyl.C_PD, cyl.C_RHOD, cyl.C_HD, cyl.C_KAPPAD, cyl.C_K0D, cyl.C_TD
         )
+
+    def set_discharge_state(self, pressure: float, enthalpy: float) -> None:
+        """Move the discharge plenum to ``pressure`` [Pa] and ``enthalpy`` [J/kg]."""
+        self.discharge.pressure = pressure
+        self.set_discharge_enthalpy(enthalpy)
+
+    def set_suction_state(self, pressure: float, temperature: float) -> None:
+        """Move the suction plenum (the gas the suction valve draws) to (p [Pa], T [K])."""
+        state = _plenum(self.fluid, pressure, temperature=temperature)
+        self.suction = state
+        _write_plenum(
+            self.par, state, cyl.C_PS, cyl.C_RHOS, cyl.C_HS, cyl.C_KAPPAS, cyl.C_K0S, cyl.C_TS
+        )
+
+    def set_shell_gas_state(self, temperature: float) -> None:
+        """The gas behind the piston (drawn into the gap by reverse leakage) at the shell
+        pressure and ``temperature`` [K]."""
+        if self.ipar[cyl.I_LEAK] == 0:
+            return
+        state = _plenum(self.fluid, self.shell.pressure, temperature=temperature)
+        self.shell = state
+        self.par[cyl.C_RHOSHELL] = state.density
+        self.par[cyl.C_HSHELL] = state.enthalpy
+        self.par[cyl.C_MUSHELL] = state.viscosity
+
+    def update_thermal(self, y_end: np.ndarray, duration: float) -> float:
+        """Solve the thermal network (if any) with a revolution's quadratures ``y_end``
+        over ``duration`` [s] and apply it; its relative change [-] (0 without one)."""
+        if self.thermal is None or not self.has_gas:
+            return 0.0
+        return self.thermal.update(self, y_end, duration)
 
 
 def _plenum(
@@ -247,7 +291,37 @@ def cylinder_model(case: Case) -> Model:
     )
     props.table = table
     ipar[cyl.I_PROPS] = cyl.PROPS_HEOS if table is None else cyl.PROPS_TABLE
-    # initial guess: suction gas filling the cylinder at BDC, compressed isentropically
+    y0, scale = _initial_gas_state(case, fluid, suction)
+    model = Model(
+        case=case,
+        fluid=fluid,
+        par=par,
+        ipar=ipar,
+        props=props,
+        y0=y0,
+        mode0=np.zeros(cyl.N_MODES, dtype=np.int64),
+        scale=scale,
+        period=2.0 * math.pi / omega,
+        suction=suction,
+        discharge=discharge,
+        shell=shell,
+    )
+    if opts.thermal == "network":
+        model.inlet = suction
+        model.thermal = ThermalCoupling(case)
+        friction = constant_speed_mean_friction(case) if opts.friction == "mean" else 0.0
+        model.thermal.loss_sources = partial(network_loss_sources, mean_friction=friction)
+        model.thermal.predict(model)
+        model.y0, model.scale = _initial_gas_state(case, fluid, model.suction)
+    return model
+
+
+def _initial_gas_state(
+    case: Case, fluid: AnyFluid, suction: PlenumState
+) -> tuple[np.ndarray, np.ndarray]:
+    """Initial state (suction gas filling the cylinder at BDC, compressed isentropically
+    to the start angle) and state scales of the cylinder scene."""
+    geo = case.geometry
     y0 = np.zeros(cyl.N_STATE)
     x_start, _, _ = piston_displacement(START_ANGLE, geo.crank_radius, geo.connecting_rod_length)
     v_start = geo.clearance_volume + geo.piston_area * x_start
@@ -255,7 +329,6 @@ def cylinder_model(case: Case) -> Model:
     start = fluid.state_rhos(rho_start, suction.entropy)
     y0[cyl.Y_T] = start["T"]
     y0[cyl.Y_RHO] = rho_start
-    mode0 = np.zeros(cyl.N_MODES, dtype=np.int64)
     scale = np.ones(cyl.N_STATE)
     scale[cyl.Y_T] = suction.temperature
     scale[cyl.Y_RHO] = suction.density
@@ -263,20 +336,7 @@ def cylinder_model(case: Case) -> Model:
         w_n = math.sqrt(valve.stiffness / valve.mass)
         scale[cyl.Y_XS + 2 * i] = valve.stop_height
         scale[cyl.Y_VS + 2 * i] = valve.stop_height * w_n
-    return Model(
-        case=case,
-        fluid=fluid,
-        par=par,
-        ipar=ipar,
-        props=props,
-        y0=y0,
-        mode0=mode0,
-        scale=scale,
-        period=2.0 * math.pi / omega,
-        suction=suction,
-        discharge=discharge,
-        shell=shell,
-    )
+    return y0, scale
 
 
 def _leak_code(option: str, law: str) -> int:

@@ -38,16 +38,9 @@ import numpy as np
 import pandas as pd
 
 from recipsim.case.load import Case, OperatingPoint
-from recipsim.case.lubrication import parse_oil
 from recipsim.case.rating import SATURATED_LIQUID_BAND
-from recipsim.physics.mean_friction import (
-    journal_petroff_power,
-    rod_swing_rate,
-    skirt_viscous_force,
-    time_mean,
-    wetted_skirt_length,
-)
-from recipsim.physics.motor_circuit import motor_operating_point_at_torque
+from recipsim.model.loss_sources import mean_friction_powers, motor_point
+from recipsim.physics.mean_friction import time_mean
 from recipsim.physics.thermo.table_states import TableFluid
 
 #: Loss columns of the motor and the operating-point attribute each one reads.
@@ -58,14 +51,6 @@ MOTOR_LOSSES = {
     "motor_core_loss_power [W]": "core_loss",
     "motor_stray_loss_power [W]": "stray_loss",
     "motor_windage_loss_power [W]": "windage_loss",
-}
-#: Journals and the spin of journal relative to sleeve, in units of the crank speed, as a
-#: function of the rod angle's crank-angle derivative.
-_JOURNALS = {
-    "primary": lambda dphi: np.ones_like(dphi),
-    "secondary": lambda dphi: np.ones_like(dphi),
-    "eccentric": lambda dphi: 1.0 - dphi,
-    "pin": lambda dphi: dphi,
 }
 
 
@@ -96,39 +81,15 @@ def _film_friction(cycle: pd.DataFrame) -> float:
 
 
 def mean_friction_columns(case: Case, cycle: pd.DataFrame) -> dict[str, float]:
-    """Petroff journals and the viscous skirt over the cycle's samples [W] (time means)."""
-    geo = case.geometry
-    mech = case.mechanism
-    speed = cycle["crank_speed [rad/s]"].to_numpy()
-    theta = np.radians(cycle["crank_angle [deg]"].to_numpy())
-    dphi = rod_swing_rate(theta, geo.crank_radius, geo.connecting_rod_length)
-    row: dict[str, float] = {}
-    for name, relative in _JOURNALS.items():
-        film = mech.bearing(name).film
-        if film is None:
-            continue
-        power = journal_petroff_power(
-            film.viscosity,
-            film.diameter,
-            film.length,
-            film.radial_clearance,
-            relative(dphi) * speed,
-        )
-        row[f"friction_power_{name} [W]"] = time_mean(power, speed)
-    piston_film = mech.bearing("piston_skirt").film
-    if piston_film is not None:
-        viscosity, clearance = piston_film.viscosity, piston_film.radial_clearance
-    else:
-        oil = mech.oil if mech.oil is not None else parse_oil(None, case.path)
-        viscosity = oil.viscosity(oil.film_temperature)
-        clearance = case.leakage.radial_clearance
-    crown = geo.clearance_volume / geo.piston_area + cycle["piston_displacement [m]"].to_numpy()
-    wetted = wetted_skirt_length(mech.piston.length, geo.liner_length, crown)
-    velocity = cycle["piston_velocity [m/s]"].to_numpy()
-    force = skirt_viscous_force(viscosity, geo.bore, wetted, clearance, velocity)
-    row["piston_friction_power [W]"] = time_mean(-force * velocity, speed)
-    row["friction_power [W]"] = float(sum(row.values()))
-    return row
+    """Petroff journals and the viscous skirt over the cycle's samples [W] (time means,
+    :func:`recipsim.model.loss_sources.mean_friction_powers`)."""
+    return mean_friction_powers(
+        case,
+        np.radians(cycle["crank_angle [deg]"].to_numpy()),
+        cycle["crank_speed [rad/s]"].to_numpy(),
+        cycle["piston_displacement [m]"].to_numpy(),
+        cycle["piston_velocity [m/s]"].to_numpy(),
+    )
 
 
 def friction_columns(case: Case, cycle: pd.DataFrame) -> dict[str, float]:
@@ -166,14 +127,13 @@ def motor_columns(case: Case, shaft_power: float, mean_speed: float) -> dict[str
     mean_speed : float
         Mean crank speed [rad/s] (one revolution over its duration).
     """
-    circuit = case.motor_circuit
-    if case.options.motor == "lossless" or circuit is None:
-        return _lossless(shaft_power)
     try:
-        point = motor_operating_point_at_torque(circuit, shaft_power / mean_speed)
+        point = motor_point(case, shaft_power, mean_speed)
     except ValueError as exc:  # past breakdown: the motor stalls
         warnings.warn(f"{case.name}: {exc}", stacklevel=2)
         return {k: math.nan for k in _lossless(shaft_power)}
+    if point is None:
+        return _lossless(shaft_power)
     # the circuit's own input less output: its losses at this load, added to the cycle's
     # shaft power (the same as the circuit's input when it turns at the cycle's speed)
     electrical = shaft_power + (point.electrical_power - point.shaft_power)

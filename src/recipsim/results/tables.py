@@ -42,6 +42,7 @@ from recipsim.results.bearings import (
     pinned_columns,
 )
 from recipsim.results.electrical import loss_columns, rating_enthalpies
+from recipsim.results.thermal import thermal_columns
 from recipsim.results.valve_metrics import valve_summary
 from recipsim.solve.periodic import PeriodicSolution, sample_outputs
 
@@ -277,7 +278,7 @@ def _gas_metrics(
     h_out = (y[cyl.Q_HDIS_OUT] - y[cyl.Q_HDIS_IN]) + (y[cyl.Q_HLEAK_OUT] - y[cyl.Q_HLEAK_IN])
     h_in = y[cyl.Q_HSUC_IN] - y[cyl.Q_HSUC_OUT]
     fluid = model.fluid
-    suction = model.suction
+    suction = model.compressor_inlet
     h_gas, h_liquid = rating_enthalpies(fluid, op)
     h_2s = fluid.state_ps(op.discharge_pressure, suction.entropy)["h"]
     mdot_dis = m_dis * freq
@@ -382,6 +383,7 @@ def summary(
             p_drive - row["indicated_power [W]"] - bearing_loss * freq, p_drive
         )
     row.update(_solver_metrics(solution))
+    row.update(thermal_columns(solution, case))
 
     angles = cycle["crank_angle [deg]"].to_numpy()
     p = cycle["cylinder_pressure [Pa]"].to_numpy()

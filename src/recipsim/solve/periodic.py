@@ -13,6 +13,10 @@ such runs over to shooting (see :func:`solve_periodic`), ``"revolutions"`` ends 
 at ``max_revolutions`` unconverged.
 Back-flow through the discharge valve comes from a plenum at
 the mass-weighted discharge enthalpy of the previous revolution (Bell et al.).
+With ``options.thermal = "network"`` the shell's thermal network is solved after every
+revolution (:mod:`recipsim.model.thermal`): its discharge chamber becomes the discharge
+plenum, and the relative change of the boundary it gives the cylinder joins the cycle
+residual.
 """
 
 from __future__ import annotations
@@ -152,7 +156,11 @@ def solve_revolutions(
         enthalpy = discharge_enthalpy(model, rev)
         if enthalpy is not None:
             model.set_discharge_enthalpy(enthalpy)
-        residual = cycle_residual(model, rev, previous)
+        # the shell's thermal network (if any) follows the revolution like the discharge
+        # plenum; its change counts in the residual
+        residual = max(
+            cycle_residual(model, rev, previous), model.update_thermal(rev.y_end, rev.duration)
+        )
         history.append(residual)
         y = rev.y_end.copy()
         mode = rev.mode_end.copy()

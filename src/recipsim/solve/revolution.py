@@ -309,8 +309,9 @@ def _revolution_totals(model: Model) -> list[int]:
 
 def discharge_enthalpy(model: Model, rev: Revolution) -> float | None:
     """Mass-weighted enthalpy of the gas discharged over ``rev`` [J/kg] (None without
-    gas or discharge)."""
-    if not model.has_gas:
+    gas or discharge, and with the shell's thermal network, whose discharge chamber node
+    is then the back-flow's source: :mod:`recipsim.model.thermal`)."""
+    if not model.has_gas or model.thermal is not None:
         return None
     m_out = rev.y_end[cyl.Q_MDIS_OUT]
     return float(rev.y_end[cyl.Q_HDIS_OUT] / m_out) if m_out > 0.0 else None

@@ -493,20 +493,23 @@ class _Shooting:
         model = self.model
         rev, self.h = integrate_revolution(model, y, mode, self.h, self.s.samples_per_revolution)
         self.tally.add(rev)
-        self._follow_enthalpy(rev)
-        self.history.append(cycle_residual(model, rev, self.previous))
+        thermal_change = self._follow_enthalpy(rev)
+        self.history.append(max(cycle_residual(model, rev, self.previous), thermal_change))
         self.chained = self.previous is not None and np.array_equal(
             rev.y_start, self.previous.y_end
         )
         self.previous = rev
         return rev
 
-    def _follow_enthalpy(self, rev: Revolution) -> None:
+    def _follow_enthalpy(self, rev: Revolution) -> float:
         """The discharge plenum takes the enthalpy ``rev`` delivered (the source of
-        back-flow for the next revolution, as in revolution iteration)."""
+        back-flow for the next revolution, as in revolution iteration), the shell's
+        thermal network (if any) the revolution's flows: its relative change [-]. The
+        network is held fixed over the map evaluations of a Newton solve."""
         enthalpy = discharge_enthalpy(self.model, rev)
         if enthalpy is not None:
             self.model.set_discharge_enthalpy(enthalpy)
+        return self.model.update_thermal(rev.y_end, rev.duration)
 
     def _budget(self) -> int:
         return self.s.max_revolutions - self.tally.revolutions

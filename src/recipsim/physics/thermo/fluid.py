@@ -45,6 +45,13 @@ class Fluid:
         self.state.update(self._cp.PT_INPUTS, pressure, temperature)
         return self._snapshot()
 
+    def enthalpy_pt(self, pressure: float, temperature: float) -> tuple[float, float, float]:
+        """Vapour enthalpy [J/kg], c_p [J/(kg K)] and density [kg/m3] at (p [Pa], T [K])
+        (the few properties the shell network needs, without a full state)."""
+        self.state.update(self._cp.PT_INPUTS, pressure, temperature)
+        s = self.state
+        return float(s.hmass()), float(s.cpmass()), float(s.rhomass())
+
     def state_ph(self, pressure: float, enthalpy: float) -> dict[str, float]:
         """State from pressure [Pa] and specific enthalpy [J/kg]."""
         self.state.update(self._cp.HmassP_INPUTS, enthalpy, pressure)

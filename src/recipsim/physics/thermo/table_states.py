@@ -331,6 +331,19 @@ class TableFluid:
         except TableMiss:
             return self.heos().state_pt(pressure, temperature)
 
+    def enthalpy_pt(self, pressure: float, temperature: float) -> tuple[float, float, float]:
+        """Vapour enthalpy [J/kg], c_p [J/(kg K)] and density [kg/m3] at (p [Pa], T [K]),
+        from the table without the entropy (about 5 us); HEOS where it has no data."""
+        try:
+            density = self._density_pt(pressure, temperature)
+            buf = self._props(temperature, density)
+            cp = float(buf[PROP_CV]) + temperature * float(buf[PROP_DPDT]) ** 2 / (
+                density * density * float(buf[PROP_DPDRHO])
+            )
+            return float(buf[PROP_ENTHALPY]), cp, density
+        except TableMiss:
+            return self.heos().enthalpy_pt(pressure, temperature)
+
     def _state_at_pressure(
         self, pressure: float, residual: Any, guess: float | None
     ) -> dict[str, float]:

@@ -1,0 +1,353 @@
+"""Coupling of the shell thermal network with the cylinder (``options.thermal = "network"``).
+
+The network's nodes are quasi-steady (:mod:`recipsim.physics.thermo.shell_network`), so
+they are solved exactly after every revolution, from that revolution's mean flows:
+
+- in: the delivered and leaked mass, the suction back-flow, the enthalpy through the
+  discharge valve and the piston gap, the cylinder gas's heat to the wall (the
+  revolution's quadratures), the motor and friction losses;
+- out, for the next revolution: the suction plenum state (the muffler node's temperature
+  at the line pressure less the suction muffler's drop), the wall temperature the
+  heat-transfer correlation sees, the discharge plenum (the discharge chamber node's
+  enthalpy, the source of back-flow, at the line pressure plus the discharge muffler's
+  drop) and the shell gas state that the piston gap draws from.
+
+The revolution iteration (:func:`recipsim.solve.periodic.solve_revolutions`) and the
+plain revolutions of shooting call :meth:`ThermalCoupling.update` and count its relative
+change in the cycle residual, so the gas cycle and the network converge together (the
+thermal update costs well under a revolution). Before the first revolution a predictor
+solves the network with the clearance-volume estimate of the mass flow and an
+isentropic discharge, so the first revolution already starts near the heated suction
+state.
+
+Motor and friction losses are the ``[thermal]`` table's ``motor_loss_power`` and
+``friction_power`` when set, else ``loss_sources(model, y_end, duration)`` when a model
+provides it, else 0.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass, replace
+from typing import Any, Protocol
+
+import numpy as np
+
+from recipsim.case.load import Case
+from recipsim.physics.thermo import cylinder as cyl
+from recipsim.physics.thermo.shell_network import (
+    CW,
+    DC,
+    SG,
+    SM,
+    NetworkLoads,
+    NetworkPressures,
+    NetworkSolution,
+    muffler_pressure_drop,
+    solve_network,
+)
+
+_DEW_MARGIN = 0.5  # K
+
+
+class _Plenum(Protocol):
+    pressure: float
+    temperature: float
+    density: float
+    enthalpy: float
+    entropy: float
+    kappa: float
+
+
+class CoupledModel(Protocol):
+    """What the coupling needs of :class:`recipsim.model.build.Model`."""
+
+    case: Case
+    fluid: Any
+    par: np.ndarray
+
+    @property
+    def suction(self) -> _Plenum: ...
+    @property
+    def discharge(self) -> _Plenum: ...
+
+    def set_suction_state(self, pressure: float, temperature: float) -> None: ...
+    def set_discharge_state(self, pressure: float, enthalpy: float) -> None: ...
+    def set_shell_gas_state(self, temperature: float) -> None: ...
+
+
+@dataclass(frozen=True)
+class AppliedNetwork:
+    """A network solution and the boundary it gave the cylinder.
+
+    Attributes
+    ----------
+    solution : NetworkSolution
+    loads : NetworkLoads
+        The flows and sources it was solved with.
+    pressures : NetworkPressures
+        Its node pressures (suction and discharge plenum pressures among them).
+    """
+
+    solution: NetworkSolution
+    loads: NetworkLoads
+    pressures: NetworkPressures
+
+
+class ThermalCoupling:
+    """The network of one model and its last solutions.
+
+    Attributes
+    ----------
+    applied : AppliedNetwork or None
+        The solution the cylinder runs with now (solved from the last revolution).
+    last_loads : NetworkLoads or None
+        The flows of the last integrated revolution, as measured.
+    loss_sources : callable or None
+        ``(model, y_end, duration) -> (motor loss, friction) [W]`` of a motor or friction
+        model, used when the ``[thermal]`` table does not fix them.
+    """
+
+    def __init__(self, case: Case) -> None:
+        self.spec = case.thermal
+        self.parameters = case.thermal.network(case.operating_point.ambient_temperature)
+        self.applied: AppliedNetwork | None = None
+        self.last_loads: NetworkLoads | None = None
+        #: suction plenum of the revolution before the last one (whose gas the last
+        #: revolution discharged)
+        self._earlier_plenum: _Plenum | None = None
+        self._dew: dict[float, float] = {}  # dew point + margin at each pressure [K]
+        self.loss_sources: Callable[[Any, np.ndarray, float], tuple[float, float]] | None = None
+
+    # ---- the network's boundary -----------------------------------------------------------
+    def _losses(self, model: CoupledModel, y_end: np.ndarray | None, duration: float):
+        motor, friction = self.spec.motor_loss_power, self.spec.friction_power
+        if (math.isnan(motor) or math.isnan(friction)) and self.loss_sources and y_end is not None:
+            m_model, f_model = self.loss_sources(model, y_end, duration)
+            motor = m_model if math.isnan(motor) else motor
+            friction = f_model if math.isnan(friction) else friction
+        return (0.0 if math.isnan(motor) else motor), (0.0 if math.isnan(friction) else friction)
+
+    def loads(self, model: CoupledModel, y_end: np.ndarray, duration: float) -> NetworkLoads:
+        """Mean flows of a revolution (quadratures ``y_end``, ``duration`` [s]) and the
+        motor and friction sources."""
+        f = 1.0 / duration
+        motor, friction = self._losses(model, y_end, duration)
+        return NetworkLoads(
+            delivered_mass_flow=(y_end[cyl.Q_MDIS_OUT] - y_end[cyl.Q_MDIS_IN]) * f,
+            leakage_mass_flow=(y_end[cyl.Q_MLEAK_OUT] - y_end[cyl.Q_MLEAK_IN]) * f,
+            suction_backflow_mass_flow=y_end[cyl.Q_MSUC_OUT] * f,
+            suction_backflow_enthalpy_flow=y_end[cyl.Q_HSUC_OUT] * f,
+            discharge_enthalpy_flow=y_end[cyl.Q_HDIS_OUT] * f,
+            leakage_enthalpy_flow=(y_end[cyl.Q_HLEAK_OUT] - y_end[cyl.Q_HLEAK_IN]) * f,
+            heat_to_wall=-y_end[cyl.Q_HEAT] * f,
+            motor_loss_power=motor,
+            friction_power=friction,
+            discharge_backflow_mass_flow=y_end[cyl.Q_MDIS_IN] * f,
+        )
+
+    def pressures(self, model: CoupledModel, loads: NetworkLoads) -> NetworkPressures:
+        """Node pressures: the muffler drops with the mean flows and the densities of
+        the plenum states now in the model."""
+        op = model.case.operating_point
+        spec = self.spec
+        suction_flow = loads.delivered_mass_flow + loads.leakage_mass_flow
+        dp_s = muffler_pressure_drop(
+            spec.suction_muffler_loss_coefficient, suction_flow, model.suction.density,
+            spec.suction_muffler_flow_area,
+        )  # fmt: skip
+        dp_d = muffler_pressure_drop(
+            spec.discharge_muffler_loss_coefficient, loads.delivered_mass_flow,
+            model.discharge.density, spec.discharge_muffler_flow_area,
+        )  # fmt: skip
+        if dp_s >= 0.5 * op.suction_pressure:
+            raise ValueError(
+                f"the suction muffler's pressure drop {dp_s:.4g} Pa reaches half the suction "
+                "pressure: thermal.suction_muffler_loss_coefficient or _flow_area is off"
+            )
+        return NetworkPressures(
+            inlet_pressure=op.suction_pressure,
+            inlet_temperature=op.suction_temperature,
+            node=(
+                op.suction_pressure - dp_s,
+                op.shell_pressure,
+                op.discharge_pressure + dp_d,
+                op.discharge_pressure,
+            ),
+        )
+
+    def _state(self, model: CoupledModel) -> Callable[[float, float], tuple[float, ...]]:
+        """``(p, T) -> (h, c_p, rho)`` of the vapour; below the dew point (a discharge
+        chamber cooled under the condensing temperature when almost nothing is
+        delivered) the vapour's enthalpy is continued linearly from 0.5 K above it:
+        condensation inside the shell is outside the network."""
+        fluid = model.fluid
+        dew = self._dew
+
+        def state(pressure: float, temperature: float) -> tuple[float, ...]:
+            t_dew = dew.get(pressure)
+            if t_dew is None:
+                t_dew = dew[pressure] = fluid.saturation_temperature(pressure, 1.0) + _DEW_MARGIN
+            if temperature >= t_dew:
+                return fluid.enthalpy_pt(pressure, temperature)
+            h, cp, rho = fluid.enthalpy_pt(pressure, t_dew)
+            return h + cp * (temperature - t_dew), cp, rho * t_dew / temperature
+
+        return state
+
+    # ---- solving and applying -------------------------------------------------------------
+    def _coupled_solution(
+        self, model: CoupledModel, response: CycleResponse, pressures: NetworkPressures
+    ) -> NetworkSolution:
+        """The network together with the cycle moved to a plenum at the suction muffler's
+        temperature (:class:`CycleResponse`), solved by one Newton."""
+        state = self._state(model)
+        p_sm = pressures.node[0]
+        guess = None if self.applied is None else self.applied.solution.temperature
+
+        def loads_at(t_sm: float) -> NetworkLoads:
+            return response.at(t_sm, state(p_sm, t_sm))
+
+        try:
+            return solve_network(self.parameters, loads_at, pressures, state, guess)
+        except ValueError:
+            # far from the periodic state (a shooting iterate, a nearly closed valve) the
+            # linearised response can mislead Newton: the revolution's loads as they are
+            return solve_network(self.parameters, response.loads, pressures, state, guess)
+
+    def _solve_and_apply(self, model: CoupledModel, response: CycleResponse) -> float:
+        """Solve with the cycle's ``response``, give the cylinder the new boundary; the
+        largest relative change of the boundary (suction plenum temperature and pressure,
+        wall temperature, discharge plenum temperature and pressure)."""
+        pressures = self.pressures(model, response.loads)
+        solution = self._coupled_solution(model, response, pressures)
+        t = solution.temperature
+        model.set_suction_state(pressures.node[0], float(t[SM]))
+        model.set_discharge_state(pressures.node[2], float(solution.enthalpy[DC]))
+        model.set_shell_gas_state(float(t[SG]))
+        model.par[cyl.C_TWALL] = float(t[CW])
+        change = 1.0
+        if self.applied is not None:
+            old = self.applied
+            t_old = old.solution.temperature
+            change = max(
+                abs(t[SM] - t_old[SM]) / t[SM],
+                abs(t[CW] - t_old[CW]) / t[CW],
+                abs(t[DC] - t_old[DC]) / t[DC],
+                abs(pressures.node[0] - old.pressures.node[0]) / pressures.node[0],
+                abs(pressures.node[2] - old.pressures.node[2]) / pressures.node[2],
+            )
+        self.applied = AppliedNetwork(solution, solution.loads, pressures)
+        return change
+
+    def update(self, model: CoupledModel, y_end: np.ndarray, duration: float) -> float:
+        """Solve the network with the revolution that just ended and apply it.
+
+        Parameters
+        ----------
+        model : Model
+        y_end : ndarray
+            The revolution's end state (its quadratures) [SI].
+        duration : float
+            Its duration [s].
+
+        Returns
+        -------
+        float
+            Largest relative change of the boundary the network gives the cylinder:
+            suction plenum temperature and pressure, wall temperature, discharge plenum
+            temperature and pressure [-] (0 when the revolution delivered nothing: the
+            network keeps its state). The other nodes follow the cycle's totals, which
+            the cycle residual checks.
+        """
+        loads = self.loads(model, y_end, duration)
+        self.last_loads = loads
+        drawn = model.suction
+        earlier = drawn if self._earlier_plenum is None else self._earlier_plenum
+        self._earlier_plenum = drawn
+        if loads.delivered_mass_flow <= 0.0:
+            return 0.0
+        suction = (y_end[cyl.Q_MSUC_IN] - y_end[cyl.Q_MSUC_OUT]) / duration
+        return self._solve_and_apply(model, CycleResponse(loads, suction, drawn, earlier))
+
+    def predict(self, model: CoupledModel) -> None:
+        """First network solution, before any revolution: mass flow from the clearance
+        re-expansion estimate, isentropic discharge from the suction plenum, no wall heat."""
+        case = model.case
+        geo = case.geometry
+        freq = case.operating_point.shaft_speed / (2.0 * math.pi)
+        clearance = geo.clearance_volume / geo.swept_volume
+        motor, friction = self._losses(model, None, 1.0 / freq)
+        s = model.suction
+        ratio = model.discharge.pressure / s.pressure
+        eta = max(0.2, 1.0 - clearance * (ratio ** (1.0 / s.kappa) - 1.0))
+        m = eta * s.density * geo.swept_volume * freq
+        h_dis = model.fluid.state_ps(model.discharge.pressure, s.entropy)["h"]
+        loads = NetworkLoads(m, 0.0, 0.0, 0.0, m * h_dis, 0.0, 0.0, motor, friction)
+        self._solve_and_apply(model, CycleResponse(loads, m, s, s))
+
+
+@dataclass(frozen=True)
+class CycleResponse:
+    """A revolution's flows and how they would move with the suction plenum temperature.
+
+    Within a revolution (270 deg to 270 deg) the gas discharged was drawn in the
+    revolution before: the discharge stream is paired with that plenum (``earlier``),
+    the suction mass, its back-flow and the leakage with the plenum of this revolution
+    (``drawn``). Moved to a plenum at T: the mass flows scale with the plenum density
+    (same volumetric efficiency; the delivered flow is the suction net flow less the
+    leakage, which it equals at the periodic state), and each stream's specific
+    enthalpy rise over its plenum's enthalpy scales with T over that plenum's temperature
+    (compression work at a fixed pressure ratio, ideal gas). Exact at the plenum the
+    revolution ran with, so it does not change the converged state; it carries the
+    cycle's first-order response into each network update so that the coupled iteration
+    converges in about the cylinder's own revolutions.
+
+    Attributes
+    ----------
+    loads : NetworkLoads
+        As measured over the revolution.
+    suction_mass_flow : float
+        Net flow through the suction valve [kg/s].
+    drawn, earlier : plenum states
+        Suction plenum of this revolution and of the one before.
+    """
+
+    loads: NetworkLoads
+    suction_mass_flow: float
+    drawn: _Plenum
+    earlier: _Plenum
+
+    def at(self, temperature: float, state: tuple[float, ...]) -> NetworkLoads:
+        """The loads at a suction plenum at ``temperature`` [K], ``state`` = its
+        (h [J/kg], c_p, rho [kg/m3])."""
+        h_new, _, rho_new = state[:3]
+        loads = self.loads
+        scale = rho_new / self.drawn.density
+
+        def moved(mass: float, enthalpy_flow: float, plenum: _Plenum) -> tuple[float, float]:
+            if mass == 0.0:
+                return 0.0, enthalpy_flow * scale
+            rise = enthalpy_flow / mass - plenum.enthalpy
+            return mass * scale, mass * scale * (h_new + rise * temperature / plenum.temperature)
+
+        m_leak, h_leak = moved(loads.leakage_mass_flow, loads.leakage_enthalpy_flow, self.drawn)
+        m_back, h_back = moved(
+            loads.suction_backflow_mass_flow, loads.suction_backflow_enthalpy_flow, self.drawn
+        )
+        delivered = (self.suction_mass_flow - loads.leakage_mass_flow) * scale
+        back = loads.discharge_backflow_mass_flow * scale
+        gross = loads.delivered_mass_flow + loads.discharge_backflow_mass_flow
+        rise = loads.discharge_enthalpy_flow / gross - self.earlier.enthalpy
+        h_dis = h_new + rise * temperature / self.earlier.temperature
+        return replace(
+            loads,
+            delivered_mass_flow=delivered,
+            discharge_backflow_mass_flow=back,
+            discharge_enthalpy_flow=(delivered + back) * h_dis,
+            suction_backflow_mass_flow=m_back,
+            suction_backflow_enthalpy_flow=h_back,
+            leakage_mass_flow=m_leak,
+            leakage_enthalpy_flow=h_leak,
+        )
