@@ -134,8 +134,8 @@ def network_loss_sources(
     scenes the bearings' dissipation (films, dampers); the shaft power is the
     revolution's drive work over its duration (plus the ``mean`` friction,
     ``mean_friction`` [W], :func:`constant_speed_mean_friction` once per model); the
-    motor loss is the circuit's at that load (0 for a lossless motor or past breakdown, where the summary
-    reports NaN and a warning).
+    motor loss is the circuit's at that load (0 for a lossless motor or past breakdown,
+    where the summary reports NaN and a warning).
     """
     case: Case = model.case
     if model.scene == SCENE_CYLINDER:
