@@ -104,6 +104,13 @@ class Result:
         bearings = film_bearings(self.cycle) or ("primary", "secondary")
         return plot_orbits({self.case.name: self.cycle}, bearings=bearings).axes
 
+    def plot_losses(self, ax: Axes | None = None) -> Axes:
+        """Where the electrical power goes: the loss chain as a waterfall, from the
+        electrical input to the isentropic power of the delivered gas."""
+        from recipsim.report.loss_plot import plot_loss_breakdown
+
+        return _first_axes(plot_loss_breakdown(self.summary, ax=ax, title=self.case.name), ax)
+
     # ---- report -------------------------------------------------------------------------
     def write(self, directory: str | Path, plots: bool = True) -> Path:
         """Write the report (``summary.csv``, ``cycle.csv``, figures, ``case.toml``,

@@ -131,12 +131,25 @@ class Model:
         return self.par[scenes.P_MECH : scenes.P_MECH + mlay.N_PAR]
 
     def set_discharge_enthalpy(self, enthalpy: float) -> None:
-        """Move the discharge plenum (the source of back-flow) to ``enthalpy`` [J/kg]."""
+        """Move the discharge plenum (the source of back-flow) to ``enthalpy`` [J/kg],
+        kept at or above the vapour 0.5 K above its dew point (a Newton iterate of the
+        shooting solver may ask for less: the plenum holds vapour, and a flash far into
+        the liquid fails in CoolProp)."""
+        enthalpy = max(enthalpy, self._discharge_enthalpy_floor())
         state = _plenum(self.fluid, self.discharge.pressure, enthalpy=enthalpy)
         self.discharge = state
         _write_plenum(
             self.par, state, cyl.C_PD, cyl.C_RHOD, cyl.C_HD, cyl.C_KAPPAD, cyl.C_K0D, cyl.C_TD
         )
+
+    def _discharge_enthalpy_floor(self) -> float:
+        """Enthalpy of the vapour 0.5 K above the dew point at the discharge pressure
+        [J/kg] (-inf above the critical pressure)."""
+        pressure = self.discharge.pressure
+        if pressure >= getattr(self.fluid, "critical_pressure", math.inf):
+            return -math.inf
+        dew = self.fluid.saturation_temperature(pressure, 1.0)
+        return float(self.fluid.enthalpy_pt(pressure, dew + 0.5)[0])
 
     def set_discharge_state(self, pressure: float, enthalpy: float) -> None:
         """Move the discharge plenum to ``pressure`` [Pa] and ``enthalpy`` [J/kg]."""

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import hashlib
 import json
+import math
 from collections.abc import Mapping, Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -61,6 +62,12 @@ def write_report(
             from recipsim.report.plotting import save_cycle_figures
 
             save_cycle_figures(cycle, tmp, plenum=plenum, title=run_title(summary_row))
+            if math.isfinite(summary_row.get("loss_motor [W]", math.nan)):
+                from recipsim.report.loss_plot import plot_loss_breakdown
+                from recipsim.report.mechanics_plots import save_figure
+
+                figure = plot_loss_breakdown(summary_row, title=run_title(summary_row))
+                save_figure(figure, tmp / "loss_breakdown.png")
     return out_dir
 
 

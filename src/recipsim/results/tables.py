@@ -42,6 +42,7 @@ from recipsim.results.bearings import (
     pinned_columns,
 )
 from recipsim.results.electrical import loss_columns, rating_enthalpies
+from recipsim.results.loss_breakdown import loss_breakdown
 from recipsim.results.thermal import thermal_columns
 from recipsim.results.valve_metrics import valve_summary
 from recipsim.solve.periodic import PeriodicSolution, sample_outputs
@@ -384,6 +385,7 @@ def summary(
         )
     row.update(_solver_metrics(solution))
     row.update(thermal_columns(solution, case))
+    row.update(loss_breakdown(row, cycle, solution))
 
     angles = cycle["crank_angle [deg]"].to_numpy()
     p = cycle["cylinder_pressure [Pa]"].to_numpy()

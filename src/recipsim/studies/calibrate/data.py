@@ -4,8 +4,9 @@ Columns (the header names the unit, as the reports do):
 
 - ``standard``: a rating standard, set as ``operating_point.standard``;
 - ``<name> [<unit>]`` for an input: ``operating_point.<name>`` (or the dotted key itself
-  when ``name`` contains a dot), the cell's number with the header's unit, validated by
-  the case loader like any override;
+  when ``name`` contains a dot; ``suction_gas_temperature``, the standards' word, is
+  ``suction_temperature``), the cell's number with the header's unit, validated by the
+  case loader like any override;
 - the targets (``--targets``; default ``cooling_capacity [W]`` and ``COP [-]`` where the
   file has them): summary quantities with the same name and unit; an empty cell means
   "not measured at this point".
@@ -29,6 +30,8 @@ from recipsim.errors import CaseError
 
 #: Targets fitted when the command names none (those the file has).
 DEFAULT_TARGETS = ("cooling_capacity [W]", "COP [-]")
+#: Column names of catalogues and standards for the case's operating-point keys.
+ALIASES = {"suction_gas_temperature": "suction_temperature"}
 _LABELLED = ("evaporating_temperature", "condensing_temperature", "discharge_pressure")
 _HEADER = re.compile(r"^\s*([A-Za-z_][\w.]*)\s*\[([^\]]*)\]\s*$")
 
@@ -72,7 +75,7 @@ def _input_key(column: str, file: str) -> tuple[str, str]:
     if match is None:
         raise CaseError(file, column, "an input column is named '<key> [<unit>]' (or 'standard')")
     name, unit = match.groups()
-    key = name if "." in name else f"operating_point.{name}"
+    key = name if "." in name else f"operating_point.{ALIASES.get(name, name)}"
     return key, unit.strip()
 
 

@@ -231,7 +231,7 @@ def _run_point(
 ) -> dict[str, float] | None:
     try:
         return simulate(case.with_({**point.overrides, **SOLVER_OVERRIDES, **fitted}))
-    except RecipsimError:
+    except (RecipsimError, ValueError):  # ValueError: a property flash failed in CoolProp
         return None
 
 

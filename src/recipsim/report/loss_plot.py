@@ -1,0 +1,58 @@
+"""The loss chain as a waterfall: from the electrical input down to the isentropic power
+of the delivered gas (:mod:`recipsim.results.loss_breakdown`)."""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from typing import Any
+
+from matplotlib.figure import Figure
+
+from recipsim.results.loss_breakdown import LOSS_COLUMNS
+
+_LABELS = {
+    "loss_motor [W]": "motor",
+    "loss_mechanical [W]": "friction, bearings",
+    "loss_suction_valve [W]": "suction valve",
+    "loss_discharge_valve [W]": "discharge valve",
+    "loss_mufflers [W]": "mufflers",
+    "loss_leakage [W]": "leakage",
+    "loss_suction_heating [W]": "suction heating",
+    "loss_cylinder_heat_and_other [W]": "cylinder heat, other",
+}
+
+
+def plot_loss_breakdown(row: Mapping[str, Any], ax: Any = None, title: str = "") -> Figure:
+    """Horizontal waterfall of the loss chain of one summary row [W]: the electrical
+    input on top, each loss as a bar stepping down (its share of the input written
+    beside it), the isentropic power of the delivered gas at the bottom."""
+    if ax is None:
+        fig = Figure(figsize=(6.4, 4.4), layout="constrained")
+        ax = fig.add_subplot()
+    else:
+        fig = ax.figure
+    total = float(row["motor_electrical_power [W]"])
+    labels, lefts, widths, colours = ["electrical input"], [0.0], [total], ["tab:blue"]
+    level = total
+    for column in LOSS_COLUMNS:
+        loss = float(row[column])
+        level -= loss
+        labels.append(_LABELS[column])
+        lefts.append(level)
+        widths.append(loss)
+        colours.append("tab:red" if loss >= 0.0 else "tab:green")
+    labels.append("isentropic, delivered gas")
+    lefts.append(0.0)
+    widths.append(float(row["isentropic_power [W]"]))
+    colours.append("tab:blue")
+    y = list(range(len(labels)))[::-1]
+    ax.barh(y, widths, left=lefts, color=colours)
+    for yi, left, width in zip(y, lefts, widths, strict=True):
+        ax.text(max(left, left + width) + 0.01 * total, yi, f"{width:.1f} W ({width / total:.0%})",
+                va="center", fontsize=8)  # fmt: skip
+    ax.set_yticks(y, labels)
+    ax.set_xlim(0.0, 1.25 * total)
+    ax.set_xlabel("power [W]")
+    ax.set_title(title or "where the electrical power goes", fontsize=9)
+    ax.grid(True, axis="x", alpha=0.3)
+    return fig

@@ -1,0 +1,125 @@
+"""Where the electrical power goes: the loss chain from the socket to the isentropic
+power of the delivered gas (issue 16).
+
+Summary columns, all time means [W]:
+
+==================================  ================================================
+``loss_motor [W]``                  motor losses, electrical - shaft power
+``loss_mechanical [W]``             shaft - indicated power: journal and piston
+                                    friction, bearing damping
+``loss_suction_valve [W]``          p-V area of the suction stroke below the suction
+                                    plenum pressure, while the suction valve passes gas
+``loss_discharge_valve [W]``        p-V area above the discharge plenum pressure while
+                                    the discharge valve passes gas
+``loss_mufflers [W]``               flow work of the mufflers' pressure drops,
+                                    ``m (dp_s / rho_s + dp_d / rho_d)``
+``loss_leakage [W]``                the leaked mass's isentropic work,
+                                    ``m_leak dh_s``
+``loss_suction_heating [W]``        the delivered gas's extra isentropic work for being
+                                    drawn at the cylinder-inlet temperature instead of
+                                    the compressor inlet's
+``loss_cylinder_heat_and_other [W]`` what the named terms leave of indicated -
+                                    isentropic power: heat exchanged in the cylinder,
+                                    re-expansion, the valves' dynamics
+``isentropic_power [W]``            the delivered gas from the compressor inlet to the
+                                    discharge pressure (already in the summary)
+==================================  ================================================
+
+They add up to ``motor_electrical_power [W]`` by construction (the last loss is the
+remainder); the test of the decomposition is that the remainder vanishes where it must
+(ideal valves, adiabatic cylinder, no leakage: the ideal isentropic cycle) and that each
+named term matches its own definition.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+import pandas as pd
+
+from recipsim.physics.thermo import cylinder as cyl
+from recipsim.solve.periodic import PeriodicSolution
+
+#: Breakdown columns, from the socket down (``isentropic_power [W]`` closes the chain).
+LOSS_COLUMNS = (
+    "loss_motor [W]",
+    "loss_mechanical [W]",
+    "loss_suction_valve [W]",
+    "loss_discharge_valve [W]",
+    "loss_mufflers [W]",
+    "loss_leakage [W]",
+    "loss_suction_heating [W]",
+    "loss_cylinder_heat_and_other [W]",
+)
+
+
+def _valve_areas(cycle: pd.DataFrame, p_suction: float, p_discharge: float) -> tuple[float, float]:
+    """p-V areas of one revolution [J]: below ``p_suction`` while the suction valve
+    flows, above ``p_discharge`` while the discharge valve flows (trapezoids)."""
+    p = cycle["cylinder_pressure [Pa]"].to_numpy()
+    v = cycle["cylinder_volume [m3]"].to_numpy()
+    dv = np.roll(v, -1) - v
+    p_mid = 0.5 * (p + np.roll(p, -1))
+    areas = []
+    # suction: (p_s - p) dV with dV > 0; discharge: (p - p_d)(-dV), the same form
+    for side, plenum in (("suction", p_suction), ("discharge", p_discharge)):
+        flow = cycle[f"{side}_mass_flow [kg/s]"].to_numpy()
+        flowing = (flow != 0.0) | (np.roll(flow, -1) != 0.0)
+        areas.append(float(np.sum(np.where(flowing, (plenum - p_mid) * dv, 0.0))))
+    return areas[0], areas[1]
+
+
+def loss_breakdown(
+    row: dict[str, Any], cycle: pd.DataFrame, solution: PeriodicSolution | None
+) -> dict[str, float]:
+    """The breakdown columns (NaN where the scene has no gas model).
+
+    Parameters
+    ----------
+    row : dict
+        The summary row so far (powers, mass flows, plenum pressures, motor columns).
+    cycle : DataFrame
+        The cycle table.
+    solution : PeriodicSolution or None
+        The periodic solution (its model's fluid and plenum states).
+    """
+    model = None if solution is None else solution.model
+    if model is None or not model.has_gas:
+        return dict.fromkeys(LOSS_COLUMNS, math.nan)
+    op = model.case.operating_point
+    freq = row["mean_crank_speed [rpm]"] / 60.0
+    if model.free_speed:
+        freq = 1.0 / solution.final.duration  # type: ignore[union-attr]
+    fluid, inlet = model.fluid, model.compressor_inlet
+    p_s = row.get("suction_plenum_pressure [Pa]", op.suction_pressure)
+    p_d = row.get("discharge_plenum_pressure [Pa]", op.discharge_pressure)
+    suction_area, discharge_area = _valve_areas(cycle, p_s, p_d)
+    mdot = row["discharge_mass_flow [kg/s]"]
+    h_2s = fluid.state_ps(op.discharge_pressure, inlet.entropy)["h"]
+    dh_s_line = h_2s - inlet.enthalpy
+    t_in = row.get("cylinder_inlet_temperature [K]", inlet.temperature)
+    if abs(t_in - inlet.temperature) > 1e-9:
+        heated = fluid.state_pt(op.suction_pressure, t_in)
+        dh_s_heated = fluid.state_ps(op.discharge_pressure, heated["s"])["h"] - heated["h"]
+    else:
+        dh_s_heated = dh_s_line
+    y = solution.final.y_end  # type: ignore[union-attr]
+    suction_flow = (y[cyl.Q_MSUC_IN] - y[cyl.Q_MSUC_OUT]) * freq
+    mufflers = suction_flow * (op.suction_pressure - p_s) / inlet.density
+    mufflers += mdot * (p_d - op.discharge_pressure) / model.discharge.density
+    out = {
+        "loss_motor [W]": row["motor_electrical_power [W]"] - row["shaft_power [W]"],
+        "loss_mechanical [W]": row["shaft_power [W]"] - row["indicated_power [W]"],
+        "loss_suction_valve [W]": suction_area * freq,
+        "loss_discharge_valve [W]": discharge_area * freq,
+        "loss_mufflers [W]": mufflers,
+        "loss_leakage [W]": row["leakage_mass_flow [kg/s]"] * dh_s_line,
+        "loss_suction_heating [W]": mdot * (dh_s_heated - dh_s_line),
+    }
+    named = sum(out[k] for k in LOSS_COLUMNS[2:-1])
+    out["loss_cylinder_heat_and_other [W]"] = (
+        row["indicated_power [W]"] - row["isentropic_power [W]"] - named
+    )
+    return out
