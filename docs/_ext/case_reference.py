@@ -199,6 +199,7 @@ def tables() -> list[tuple[str, str, list[list[str]]]]:
         "pressure_curve",
         "motor",
         "oil",
+        "thermal",
     }
     for extra in sorted(load.TOP_KEYS - known):  # a table added later, not documented here yet
         out.append((f"[{extra}]", "Accepted by the loader; not described here yet.", []))

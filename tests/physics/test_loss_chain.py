@@ -27,9 +27,7 @@ from recipsim.api import load_case, simulate
 from recipsim.results.loss_breakdown import LOSS_COLUMNS
 from recipsim.studies.calibrate.data import read_points
 
-CATALOGUE = (
-    Path(__file__).parents[2] / "src/recipsim/data/catalogue/danfoss_tles5.7kk.3_r600a.csv"
-)
+CATALOGUE = Path(__file__).parents[2] / "src/recipsim/data/catalogue/danfoss_tles5.7kk.3_r600a.csv"
 
 
 def _chain_sum(row) -> float:

@@ -10,6 +10,7 @@ from helpers import REFERENCE, ROOT
 from recipsim.atomic import swap_in
 from recipsim.cli.main import main
 from recipsim.physics.mechanics.layout import BEARING_NAMES
+from recipsim.physics.thermo.shell_network import NODES
 
 SUMMARY_REQUIRED = [
     "refrigerant",
@@ -92,6 +93,9 @@ def test_columns_carry_units_and_are_documented(report):
         # per-bearing rows are documented once, with <name> for each of the six bearings
         names = BEARING_NAMES if "<name>" in name else ("",)
         documented |= {name.replace("<name>", b) for b in names}
+        # the thermal network's nodes likewise, with <node>
+        if "<node>" in name:
+            documented |= {name.replace("<node>", n) for n in NODES}
     text_columns = {
         "case",
         "refrigerant",
@@ -105,6 +109,7 @@ def test_columns_carry_units_and_are_documented(report):
         "standard",
         "friction",
         "motor",
+        "thermal",
     }
     for col in list(summary.columns) + list(cycle.columns):
         assert col in documented, f"column {col!r} is not documented in reports/README.md"

@@ -121,6 +121,7 @@ def test_table_arithmetic_against_the_summary_rows(tab_vs_coupled):
         "standard",
         "friction",
         "motor",
+        "thermal",
         "converged [-]",
         "periodic_method",
     }
