@@ -43,7 +43,7 @@ from recipsim.case.load import (
     resolve_extends,
 )
 from recipsim.case.refrigerant import find_refrigerant_file
-from recipsim.case.schema import Choice, Field, Text
+from recipsim.case.schema import Choice, Field, Flag, Text
 from recipsim.case.units import to_si
 from recipsim.errors import CaseError
 from recipsim.studies.sweep.spec import SweepSpec
@@ -107,7 +107,7 @@ class PlannedPoint:
     columns: dict[str, Any] = field(default_factory=dict)
 
 
-def _field_for(key: str) -> Field | Choice | Text | None:
+def _field_for(key: str) -> Field | Choice | Flag | Text | None:
     """Schema entry of a dotted case key, if it is known here."""
     table, _, leaf = key.rpartition(".")
     spec = _TABLE_SPECS.get(table)
