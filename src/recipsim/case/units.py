@@ -3,7 +3,7 @@
 Bare numbers are taken to be in the SI unit of the key (K, Pa, m, kg, rad/s, ...).
 Strings carry a unit, e.g. ``"3500 rpm"``, ``"-23.3 degC"`` or ``"22 mm"``; pint does
 the conversion. pint is imported lazily so that runs without unit strings do not pay
-for it.
+for it; each distinct (string, unit) pair is converted once per process.
 """
 
 from __future__ import annotations
@@ -59,16 +59,28 @@ def to_si(value: Any, unit: str, file: str, key: str) -> float:
         return float(value)
     if not isinstance(value, str):
         raise CaseError(file, key, f"expected a number or a quantity in {unit}, got {value!r}")
+    converted = _convert(value, unit)
+    if isinstance(converted, str):
+        raise CaseError(file, key, converted)
+    return converted
+
+
+@lru_cache(maxsize=8192)
+def _convert(value: str, unit: str) -> float | str:
+    """``value`` in ``unit``, or the message saying why it cannot be.
+
+    Cached: a sweep reads the same few unit strings at every point, and pint parses
+    one in about 50 us. The message is returned (not raised) so that it is cached too;
+    :func:`to_si` adds the file and the key.
+    """
     ureg = _registry()
     try:
         q = ureg.Quantity(value)
     except Exception as exc:  # pint raises several unrelated types for bad strings
-        raise CaseError(file, key, f"cannot read {value!r} as a quantity ({exc})") from None
+        return f"cannot read {value!r} as a quantity ({exc})"
     try:
         if not hasattr(q, "to"):
             return float(q)
         return float(q.to(unit).magnitude)
     except Exception:
-        raise CaseError(
-            file, key, f"{value!r} has the wrong dimension: expected a quantity in {unit}"
-        ) from None
+        return f"{value!r} has the wrong dimension: expected a quantity in {unit}"
