@@ -118,6 +118,12 @@ def run_point(task: PointTask) -> dict[str, Any]:
     return {"status": NOT_CONVERGED, "message": message, "summary": row}
 
 
+def run_points(tasks: list[PointTask]) -> list[dict[str, Any]]:
+    """Solve a batch of points in order (see :func:`run_point`); one round trip to a
+    worker for several points."""
+    return [run_point(task) for task in tasks]
+
+
 def point_case(path: str, overrides: tuple[str, ...], allow_external_paths: bool) -> Case:
     """The case of one point: the base case, read and validated once per process, with
     the point's overrides applied and validated (:meth:`~recipsim.case.load.Case.with_`).
