@@ -52,15 +52,16 @@ def test_fixed_margins_keep_every_label_inside(cycle, tmp_path: Path) -> None:
         fig = make()
         if kind is not None:
             plotting.fixed_margins(fig, kind)
-        fig.suptitle("reference_r134a_lbp: pinned crank, constant_speed, cylinder model")
+        suptitle = fig.suptitle("reference_r134a_lbp: pinned crank, constant_speed, cylinder model")
         renderer = FigureCanvasAgg(fig).get_renderer()
         width, height = fig.bbox.width, fig.bbox.height
         renderer.clear()
         fig.draw(renderer)  # places the tick labels
         # each axes' tight box holds what it draws: tick labels, axis labels, title
         boxes = [ax.get_tightbbox(renderer) for ax in fig.axes if ax.get_visible()]
-        boxes.append(fig._suptitle.get_window_extent(renderer))
+        boxes.append(suptitle.get_window_extent(renderer))
         for box in boxes:
+            assert box is not None
             assert box.x0 >= -1 and box.y0 >= -1, (name, box)
             assert box.x1 <= width + 1 and box.y1 <= height + 1, (name, box)
 

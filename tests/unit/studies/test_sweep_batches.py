@@ -42,7 +42,12 @@ def test_batched_pool_equals_one_process(tmp_path: Path, monkeypatch: pytest.Mon
     from recipsim.studies.sweep import runner
 
     sizes: list[int] = []
-    monkeypatch.setattr(runner, "chunk_size", lambda *args: sizes.append(3) or 3)
+
+    def three(*args: object) -> int:
+        sizes.append(3)
+        return 3
+
+    monkeypatch.setattr(runner, "chunk_size", three)
     sweep = _sweep(tmp_path)
     pool = run_sweep(sweep, out=tmp_path / "pool", jobs=2, plots=("COP",))
     inline = run_sweep(sweep, out=tmp_path / "inline", jobs=1, plots=False)
