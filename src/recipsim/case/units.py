@@ -8,7 +8,9 @@ for it; each distinct (string, unit) pair is converted once per process.
 
 from __future__ import annotations
 
+import json
 from functools import lru_cache
+from pathlib import Path
 from typing import Any
 
 from recipsim.errors import CaseError
@@ -71,8 +73,20 @@ def _convert(value: str, unit: str) -> float | str:
 
     Cached: a sweep reads the same few unit strings at every point, and pint parses
     one in about 50 us. The message is returned (not raised) so that it is cached too;
-    :func:`to_si` adds the file and the key.
+    :func:`to_si` adds the file and the key. Conversions are also kept on disk
+    (:func:`_known`): a process that meets only known strings never imports pint
+    (0.3 s).
     """
+    known = _known()
+    key = f"{unit}\n{value}"
+    if key in known.values:
+        return known.values[key]
+    converted = _pint_convert(value, unit)
+    known.add(key, converted)
+    return converted
+
+
+def _pint_convert(value: str, unit: str) -> float | str:
     ureg = _registry()
     try:
         q = ureg.Quantity(value)
@@ -84,3 +98,58 @@ def _convert(value: str, unit: str) -> float | str:
         return float(q.to(unit).magnitude)
     except Exception:
         return f"{value!r} has the wrong dimension: expected a quantity in {unit}"
+
+
+class _KnownConversions:
+    """Conversions pint made before, in a JSON file of recipsim's cache directory.
+
+    One file per pint version (a new pint may read a unit differently); JSON, so a
+    cache file written by someone else can at worst give a wrong number, never run
+    code. A missing, unreadable or malformed file is an empty cache; a write that
+    fails is skipped.
+    """
+
+    def __init__(self, path: Path | None) -> None:
+        self.path = path
+        self.values: dict[str, float | str] = {}
+        if path is None:
+            return
+        try:
+            data = json.loads(path.read_text())
+        except (OSError, ValueError):
+            return
+        if isinstance(data, dict):
+            self.values = {
+                k: v for k, v in data.items() if isinstance(v, (float, str)) and isinstance(k, str)
+            }
+
+    def add(self, key: str, converted: float | str) -> None:
+        self.values[key] = converted
+        if self.path is None or len(self.values) > _MAX_KNOWN:
+            return
+        try:
+            from recipsim.atomic import atomic_file
+            from recipsim.cache_dirs import private_dir
+
+            private_dir(self.path.parent)
+            with atomic_file(self.path) as handle:
+                json.dump(self.values, handle)
+        except OSError:
+            pass
+
+
+#: Conversions kept on disk at most (a sweep over 10 000 distinct strings keeps the
+#: first ones only; the in-memory cache holds the rest).
+_MAX_KNOWN = 4096
+
+
+@lru_cache(maxsize=1)
+def _known() -> _KnownConversions:
+    try:
+        from importlib.metadata import version
+
+        from recipsim.cache_dirs import cache_dir
+
+        return _KnownConversions(cache_dir() / "pint" / f"conversions-{version('pint')}.json")
+    except Exception:  # no metadata for pint, no cache directory: memory only
+        return _KnownConversions(None)

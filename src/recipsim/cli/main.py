@@ -25,6 +25,7 @@ from typing import Any
 
 from recipsim import __version__
 from recipsim.cli.bench import add_bench_parser
+from recipsim.cli.bench_system import add_bench_system_parser
 from recipsim.cli.calibrate import add_calibrate_parser
 from recipsim.cli.check import add_check_parser
 from recipsim.cli.compare import add_compare_parser
@@ -39,6 +40,7 @@ _SUBCOMMANDS = (
     add_paper_parser,
     add_compare_parser,
     add_bench_parser,
+    add_bench_system_parser,
     add_check_parser,
     add_calibrate_parser,
 )
