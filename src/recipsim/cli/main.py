@@ -32,6 +32,7 @@ from recipsim.cli.compare import add_compare_parser
 from recipsim.cli.options import add_common_options, exit_status
 from recipsim.cli.paper import add_paper_parser
 from recipsim.cli.sweep import add_sweep_parser
+from recipsim.cli.warmup import add_warmup_parser
 from recipsim.report.figure_names import FIGURE_NAMES, check_figure_names
 
 # Each registers its subparser and sets ``handler(args, argv) -> exit status`` on it.
@@ -43,6 +44,7 @@ _SUBCOMMANDS = (
     add_bench_system_parser,
     add_check_parser,
     add_calibrate_parser,
+    add_warmup_parser,
 )
 
 

@@ -188,12 +188,8 @@ def measure_map(
     one = runs[min(jobs)]["wall [s]"] * min(jobs)
     for count, timing in runs.items():
         timing["efficiency [-]"] = one / (count * timing["wall [s]"])
-    low, high = min(jobs), max(jobs)
-    model: dict[str, float] = {}
-    if high > low:
-        t_low, t_high = runs[low]["wall [s]"], runs[high]["wall [s]"]
-        parallel = (t_low - t_high) / (1.0 / low - 1.0 / high)
-        model = {"serial [s]": t_low - parallel / low, "parallel [s]": parallel}
+    low = min(jobs)
+    model = overhead_model({count: timing["wall [s]"] for count, timing in runs.items()})
     return {
         "sweep": sweep,
         "points": points,
@@ -204,6 +200,27 @@ def measure_map(
         else None,
         "model": model,
     }
+
+
+def overhead_model(walls: dict[int, float]) -> dict[str, float]:
+    """Serial and parallel parts of ``T(J) = S + P / J`` through the fewest and the most
+    workers measured.
+
+    Parameters
+    ----------
+    walls : dict
+        Worker count to wall time [s].
+
+    Returns
+    -------
+    dict
+        ``serial [s]`` (S) and ``parallel [s]`` (P); empty with one worker count only.
+    """
+    low, high = min(walls), max(walls)
+    if high == low:
+        return {}
+    parallel = (walls[low] - walls[high]) / (1.0 / low - 1.0 / high)
+    return {"serial [s]": walls[low] - parallel / low, "parallel [s]": parallel}
 
 
 def extrapolate(model: dict[str, float], workers: int, scale: float = 1.0) -> dict[str, float]:

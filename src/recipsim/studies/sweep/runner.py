@@ -222,6 +222,20 @@ def _drain(
 _SCHEDULER_ADDRESS = re.compile(r"(tcp|tls|ws|wss|inproc|ucx)://[^\s/]+(:\d+)?/?")
 
 
+def _prepare_dask_workers(client: Any, first: PointTask) -> None:
+    """Register :class:`~recipsim.studies.sweep.dask_plugin.PrepareWorker` on the
+    cluster: every worker, present or joining later, loads the solver and the base case
+    once."""
+    from recipsim.studies.sweep.dask_plugin import PrepareWorker
+
+    plugin = PrepareWorker(first.case, first.allow_external_paths)
+    register = getattr(client, "register_plugin", None) or client.register_worker_plugin
+    try:
+        register(plugin, name="recipsim-prepare")
+    except Exception as exc:  # a worker that cannot prepare fails its points, said there
+        print(f"recipsim: could not prepare the Dask workers ({exc})", file=sys.stderr)
+
+
 def check_scheduler_address(address: str) -> None:
     """Refuse an address that is not ``PROTOCOL://HOST[:PORT]`` before connecting.
 
@@ -333,27 +347,44 @@ def run_dask(
                 f"the Dask workers run recipsim {remote}, this is {__version__}; results "
                 "would not be comparable"
             )
-        futures = {
-            client.submit(run_point, task, key=f"recipsim-point-{task.point_id}", pure=False): task
-            for task in tasks
-        }
+        if tasks:
+            _prepare_dask_workers(client, tasks[0])
+        workers = max(1, len(client.scheduler_info().get("workers", {})))
+        size = chunk_size(0.0, len(tasks), workers)
+        futures = {}
+        for start in range(0, len(tasks), size):
+            batch = list(tasks[start : start + size])
+            key = f"recipsim-points-{batch[0].point_id}-{len(batch)}"
+            futures[client.submit(run_points, batch, key=key, pure=False)] = batch
         on_start()
         try:
-            for future in as_completed(futures, loop=client.loop):
-                task = futures[future]
+            pending = as_completed(futures, loop=client.loop)
+            for future in pending:
+                batch = futures[future]
                 try:
-                    result = future.result()
+                    results = future.result()
                 except KilledWorker as exc:
-                    result = {
-                        "status": FAILED,
-                        "message": f"the point killed its Dask worker repeatedly ({exc})",
-                        "summary": {},
-                    }
+                    if len(batch) > 1:  # find the point that kills: one by one
+                        for task in batch:
+                            single = client.submit(
+                                run_points, [task], key=f"recipsim-point-{task.point_id}"
+                            )
+                            futures[single] = [task]
+                            pending.add(single)
+                        continue
+                    results = [
+                        {
+                            "status": FAILED,
+                            "message": f"the point killed its Dask worker repeatedly ({exc})",
+                            "summary": {},
+                        }
+                    ]
                 except Exception as exc:
                     raise WorkerLost(
                         f"the Dask cluster failed during the sweep ({type(exc).__name__}: {exc})"
                     ) from None
-                on_result(task, result)
+                for task, result in zip(batch, results, strict=True):
+                    on_result(task, result)
         except BaseException:
             client.cancel([f for f in futures if not f.done()])
             raise

@@ -169,6 +169,15 @@ def _base_case(path: str, allow_external_paths: bool, stamp: tuple[int, int]) ->
         return None
 
 
+def prepare_worker(case: str, allow_external_paths: bool) -> None:
+    """Load the solver's modules, the base case and its property table in this process
+    (a Dask worker as it starts, see :mod:`recipsim.studies.sweep.dask_plugin`)."""
+    import recipsim.results.run  # noqa: F401
+    import recipsim.solve.periodic  # noqa: F401
+
+    _base_case(case, allow_external_paths, _stamp(case))
+
+
 def worker_version() -> str:
     """recipsim version of a (remote) worker, checked before a Dask sweep starts."""
     from recipsim import __version__
