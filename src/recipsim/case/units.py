@@ -8,6 +8,7 @@ for it; each distinct (string, unit) pair is converted once per process.
 
 from __future__ import annotations
 
+import atexit
 import json
 from functools import lru_cache
 from pathlib import Path
@@ -106,12 +107,14 @@ class _KnownConversions:
     One file per pint version (a new pint may read a unit differently); JSON, so a
     cache file written by someone else can at worst give a wrong number, never run
     code. A missing, unreadable or malformed file is an empty cache; a write that
-    fails is skipped.
+    fails is skipped. New conversions are written when the process exits (not by the
+    forked workers of a sweep, which end without exit handlers: the parent's are).
     """
 
     def __init__(self, path: Path | None) -> None:
         self.path = path
         self.values: dict[str, float | str] = {}
+        self.dirty = False
         if path is None:
             return
         try:
@@ -124,16 +127,25 @@ class _KnownConversions:
             }
 
     def add(self, key: str, converted: float | str) -> None:
+        """Remember a conversion; the file is written once, when the process exits."""
+        if not self.dirty and self.path is not None:
+            atexit.register(self.save)
         self.values[key] = converted
-        if self.path is None or len(self.values) > _MAX_KNOWN:
+        self.dirty = True
+
+    def save(self) -> None:
+        """Write the known conversions (at most :data:`_MAX_KNOWN`) atomically."""
+        if self.path is None or not self.dirty:
             return
+        self.dirty = False
         try:
             from recipsim.atomic import atomic_file
             from recipsim.cache_dirs import private_dir
 
             private_dir(self.path.parent)
+            kept = dict(list(self.values.items())[:_MAX_KNOWN])
             with atomic_file(self.path) as handle:
-                json.dump(self.values, handle)
+                json.dump(kept, handle)
         except OSError:
             pass
 

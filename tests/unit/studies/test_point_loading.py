@@ -114,6 +114,7 @@ def test_known_conversions_come_back_from_disk_exactly(tmp_path: Path) -> None:
     cache = _KnownConversions(path)
     for value, unit in (("-23.3 degC", "K"), ("3500 rpm", "rad/s"), ("3 kg", "m")):
         cache.add(f"{unit}\n{value}", _pint_convert(value, unit))
+    cache.save()
     again = _KnownConversions(path)
     assert again.values == cache.values
     assert again.values["K\n-23.3 degC"] == 273.15 - 23.3
