@@ -64,3 +64,28 @@ def test_unknown_map_plot_is_refused_before_any_point(tmp_path: Path) -> None:
         run_sweep(_sweep(tmp_path), out=tmp_path / "x", jobs=1, plots=("cop",))
     assert "unknown map plot; allowed: " + ", ".join(MAP_NAMES) in str(info.value)
     assert not (tmp_path / "x").exists()
+
+
+def test_bearing_map_has_one_legend_below_the_panels() -> None:
+    """One figure legend with a line per group (4 groups: 2 refrigerants x 2 condensing
+    temperatures), below every panel's tick labels and inside the figure."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from test_sweep_plots import AXES, synthetic
+
+    from recipsim.studies.sweep.plots import group_columns, plot_bearing_loads, x_column
+
+    table = synthetic(bearings=True)
+    ok = table[table["status"] == "ok"]
+    x = x_column(ok, AXES)
+    assert x is not None
+    fig = plot_bearing_loads(ok, x, group_columns(ok, AXES, x))
+    assert fig is not None
+    renderer = FigureCanvasAgg(fig).get_renderer()
+    fig.draw(renderer)
+    assert [ax.get_legend() for ax in fig.axes] == [None] * len(fig.axes)
+    assert len(fig.legends) == 1 and len(fig.legends[0].get_texts()) == 4
+    legend = fig.legends[0].get_window_extent(renderer)
+    assert legend.y0 >= -1 and legend.x0 >= -1 and legend.x1 <= fig.bbox.width + 1
+    boxes = [ax.get_tightbbox(renderer) for ax in fig.axes if ax.get_visible()]
+    lowest = min(box.y0 for box in boxes if box is not None)
+    assert legend.y1 <= lowest + 1

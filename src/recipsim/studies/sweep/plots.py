@@ -149,18 +149,34 @@ def plot_bearing_loads(table: pd.DataFrame, x: str, groups: list[str]) -> Figure
         return None
     ncols = min(3, len(columns))
     nrows = math.ceil(len(columns) / ncols)
-    fig = Figure(figsize=(4.2 * ncols, 3.4 * nrows), layout="constrained")
+    fig = Figure(figsize=(4.2 * ncols, 3.4 * nrows))
     axes = fig.subplots(nrows, ncols, squeeze=False)
     for ax, column in zip(axes.flat, columns, strict=False):
         name = BEARING_COLUMN.match(column).group(1)  # type: ignore[union-attr]
         plot_map(table, column, x, groups, ylabel="peak load [N]", ax=ax)
         ax.set_title(name.replace("_", " "))
         legend = ax.get_legend()
-        if legend is not None and ax is not axes.flat[0]:
+        if legend is not None:
             legend.remove()
     for ax in list(axes.flat)[len(columns) :]:
         ax.set_visible(False)
     fig.suptitle("peak bearing loads")
+    # one legend for all panels, below them, in fixed margins [inch]: inside a panel it
+    # hid the data and the constrained layout took a third of the drawing time
+    handles, labels = axes.flat[0].get_legend_handles_labels()
+    legend_rows = math.ceil(len(labels) / 3) if labels else 0
+    width, height = fig.get_size_inches()
+    bottom = 0.6 + 0.19 * legend_rows + (0.15 if legend_rows else 0.0)
+    fig.subplots_adjust(
+        left=0.75 / width,
+        right=1.0 - 0.2 / width,
+        bottom=bottom / height,
+        top=1.0 - 0.6 / height,
+        wspace=0.3,
+        hspace=0.45,
+    )
+    if labels:
+        fig.legend(handles, labels, loc="lower center", ncol=3, fontsize=7, frameon=False)
     return fig
 
 
