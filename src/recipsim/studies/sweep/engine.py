@@ -33,6 +33,9 @@ TIMING_COLUMNS = ("wall_time [s]",)
 
 ID_COLUMNS = ("point", "status", "message", "point_id")
 
+#: Map plots to draw: all (True), none (False) or those named (``plots.MAP_NAMES``).
+Plots = bool | Collection[str]
+
 
 class SweepInterrupted(RecipsimError):
     """The sweep was interrupted (Ctrl-C); the finished points are on disk."""
@@ -163,7 +166,7 @@ def run_sweep(
     out: str | Path = Path("reports/sweeps"),
     overrides: Iterable[str] = (),
     reports: bool = False,
-    plots: bool | Collection[str] = True,
+    plots: Plots = True,
     parquet: bool = False,
     retry_failed: bool = False,
     fresh: bool = False,
@@ -235,7 +238,7 @@ def run_sweep(
     spec = path if isinstance(path, SweepSpec) else load_sweep(path, allow_external_paths)
     if parquet:
         _check_parquet()
-    if plots is not True and plots:
+    if plots is not True and plots:  # names of map plots, checked before any point runs
         from recipsim.studies.sweep.plots import check_map_names
 
         plots = check_map_names(plots)
@@ -375,12 +378,7 @@ def _execute(
 
 
 def _write_outputs(
-    spec: SweepSpec,
-    root: Path,
-    table: pd.DataFrame,
-    axes: list[str],
-    plots: bool | Collection[str],
-    parquet: bool,
+    spec: SweepSpec, root: Path, table: pd.DataFrame, axes: list[str], plots: Plots, parquet: bool
 ) -> list[Path]:
     files = []
     csv = root / "summary.csv"
