@@ -369,14 +369,17 @@ class Case:
     overrides: tuple[str, ...] = field(default=(), compare=False)
     allow_external_paths: bool = field(default=False, repr=False, compare=False)
 
-    def with_(self, overrides: Mapping[str, Any] | None = None, **keys: Any) -> Case:
+    def with_(
+        self, overrides: Mapping[str, Any] | Sequence[str] | None = None, **keys: Any
+    ) -> Case:
         """A new case with some values changed, validated exactly like the file.
 
         Parameters
         ----------
-        overrides : mapping, optional
+        overrides : mapping or sequence of str, optional
             Dotted case keys to values, e.g. ``{"operating_point.shaft_speed": "3000 rpm"}``
-            (a string with a unit, or a bare number in SI).
+            (a string with a unit, or a bare number in SI), or ``KEY=VALUE`` texts as
+            for ``--set``.
         **keys
             The same with ``__`` for the dots: ``operating_point__shaft_speed="3000 rpm"``.
 
@@ -390,9 +393,8 @@ class Case:
         CaseError
             Naming the key and what is allowed, as for the file.
         """
-        changes = dict(overrides or {})
-        changes.update({key.replace("__", "."): value for key, value in keys.items()})
-        texts = override_texts(changes)
+        texts = override_texts(overrides)
+        texts += override_texts({key.replace("__", "."): value for key, value in keys.items()})
         raw = apply_overrides(self.raw, texts, self.path)
         case = case_from_dict(
             raw, self.path, self.source_text, allow_external_paths=self.allow_external_paths

@@ -19,17 +19,21 @@ from __future__ import annotations
 
 import argparse
 import sys
+from collections.abc import Collection
 from pathlib import Path
 from typing import Any
 
 from recipsim import __version__
 from recipsim.cli.bench import add_bench_parser
+from recipsim.cli.bench_system import add_bench_system_parser
 from recipsim.cli.calibrate import add_calibrate_parser
 from recipsim.cli.check import add_check_parser
 from recipsim.cli.compare import add_compare_parser
 from recipsim.cli.options import add_common_options, exit_status
 from recipsim.cli.paper import add_paper_parser
 from recipsim.cli.sweep import add_sweep_parser
+from recipsim.cli.warmup import add_warmup_parser
+from recipsim.report.figure_names import FIGURE_NAMES, check_figure_names
 
 # Each registers its subparser and sets ``handler(args, argv) -> exit status`` on it.
 _SUBCOMMANDS = (
@@ -37,8 +41,10 @@ _SUBCOMMANDS = (
     add_paper_parser,
     add_compare_parser,
     add_bench_parser,
+    add_bench_system_parser,
     add_check_parser,
     add_calibrate_parser,
+    add_warmup_parser,
 )
 
 
@@ -57,6 +63,13 @@ def _parser() -> argparse.ArgumentParser:
         "parent directory of the reports: each case's goes to OUT/<case name>/, "
         "OUT/<case name>+<digest of the --set values>/ with --set (default: reports/)",
     )
+    run.add_argument(
+        "--plots",
+        type=figure_list,
+        default=None,
+        metavar="NAMES",
+        help=f"draw only these figures, comma-separated ({', '.join(FIGURE_NAMES)})",
+    )
     run.add_argument("--quiet", action="store_true", help="print nothing but errors")
     run.set_defaults(handler=_run_command)
     for register in _SUBCOMMANDS:
@@ -64,11 +77,22 @@ def _parser() -> argparse.ArgumentParser:
     return parser
 
 
+def figure_list(text: str) -> tuple[str, ...]:
+    """argparse type of ``--plots``: comma-separated figure names, checked."""
+    from recipsim.errors import CaseError
+
+    names = tuple(name.strip() for name in text.split(",") if name.strip())
+    try:
+        return check_figure_names(names)
+    except CaseError as exc:
+        raise argparse.ArgumentTypeError(exc.message + f" (got {exc.key!r})") from None
+
+
 def run_case(
     path: Path,
     overrides: list[str],
     out: Path,
-    plots: bool = True,
+    plots: bool | Collection[str] = True,
     argv: list[str] | None = None,
     allow_external_paths: bool = False,
 ) -> tuple[dict[str, Any], Path]:
@@ -77,7 +101,7 @@ def run_case(
     The report goes to ``out/<case name>`` (``out/<case name>+<digest>`` with overrides,
     :func:`recipsim.report.case_report.report_name`). It is checked before the
     simulation (it must be new, empty or a recipsim report), so a refused ``--out``
-    costs nothing.
+    costs nothing. ``plots``: every figure, none, or those named.
     """
     from recipsim.case.load import load_case
     from recipsim.report.case_report import report_dir, write_case_report
@@ -100,7 +124,7 @@ def _run_command(args: argparse.Namespace, argv: list[str] | None) -> int:
                 path,
                 args.overrides,
                 args.out,
-                not args.no_plots,
+                False if args.no_plots else (args.plots if args.plots is not None else True),
                 argv if argv is not None else sys.argv,
                 args.allow_external_paths,
             )

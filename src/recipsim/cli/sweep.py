@@ -79,6 +79,16 @@ def add_sweep_parser(sub: Any) -> argparse.ArgumentParser:
         "parent directory of the sweep: it goes to OUT/<sweep name>/ "
         "(OUT/<sweep name>+<digest of the --set values>/ with --set) (default: reports/sweeps/)",
     )
+    parser.add_argument(
+        "--plots",
+        type=lambda text: tuple(n.strip() for n in text.split(",") if n.strip()),
+        default=None,
+        metavar="NAMES",
+        help=(
+            "draw only these map plots, comma-separated (cooling_capacity, shaft_power, COP, "
+            "volumetric_efficiency, isentropic_efficiency, bearing_loads)"
+        ),
+    )
     for flag, help_text in _SWITCHES:
         parser.add_argument(flag, action="store_true", help=help_text)
     parser.set_defaults(handler=run_sweep_command)
@@ -108,7 +118,7 @@ def _run_sweep(args: argparse.Namespace, argv: list[str] | None, started: float)
             out=args.out,
             overrides=args.overrides,
             reports=args.reports,
-            plots=not args.no_plots,
+            plots=False if args.no_plots else (True if args.plots is None else args.plots),
             parquet=args.parquet,
             retry_failed=args.retry_failed,
             fresh=args.fresh,

@@ -10,7 +10,7 @@ from __future__ import annotations
 import hashlib
 import json
 import math
-from collections.abc import Mapping, Sequence
+from collections.abc import Collection, Mapping, Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -31,7 +31,7 @@ def write_report(
     overrides: list[str],
     meta: dict[str, Any],
     plenum: tuple[float, float] | None = None,
-    plots: bool = True,
+    plots: bool | Collection[str] = True,
     files: Mapping[str, bytes] | None = None,
 ) -> Path:
     """Write one case's report into ``out_dir`` atomically.
@@ -40,6 +40,8 @@ def write_report(
     any other existing directory is refused (:func:`recipsim.atomic.atomic_directory`).
     ``case_text`` becomes ``case.toml`` (headed by the overrides when it does not name
     them itself); ``files`` (relative path to content) are written beside it.
+    ``plots``: every figure (True), none (False) or those named
+    (:data:`recipsim.report.figure_names.FIGURE_NAMES`).
 
     Returns
     -------
@@ -61,8 +63,10 @@ def write_report(
         if plots:
             from recipsim.report.plotting import save_cycle_figures
 
-            save_cycle_figures(cycle, tmp, plenum=plenum, title=run_title(summary_row))
-            if math.isfinite(summary_row.get("loss_motor [W]", math.nan)):
+            only = None if plots is True else tuple(plots)
+            save_cycle_figures(cycle, tmp, plenum, run_title(summary_row), only)
+            loss_chain = math.isfinite(summary_row.get("loss_motor [W]", math.nan))
+            if loss_chain and (only is None or "loss_breakdown" in only):
                 from recipsim.report.loss_plot import plot_loss_breakdown
                 from recipsim.report.mechanics_plots import save_figure
 
@@ -80,7 +84,7 @@ def run_title(row: Mapping[str, Any]) -> str:
 
 
 def write_case_report(
-    run: CaseRun, out_dir: Path, overrides: list[str], plots: bool = True
+    run: CaseRun, out_dir: Path, overrides: list[str], plots: bool | Collection[str] = True
 ) -> Path:
     """Write the report of ``run`` atomically into ``out_dir`` (see reports/README.md).
 

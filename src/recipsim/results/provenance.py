@@ -6,6 +6,7 @@ import platform
 import subprocess
 import sys
 import time
+from functools import lru_cache
 from pathlib import Path
 from typing import Any
 
@@ -63,7 +64,10 @@ def provenance(solution: PeriodicSolution, argv: list[str] | None = None) -> dic
     return meta
 
 
+@lru_cache(maxsize=1)
 def git_commit() -> str:
+    """Commit of recipsim's source checkout (``""`` outside one), asked of git once per
+    process: a sweep point would otherwise start a ``git`` process (about 5 ms)."""
     try:
         root = Path(__file__).resolve().parents[3]
         out = subprocess.run(

@@ -12,7 +12,7 @@ import sys
 import time
 import uuid
 from collections import Counter
-from collections.abc import Iterable, Sequence
+from collections.abc import Collection, Iterable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -32,6 +32,9 @@ TIMING_COLUMNS = ("wall_time [s]",)
 """Summary columns that differ from run to run (everything else is deterministic)."""
 
 ID_COLUMNS = ("point", "status", "message", "point_id")
+
+#: Map plots to draw: all (True), none (False) or those named (``plots.MAP_NAMES``).
+Plots = bool | Collection[str]
 
 
 class SweepInterrupted(RecipsimError):
@@ -163,7 +166,7 @@ def run_sweep(
     out: str | Path = Path("reports/sweeps"),
     overrides: Iterable[str] = (),
     reports: bool = False,
-    plots: bool = True,
+    plots: Plots = True,
     parquet: bool = False,
     retry_failed: bool = False,
     fresh: bool = False,
@@ -192,8 +195,9 @@ def run_sweep(
         ``KEY=VALUE`` overrides for every point (``--set``).
     reports : bool
         Also write a full report per point (``reports/<point_id>/``).
-    plots : bool
-        Draw the map plots (and the figures of per-point reports).
+    plots : bool or collection of str
+        Draw the map plots (and the figures of per-point reports); a collection names
+        the map plots to draw (:data:`recipsim.studies.sweep.plots.MAP_NAMES`).
     parquet : bool
         Also write ``summary.parquet`` (needs pyarrow).
     retry_failed : bool
@@ -234,6 +238,10 @@ def run_sweep(
     spec = path if isinstance(path, SweepSpec) else load_sweep(path, allow_external_paths)
     if parquet:
         _check_parquet()
+    if plots is not True and plots:  # names of map plots, checked before any point runs
+        from recipsim.studies.sweep.plots import check_map_names
+
+        plots = check_map_names(plots)
     spec.check_size(max_points)
     overrides = list(overrides)
     # <name>+<digest> with --set, as `recipsim run` names reports: other overrides never
@@ -269,7 +277,7 @@ def run_sweep(
                     case=str(spec.base),
                     overrides=point.overrides,
                     report_dir=str(store.report_dir(pid).resolve()) if reports else None,
-                    plots=plots,
+                    plots=bool(plots),
                     allow_external_paths=allow_external_paths,
                 )
             )
@@ -370,7 +378,7 @@ def _execute(
 
 
 def _write_outputs(
-    spec: SweepSpec, root: Path, table: pd.DataFrame, axes: list[str], plots: bool, parquet: bool
+    spec: SweepSpec, root: Path, table: pd.DataFrame, axes: list[str], plots: Plots, parquet: bool
 ) -> list[Path]:
     files = []
     csv = root / "summary.csv"
@@ -385,7 +393,7 @@ def _write_outputs(
     if plots:
         from recipsim.studies.sweep.plots import save_map_plots
 
-        files.extend(save_map_plots(table, axes, root))
+        files.extend(save_map_plots(table, axes, root, None if plots is True else plots))
     return files
 
 

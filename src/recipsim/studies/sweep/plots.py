@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import math
 import re
-from collections.abc import Sequence
+from collections.abc import Collection, Iterable, Sequence
 from pathlib import Path
 from typing import Any
 
@@ -20,6 +20,7 @@ import pandas as pd
 from matplotlib.figure import Figure
 
 from recipsim.atomic import atomic_write
+from recipsim.errors import CaseError
 
 MAP_QUANTITIES: tuple[tuple[str, str, str], ...] = (
     ("cooling_capacity [W]", "cooling capacity [W]", "map_cooling_capacity.png"),
@@ -148,22 +149,62 @@ def plot_bearing_loads(table: pd.DataFrame, x: str, groups: list[str]) -> Figure
         return None
     ncols = min(3, len(columns))
     nrows = math.ceil(len(columns) / ncols)
-    fig = Figure(figsize=(4.2 * ncols, 3.4 * nrows), layout="constrained")
+    fig = Figure(figsize=(4.2 * ncols, 3.4 * nrows))
     axes = fig.subplots(nrows, ncols, squeeze=False)
     for ax, column in zip(axes.flat, columns, strict=False):
         name = BEARING_COLUMN.match(column).group(1)  # type: ignore[union-attr]
         plot_map(table, column, x, groups, ylabel="peak load [N]", ax=ax)
         ax.set_title(name.replace("_", " "))
         legend = ax.get_legend()
-        if legend is not None and ax is not axes.flat[0]:
+        if legend is not None:
             legend.remove()
     for ax in list(axes.flat)[len(columns) :]:
         ax.set_visible(False)
     fig.suptitle("peak bearing loads")
+    # one legend for all panels, below them, in fixed margins [inch]: inside a panel it
+    # hid the data and the constrained layout took a third of the drawing time
+    handles, labels = axes.flat[0].get_legend_handles_labels()
+    legend_rows = math.ceil(len(labels) / 3) if labels else 0
+    width, height = fig.get_size_inches()
+    bottom = 0.6 + 0.19 * legend_rows + (0.15 if legend_rows else 0.0)
+    fig.subplots_adjust(
+        left=0.75 / width,
+        right=1.0 - 0.2 / width,
+        bottom=bottom / height,
+        top=1.0 - 0.6 / height,
+        wspace=0.3,
+        hspace=0.45,
+    )
+    if labels:
+        fig.legend(handles, labels, loc="lower center", ncol=3, fontsize=7, frameon=False)
     return fig
 
 
-def save_map_plots(table: pd.DataFrame, axes: Sequence[str], out_dir: Path) -> list[Path]:
+#: Names of the map plots (file ``map_<name>.png``), for :func:`save_map_plots`'s ``only``.
+MAP_NAMES = tuple(name[4:-4] for _, _, name in MAP_QUANTITIES) + ("bearing_loads",)
+
+
+def check_map_names(names: Iterable[str], where: str = "--plots") -> tuple[str, ...]:
+    """``names`` checked against :data:`MAP_NAMES`.
+
+    Raises
+    ------
+    CaseError
+        Naming an unknown map plot and the allowed ones.
+    """
+    names = tuple(names)
+    for name in names:
+        if name not in MAP_NAMES:
+            raise CaseError(where, name, f"unknown map plot; allowed: {', '.join(MAP_NAMES)}")
+    return names
+
+
+def save_map_plots(
+    table: pd.DataFrame,
+    axes: Sequence[str],
+    out_dir: Path,
+    only: Collection[str] | None = None,
+) -> list[Path]:
     """Draw the map plots of a summary table into ``out_dir`` (atomically).
 
     Parameters
@@ -174,12 +215,17 @@ def save_map_plots(table: pd.DataFrame, axes: Sequence[str], out_dir: Path) -> l
         Its axis columns.
     out_dir : Path
         Where the PNG files go.
+    only : collection of str, optional
+        Draw just these plots (names of :data:`MAP_NAMES`); default all.
 
     Returns
     -------
     list of Path
         The files written (none when no point is ``ok`` or nothing numeric varies).
     """
+    from recipsim.report.plotting import PNG_OPTIONS, fixed_margins
+
+    wanted = set(MAP_NAMES if only is None else check_map_names(only))
     ok = table[table["status"] == "ok"] if "status" in table else table
     if ok.empty:
         return []
@@ -187,21 +233,23 @@ def save_map_plots(table: pd.DataFrame, axes: Sequence[str], out_dir: Path) -> l
     if x is None:
         return []
     groups = group_columns(ok, axes, x)
-    figures: list[tuple[str, Figure]] = []
-    for column, label, name in MAP_QUANTITIES:
-        if column in ok:
+    written = []
+    for column, label, name in (*MAP_QUANTITIES, ("", "", "map_bearing_loads.png")):
+        if name[4:-4] not in wanted or (column and column not in ok):
+            continue
+        if column:
             fig = plot_map(ok, column, x, groups, ylabel=label)
             fig.axes[0].set_title(label.rsplit(" [", 1)[0])
-            figures.append((name, fig))
-    bearings = plot_bearing_loads(ok, x, groups)
-    if bearings is not None:
-        figures.append(("map_bearing_loads.png", bearings))
-    written = []
-    for name, fig in figures:
+            fixed_margins(fig, "single")
+        else:  # panels and a legend: left to the layout engine
+            panels = plot_bearing_loads(ok, x, groups)
+            if panels is None:
+                continue
+            fig = panels
         path = Path(out_dir) / name
 
         def save(tmp: Path, fig: Figure = fig) -> None:
-            fig.savefig(tmp, dpi=110, format="png")
+            fig.savefig(tmp, dpi=110, format="png", pil_kwargs=PNG_OPTIONS)
 
         atomic_write(path, save)
         written.append(path)

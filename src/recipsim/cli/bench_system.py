@@ -1,0 +1,113 @@
+"""``recipsim bench-system [CASE] [--sweep SWEEP] [--jobs J] [--repeats N] [--first-run]``.
+
+Time to answer, around the solver (:mod:`recipsim.studies.bench.system_time`): the stages
+of ``recipsim run`` (imports, case loading, model build, solve, tables, each figure,
+report writing) and the command end to end; a sweep on 1..J workers with its overhead
+ratio and parallel efficiency; optionally the first run with empty caches. Writes
+``<out>/system/system.json`` (default ``--out``: ``reports/bench``) and prints a table.
+
+A subcommand of its own rather than ``bench --system``: ``bench`` ranks solver settings
+on one case (its options choose rungs, tolerances and a time budget), this one times the
+program around a fixed solver; they share no option but ``--out``.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+from pathlib import Path
+from typing import Any
+
+from recipsim.cli.options import exit_status, positive_int
+
+
+def add_bench_system_parser(sub: Any) -> argparse.ArgumentParser:
+    """Add the ``bench-system`` subcommand to the subparsers ``sub``."""
+    parser: argparse.ArgumentParser = sub.add_parser(
+        "bench-system",
+        help="time to answer: the stages of a run and a sweep on 1..J workers",
+        description=__doc__.split("\n\n")[1] if __doc__ else None,
+    )
+    parser.add_argument("case", nargs="?", default="reference_r134a_lbp", help="case to run")
+    parser.add_argument("--sweep", default="throughput_100", help="sweep to map")
+    parser.add_argument("--jobs", type=positive_int, default=2, metavar="J", help="up to J")
+    parser.add_argument("--repeats", type=positive_int, default=3, metavar="N")
+    parser.add_argument("--map-repeats", type=positive_int, default=1, metavar="N")
+    parser.add_argument("--no-map", action="store_true", help="skip the sweep")
+    parser.add_argument(
+        "--first-run", action="store_true", help="also time a run with empty caches (~1 min)"
+    )
+    parser.add_argument("--out", type=Path, default=Path("reports/bench"))
+    parser.set_defaults(handler=run_bench_system_command)
+    return parser
+
+
+def run_bench_system_command(args: argparse.Namespace, argv: list[str] | None) -> int:
+    """Handler of ``recipsim bench-system``."""
+    return exit_status(lambda: _bench_system(args), str(args.case))
+
+
+def _bench_system(args: argparse.Namespace) -> int:
+    from recipsim.atomic import atomic_file, mark_output
+    from recipsim.studies.bench.system import machine_info
+    from recipsim.studies.bench.system_time import (
+        extrapolate,
+        measure_first_run,
+        measure_map,
+        measure_run_stages,
+    )
+
+    result: dict[str, Any] = {"machine": machine_info()}
+    result["run"] = measure_run_stages(args.case, [], args.repeats)
+    if not args.no_map:
+        jobs = list(range(1, args.jobs + 1))
+        result["map"] = measure_map(args.sweep, jobs, args.map_repeats)
+        model = result["map"]["model"]
+        if model:
+            result["map"]["extrapolated"] = {
+                "16 workers": extrapolate(model, 16),
+                "16 workers, 10x points": extrapolate(model, 16, 10.0),
+            }
+    if args.first_run:
+        result["first_run"] = measure_first_run(args.case)
+    result["machine"]["load_average_after"] = machine_info()["load_average"]
+    target = Path(args.out) / "system"
+    mark_output(target)
+    with atomic_file(target / "system.json") as handle:
+        json.dump(result, handle, indent=2)
+    print(format_system(result))
+    print(f"-> {target / 'system.json'}")
+    return 0
+
+
+def format_system(result: dict[str, Any]) -> str:
+    """The console table of a ``bench-system`` result."""
+    lines = [f"load average {result['machine']['load_average']}", "stage: wall / CPU [s]"]
+    for name, t in result["run"]["stages"].items():
+        lines.append(f"  {name:28s} {t['wall [s]']:7.3f} / {t['cpu [s]']:7.3f}")
+    for name, t in result["run"]["run"].items():
+        lines.append(f"  recipsim run, {name:14s} {t['wall [s]']:7.3f} / {t['cpu [s]']:7.3f}")
+    if "map" in result:
+        m = result["map"]
+        lines.append(f"map {m['sweep']}: {m['points']} points, solves {m['solve_sum [s]']:.2f} s")
+        for jobs, t in m["runs"].items():
+            lines.append(
+                f"  {jobs} worker(s): {t['wall [s]']:.2f} s wall, {t['cpu [s]']:.2f} s CPU, "
+                f"efficiency {t['efficiency [-]']:.2f}"
+            )
+        if m["overhead_ratio [-]"] is not None:
+            lines.append(f"  overhead / solves (1 worker): {m['overhead_ratio [-]']:.2f}")
+        if m["model"]:
+            serial, parallel = m["model"]["serial [s]"], m["model"]["parallel [s]"]
+            lines.append(f"  T(J) = {serial:.2f} s + {parallel:.2f} s / J")
+            for label, t in m.get("extrapolated", {}).items():
+                lines.append(
+                    f"  {label}: {t['wall [s]']:.2f} s, efficiency {t['efficiency [-]']:.2f}"
+                )
+    if "first_run" in result:
+        f = result["first_run"]
+        lines.append(
+            f"first run (empty caches): {f['wall [s]']:.1f} s wall, {f['cpu [s]']:.1f} s CPU; "
+            f"second {f['second_wall [s]']:.1f} s"
+        )
+    return "\n".join(lines)

@@ -1,0 +1,31 @@
+"""Names of the figures of a case report, checked without importing matplotlib (the
+command line checks ``--plots`` before it solves anything)."""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+
+#: Names of the report's figures (file ``<name>.png``), in the order they are drawn;
+#: ``valves`` needs the simulated gas, ``bearing_loads`` the crank train's forces and
+#: ``orbits`` its flexible bearings, ``loss_breakdown`` the gas (the loss chain's waterfall).
+FIGURE_NAMES = (
+    "p_V", "p_V_loglog", "p_theta", "torque", "valves", "bearing_loads", "orbits",
+    "loss_breakdown",
+)  # fmt: skip
+
+
+def check_figure_names(names: Iterable[str], where: str = "--plots") -> tuple[str, ...]:
+    """``names`` checked against :data:`FIGURE_NAMES`.
+
+    Raises
+    ------
+    CaseError
+        Naming an unknown figure and the allowed ones.
+    """
+    from recipsim.errors import CaseError
+
+    names = tuple(names)
+    for name in names:
+        if name not in FIGURE_NAMES:
+            raise CaseError(where, name, f"unknown figure; allowed: {', '.join(FIGURE_NAMES)}")
+    return names

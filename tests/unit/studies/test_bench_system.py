@@ -1,0 +1,57 @@
+"""``recipsim bench-system``: the overhead model and its extrapolation (closed forms),
+and one run of the stages of ``recipsim run`` in a child interpreter."""
+
+from __future__ import annotations
+
+import pytest
+
+from recipsim.cli.bench_system import format_system
+from recipsim.studies.bench.system_time import extrapolate, measure_run_stages, overhead_model
+
+
+def test_overhead_model_recovers_serial_and_parallel_parts() -> None:
+    """Times made by T(J) = 3 + 8 / J give S = 3 s and P = 8 s back (to rounding)."""
+    walls = {1: 3.0 + 8.0, 2: 3.0 + 4.0, 4: 3.0 + 2.0}
+    model = overhead_model(walls)
+    assert model["serial [s]"] == pytest.approx(3.0, abs=1e-12)
+    assert model["parallel [s]"] == pytest.approx(8.0, abs=1e-12)
+    assert overhead_model({2: 5.0}) == {}
+
+
+def test_extrapolation_is_amdahls_law() -> None:
+    """Efficiency at J workers = (S + P) / (J (S + P / J)); 10x points scale P only."""
+    model = {"serial [s]": 1.0, "parallel [s]": 9.0}
+    at16 = extrapolate(model, 16)
+    assert at16["wall [s]"] == pytest.approx(1.0 + 9.0 / 16)
+    assert at16["efficiency [-]"] == pytest.approx(10.0 / (16 * (1.0 + 9.0 / 16)))
+    big = extrapolate(model, 16, 10.0)
+    assert big["efficiency [-]"] == pytest.approx(91.0 / (16 * (1.0 + 90.0 / 16)))
+    assert extrapolate(model, 1)["efficiency [-]"] == pytest.approx(1.0)
+
+
+def test_run_stages_cover_the_command() -> None:
+    """Every stage of the run path is timed, wall and CPU, each figure on its own."""
+    result = measure_run_stages("reference_r134a_lbp", [], repeats=1)
+    stages = result["stages"]
+    for name in ("import", "case_loading", "model_build", "solve_first", "tables"):
+        assert stages[name]["wall [s]"] >= 0.0 and stages[name]["cpu [s]"] >= 0.0
+    assert {f"figure_{n}" for n in ("p_V", "torque", "valves", "bearing_loads")} <= set(stages)
+    assert "numba_cache_load" in stages
+    text = format_system({"machine": {"load_average": [0, 0, 0]}, "run": result})
+    assert "recipsim run, with_figures" in text
+
+
+def test_warmup_refuses_an_unknown_refrigerant(capsys: pytest.CaptureFixture[str]) -> None:
+    from recipsim.cli.main import main
+
+    assert main(["warmup", "--refrigerants", "R134a,R999", "--quiet"]) == 2
+    assert "unknown refrigerant 'R999'" in capsys.readouterr().err
+
+
+def test_warmup_solves_one_revolution_of_each_case(capsys: pytest.CaptureFixture[str]) -> None:
+    from recipsim.cli.main import main
+
+    assert main(["warmup", "reference_r134a_lbp", "--refrigerants", "R134a"]) == 0
+    err = capsys.readouterr().err
+    assert "property table of R134a ready" in err
+    assert "reference_r134a_lbp: solver compiled for its scene (pinned crank" in err
