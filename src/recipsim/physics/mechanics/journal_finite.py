@@ -29,8 +29,8 @@ from numba import njit
 from recipsim.physics.mechanics.journal import (
     couette_torque,
     film_kinematics,
-    film_peak_shape,
     short_film_unit_forces,
+    short_journal_peak_pressure,
 )
 from recipsim.physics.mechanics.journal_table import (
     H_N_EPS,
@@ -184,10 +184,10 @@ def finite_journal_peak_pressure(
     nodal pressure to it; arguments as in :func:`finite_journal_film`.
     """
     _, _, eps, a, b, _ = film_kinematics(ex, ey, vx, vy, omega_journal, omega_bushing, clearance)
-    v = math.sqrt(a * a + b * b)
-    if v == 0.0:
+    if a == 0.0 and b == 0.0:
         return 0.0
-    theta0 = math.atan2(b, a)
-    ratio = tabulated_ratio(table, offset, eps, theta0, 2)
-    short = 1.5 * viscosity * length * length * v / (clearance * clearance)
-    return short * film_peak_shape(eps, theta0) * max(ratio, 0.0)
+    ratio = tabulated_ratio(table, offset, eps, math.atan2(b, a), 2)
+    short = short_journal_peak_pressure(
+        ex, ey, vx, vy, omega_journal, omega_bushing, radius, length, clearance, viscosity
+    )
+    return short * max(ratio, 0.0)
