@@ -232,12 +232,9 @@ def isothermal_gap_leakage_mass_flow(
     eccentricity_ratio : float
         Piston offset over radial clearance [-].
     """
-    poiseuille = (
-        clearance**3
-        * (p_cylinder * p_cylinder - p_shell * p_shell)
-        * (1.0 + 1.5 * eccentricity_ratio**2)
-        / (24.0 * viscosity * gas_rt * length)
-    )
+    # (p_c^2 - p_s^2) / (2 RT) = rho_m (p_c - p_s): the incompressible law at rho_m
     rho_mean = 0.5 * (p_cylinder + p_shell) / gas_rt
-    couette = 0.5 * rho_mean * clearance * piston_velocity_to_head
-    return math.pi * bore * (poiseuille - couette)
+    return gap_leakage_mass_flow(
+        p_cylinder - p_shell, rho_mean, viscosity, bore, clearance, length,
+        piston_velocity_to_head, eccentricity_ratio,
+    )  # fmt: skip
