@@ -30,6 +30,11 @@ the cylinder gas and the shell gas).
 
 Modes (``mode[0]`` suction, ``mode[1]`` discharge): ideal 0 closed / 1 open; reed
 0 seated / 1 free / 2 at the stop.
+
+Size (over the project's 400 lines): the state, parameter and output layout and
+the compiled right-hand side, events and impact actions that index it are one piece
+today; moving the layout constants into a module of their own (as
+:mod:`recipsim.physics.mechanics.layout` does for the crank train) is listed on issue 13.
 """
 
 from __future__ import annotations

@@ -41,6 +41,9 @@ the errors measured when it was built.
 Data layout: one float64 array (header ``H_*``, grid with derivatives, cell mask, k0
 table, saturation table) that the model appends to the property buffer after its
 ``N_PROPS`` outputs, so the compiled integrator's signature does not change.
+
+Size (over the project's 400 lines): the layout constants and the compiled
+evaluation that reads them; to be split with :mod:`.property_table_build` (issue 13).
 """
 
 from __future__ import annotations

@@ -36,6 +36,10 @@ How each answer is obtained:
 
 Accuracy: the table's (1e-5); :mod:`tests.test_table_states` measures every answer
 against HEOS.
+
+Size (over the project's 400 lines): one class answering every post-processing
+state from the table with its HEOS fallback; splitting the saturation and liquid-line
+answers out is listed on issue 13.
 """
 
 from __future__ import annotations
