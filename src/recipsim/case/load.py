@@ -78,6 +78,12 @@ OPTION_SPEC: Spec = {
         "suction plenum at the inlet state and the given wall temperature, or the shell's "
         "thermal network ([thermal])",
     ),
+    "speed": Choice(
+        ("case", "motor_slip"),
+        "case",
+        "crank speed: operating_point.shaft_speed, or the speed at which the equivalent "
+        "circuit carries the cycle's load torque (constant speed, equivalent_circuit motor)",
+    ),
 }
 
 OPERATING_POINT_SPEC: Spec = {
@@ -205,6 +211,8 @@ class Options:
     friction: str = "off"
     motor: str = "lossless"
     thermal: str = "fixed_wall"
+    #: "case" (operating_point.shaft_speed) or "motor_slip" (the motor's speed at load)
+    speed: str = "case"
 
 
 @dataclass(frozen=True)
@@ -728,6 +736,16 @@ def _check_supported(options: Options, file: str) -> None:
             f"{options.drive!r} needs a crank whose speed can vary; the pinned mechanism turns "
             "at constant speed by definition: use options.drive = 'constant_speed' or "
             "options.mechanics = 'flexible'",
+        )
+    if options.speed == "motor_slip" and (
+        options.drive != "constant_speed" or options.motor != "equivalent_circuit"
+    ):
+        raise CaseError(
+            file,
+            "options.speed",
+            "'motor_slip' runs the constant-speed cycle at the equivalent circuit's speed at "
+            "load: it needs options.drive = 'constant_speed' and options.motor = "
+            "'equivalent_circuit' (the induction_motor drive finds its speed itself)",
         )
 
 

@@ -124,29 +124,38 @@ def motor_point(case: Case, shaft_power: float, mean_speed: float) -> MotorOpera
     return motor_operating_point_at_torque(circuit, shaft_power / mean_speed)
 
 
-def network_loss_sources(
+def revolution_shaft_power(
     model: Any, y_end: np.ndarray, duration: float, mean_friction: float = 0.0
 ) -> tuple[float, float]:
-    """``(motor loss, friction) [W]`` of a revolution for the thermal network
-    (:attr:`recipsim.model.thermal.ThermalCoupling.loss_sources`).
-
-    The friction of ``mean`` is the constant-speed Petroff value, that of the flexible
-    scenes the bearings' dissipation (films, dampers); the shaft power is the
-    revolution's drive work over its duration (plus the ``mean`` friction,
-    ``mean_friction`` [W], :func:`constant_speed_mean_friction` once per model); the
-    motor loss is the circuit's at that load (0 for a lossless motor or past breakdown,
-    where the summary reports NaN and a warning).
-    """
+    """``(shaft power, friction) [W]`` of a revolution: the drive's work over its duration
+    (quadratures ``y_end``) plus the ``mean`` friction ``mean_friction`` [W]
+    (:func:`constant_speed_mean_friction`, once per model); the friction is that constant,
+    or the flexible scenes' bearing dissipation (films, dampers), already in the drive's
+    work."""
     case: Case = model.case
     if model.scene == SCENE_CYLINDER:
         drive, films = y_end[cyl.Q_SHAFT], 0.0
     else:  # the crank train integrates the drive's work and the bearings' dissipation
         q = model.mechanism_offset + mlay.N_STATE
         drive, films = y_end[q + MQ_DRIVE], y_end[q + MQ_BEARINGS] / duration
-    friction = mean_friction if case.options.friction == "mean" else films
-    shaft = drive / duration + (friction if case.options.friction == "mean" else 0.0)
+    if case.options.friction == "mean":
+        return drive / duration + mean_friction, mean_friction
+    return drive / duration, films
+
+
+def network_loss_sources(
+    model: Any, y_end: np.ndarray, duration: float, mean_friction: float = 0.0
+) -> tuple[float, float]:
+    """``(motor loss, friction) [W]`` of a revolution for the thermal network
+    (:attr:`recipsim.model.thermal.ThermalCoupling.loss_sources`).
+
+    Shaft power and friction from :func:`revolution_shaft_power`; the motor loss is the
+    circuit's at that load (0 for a lossless motor or past breakdown, where the summary
+    reports NaN and a warning).
+    """
+    shaft, friction = revolution_shaft_power(model, y_end, duration, mean_friction)
     try:
-        point = motor_point(case, shaft, 2.0 * math.pi / duration)
+        point = motor_point(model.case, shaft, 2.0 * math.pi / duration)
     except ValueError:
         return 0.0, friction
     motor = 0.0 if point is None else point.electrical_power - point.shaft_power

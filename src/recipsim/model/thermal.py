@@ -222,11 +222,8 @@ class ThermalCoupling:
         wall temperature, discharge plenum temperature and pressure)."""
         pressures = self.pressures(model, response.loads)
         solution = self._coupled_solution(model, response, pressures)
+        _apply(model, solution, pressures)
         t = solution.temperature
-        model.set_suction_state(pressures.node[0], float(t[SM]))
-        model.set_discharge_state(pressures.node[2], float(solution.enthalpy[DC]))
-        model.set_shell_gas_state(float(t[SG]))
-        model.par[cyl.C_TWALL] = float(t[CW])
         change = 1.0
         if self.applied is not None:
             old = self.applied
@@ -271,6 +268,15 @@ class ThermalCoupling:
         suction = (y_end[cyl.Q_MSUC_IN] - y_end[cyl.Q_MSUC_OUT]) / duration
         return self._solve_and_apply(model, CycleResponse(loads, suction, drawn, earlier))
 
+    def continue_from(self, model: CoupledModel, other: ThermalCoupling) -> None:
+        """Start ``model`` from the network solution of ``other`` (the same compressor at a
+        nearby operating point, e.g. another speed) instead of the predictor's."""
+        if other.applied is None:
+            return
+        self.applied = other.applied
+        self._earlier_plenum = None
+        _apply(model, other.applied.solution, other.applied.pressures)
+
     def predict(self, model: CoupledModel) -> None:
         """First network solution, before any revolution: mass flow from the clearance
         re-expansion estimate, isentropic discharge from the suction plenum, no wall heat."""
@@ -286,6 +292,16 @@ class ThermalCoupling:
         h_dis = model.fluid.state_ps(model.discharge.pressure, s.entropy)["h"]
         loads = NetworkLoads(m, 0.0, 0.0, 0.0, m * h_dis, 0.0, 0.0, motor, friction)
         self._solve_and_apply(model, CycleResponse(loads, m, s, s))
+
+
+def _apply(model: CoupledModel, solution: NetworkSolution, pressures: NetworkPressures) -> None:
+    """Give the cylinder the boundary of a network solution: suction plenum (suction
+    muffler node), discharge plenum (discharge chamber), shell gas, cylinder wall."""
+    t = solution.temperature
+    model.set_suction_state(pressures.node[0], float(t[SM]))
+    model.set_discharge_state(pressures.node[2], float(solution.enthalpy[DC]))
+    model.set_shell_gas_state(float(t[SG]))
+    model.par[cyl.C_TWALL] = float(t[CW])
 
 
 @dataclass(frozen=True)

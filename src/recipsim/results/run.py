@@ -53,6 +53,7 @@ def simulate_case(case: Case, argv: list[str] | None = None) -> CaseRun:
     from recipsim.results.provenance import case_provenance, provenance
     from recipsim.results.tables import cycle_table, pinned_tabulated_cycle, summary
     from recipsim.solve.drive import build_model_for
+    from recipsim.solve.motor_speed import solve_at_motor_speed
     from recipsim.solve.periodic import solve_periodic
 
     if numba_cache_lacks("integrator"):
@@ -62,7 +63,11 @@ def simulate_case(case: Case, argv: list[str] | None = None) -> CaseRun:
         cycle = pinned_tabulated_cycle(case)  # inverse dynamics only, nothing to integrate
         meta = case_provenance(case, argv)
     else:
-        solution = solve_periodic(build_model_for(case))
+        if case.options.speed == "motor_slip":
+            at_speed = solve_at_motor_speed(case)
+            case, solution = at_speed.case, at_speed.solution
+        else:
+            solution = solve_periodic(build_model_for(case))
         cycle = cycle_table(solution)
         meta = provenance(solution, argv)
     return CaseRun(case, solution, cycle, summary(solution, cycle, case), meta)

@@ -1,0 +1,79 @@
+"""The constant-speed cycle at the induction motor's speed at load (``options.speed =
+"motor_slip"``, :mod:`recipsim.solve.motor_speed`).
+
+- The speed found is a fixed point: the equivalent circuit, asked independently for its
+  speed at the cycle's load torque (shaft power over speed), returns the speed the cycle
+  ran at, to the iteration's tolerance (``solver.cycle_tolerance``, relative) times a few
+  (the last solve's own torque moves its circuit speed by the residual left).
+- Physics of a loaded induction motor: below synchronous speed (3000 rpm, two poles at
+  50 Hz), and the heavier the load the lower the speed: at 55 C condensing the load grows
+  with the evaporating temperature, so the speed falls from -35 to -10 C.
+- The plain iteration contracts fast (the circuit's torque-speed line is steep near
+  synchronism): at most four solves.
+- The option is refused where it has no meaning (a lossless motor).
+"""
+
+from __future__ import annotations
+
+import math
+
+import pytest
+
+from recipsim.api import load_case
+from recipsim.errors import CaseError
+from recipsim.model.loss_sources import constant_speed_mean_friction, revolution_shaft_power
+from recipsim.physics.motor_circuit import motor_operating_point_at_torque
+from recipsim.results.run import simulate_case
+from recipsim.solve.drive import build_model_for
+from recipsim.solve.motor_speed import solve_at_motor_speed
+
+RPM = 30.0 / math.pi
+
+
+@pytest.fixture(scope="module")
+def tles():
+    return load_case("tles5.7kk3_r600a")
+
+
+@pytest.fixture(scope="module")
+def by_evaporating(tles):
+    return {
+        te: solve_at_motor_speed(tles.with_({"operating_point.evaporating_temperature": te}))
+        for te in ("-35 degC", "-10 degC")
+    }
+
+
+def test_speed_is_the_circuits_speed_at_the_cycles_load(by_evaporating):
+    for found in by_evaporating.values():
+        case, solution = found.case, found.solution
+        model = build_model_for(case)  # the same case: model.case and layouts for the totals
+        rev = solution.final
+        friction = constant_speed_mean_friction(case)
+        shaft, _ = revolution_shaft_power(model, rev.y_end, rev.duration, friction)
+        omega = 2.0 * math.pi / rev.duration
+        assert omega == pytest.approx(case.operating_point.shaft_speed, rel=1e-9)
+        assert case.motor_circuit is not None
+        circuit_speed = motor_operating_point_at_torque(case.motor_circuit, shaft / omega).speed
+        assert circuit_speed == pytest.approx(omega, rel=3.0 * case.solver.cycle_tolerance)
+        assert len(found.speeds) <= 4
+        assert found.residual < case.solver.cycle_tolerance
+
+
+def test_heavier_load_turns_slower_below_synchronous(by_evaporating):
+    light = by_evaporating["-35 degC"].case.operating_point.shaft_speed * RPM
+    heavy = by_evaporating["-10 degC"].case.operating_point.shaft_speed * RPM
+    assert heavy < light < 3000.0
+    assert light - heavy > 10.0  # tens of rpm of slip between the two loads
+
+
+def test_summary_reports_the_speed_it_ran_at(tles):
+    row = simulate_case(tles).row
+    assert row["motor_speed_at_load [rpm]"] == pytest.approx(
+        row["shaft_speed [rpm]"], rel=3.0 * tles.solver.cycle_tolerance
+    )
+    assert row["shaft_speed [rpm]"] != pytest.approx(2900.0, abs=1.0)  # not the first guess
+
+
+def test_motor_slip_needs_the_equivalent_circuit():
+    with pytest.raises(CaseError, match="options.speed"):
+        load_case("reference_r134a_lbp", {"options.speed": "motor_slip"})
