@@ -144,18 +144,30 @@ def revolution_shaft_power(
 
 
 def network_loss_sources(
-    model: Any, y_end: np.ndarray, duration: float, mean_friction: float = 0.0
+    model: Any,
+    y_end: np.ndarray | None,
+    duration: float,
+    drive_power: float | None = None,
+    mean_friction: float = 0.0,
 ) -> tuple[float, float]:
     """``(motor loss, friction) [W]`` of a revolution for the thermal network
     (:attr:`recipsim.model.thermal.ThermalCoupling.loss_sources`).
 
-    Shaft power and friction from :func:`revolution_shaft_power`; the motor loss is the
-    circuit's at that load (0 for a lossless motor or past breakdown, where the summary
-    reports NaN and a warning).
+    Shaft power and friction from :func:`revolution_shaft_power` (``y_end``: the
+    revolution's quadratures, ``duration`` [s]), or before any revolution (``y_end``
+    None) from an estimated ``drive_power`` [W] plus the ``mean`` friction; the motor loss
+    is the circuit's at that load (0 for a lossless motor or past breakdown, where the
+    summary reports NaN and a warning).
     """
-    shaft, friction = revolution_shaft_power(model, y_end, duration, mean_friction)
+    case: Case = model.case
+    if y_end is not None:
+        shaft, friction = revolution_shaft_power(model, y_end, duration, mean_friction)
+    else:
+        assert drive_power is not None
+        friction = mean_friction if case.options.friction == "mean" else 0.0
+        shaft = drive_power + friction
     try:
-        point = motor_point(model.case, shaft, 2.0 * math.pi / duration)
+        point = motor_point(case, shaft, 2.0 * math.pi / duration)
     except ValueError:
         return 0.0, friction
     motor = 0.0 if point is None else point.electrical_power - point.shaft_power

@@ -105,8 +105,10 @@ class ThermalCoupling:
     last_loads : NetworkLoads or None
         The flows of the last integrated revolution, as measured.
     loss_sources : callable or None
-        ``(model, y_end, duration) -> (motor loss, friction) [W]`` of a motor or friction
-        model, used when the ``[thermal]`` table does not fix them.
+        ``(model, y_end, duration, drive_power) -> (motor loss, friction) [W]`` of a motor
+        or friction model, used when the ``[thermal]`` table does not fix them: for the
+        revolution whose quadratures are ``y_end``, or (``y_end`` None) for an estimated
+        drive power [W].
     """
 
     def __init__(self, case: Case) -> None:
@@ -118,13 +120,24 @@ class ThermalCoupling:
         #: revolution discharged)
         self._earlier_plenum: _Plenum | None = None
         self._dew: dict[float, float] = {}  # dew point + margin at each pressure [K]
-        self.loss_sources: Callable[[Any, np.ndarray, float], tuple[float, float]] | None = None
+        self.loss_sources: (
+            Callable[[Any, np.ndarray | None, float, float | None], tuple[float, float]] | None
+        ) = None
 
     # ---- the network's boundary -----------------------------------------------------------
-    def _losses(self, model: CoupledModel, y_end: np.ndarray | None, duration: float):
+    def _losses(
+        self,
+        model: CoupledModel,
+        y_end: np.ndarray | None,
+        duration: float,
+        drive_power: float | None = None,
+    ):
+        """Motor loss and friction [W]: the ``[thermal]`` table's, else the models' for
+        the revolution ``y_end`` or, before any, for the estimated ``drive_power`` [W]."""
         motor, friction = self.spec.motor_loss_power, self.spec.friction_power
-        if (math.isnan(motor) or math.isnan(friction)) and self.loss_sources and y_end is not None:
-            m_model, f_model = self.loss_sources(model, y_end, duration)
+        known = y_end is not None or drive_power is not None
+        if (math.isnan(motor) or math.isnan(friction)) and self.loss_sources and known:
+            m_model, f_model = self.loss_sources(model, y_end, duration, drive_power)
             motor = m_model if math.isnan(motor) else motor
             friction = f_model if math.isnan(friction) else friction
         return (0.0 if math.isnan(motor) else motor), (0.0 if math.isnan(friction) else friction)
@@ -279,17 +292,19 @@ class ThermalCoupling:
 
     def predict(self, model: CoupledModel) -> None:
         """First network solution, before any revolution: mass flow from the clearance
-        re-expansion estimate, isentropic discharge from the suction plenum, no wall heat."""
+        re-expansion estimate, isentropic discharge from the suction plenum, no wall heat,
+        motor and friction losses at the isentropic power."""
         case = model.case
         geo = case.geometry
         freq = case.operating_point.shaft_speed / (2.0 * math.pi)
         clearance = geo.clearance_volume / geo.swept_volume
-        motor, friction = self._losses(model, None, 1.0 / freq)
         s = model.suction
         ratio = model.discharge.pressure / s.pressure
         eta = max(0.2, 1.0 - clearance * (ratio ** (1.0 / s.kappa) - 1.0))
         m = eta * s.density * geo.swept_volume * freq
         h_dis = model.fluid.state_ps(model.discharge.pressure, s.entropy)["h"]
+        # the motor's heat from the isentropic power: the largest source in the shell
+        motor, friction = self._losses(model, None, 1.0 / freq, m * (h_dis - s.enthalpy))
         loads = NetworkLoads(m, 0.0, 0.0, 0.0, m * h_dis, 0.0, 0.0, motor, friction)
         self._solve_and_apply(model, CycleResponse(loads, m, s, s))
 

@@ -45,6 +45,8 @@ VARIANTS = ("RSIR", "PSC")
 _FIRST_SLIP = 1e-4
 #: Ratio between successive slips of the march and of the breakdown scan [-].
 _SLIP_STEP = 1.4
+#: Slip at which the torque's slope near synchronism is sampled [-].
+_LINEAR_SLIP = 1e-3
 
 
 def _require(condition: bool, message: str) -> None:
@@ -351,8 +353,18 @@ def motor_operating_point_at_torque(
             _require(low > -0.5, f"motor load torque {load_torque} N m: beyond generating range")
             high, low = low, low * 2.0
     else:
+        # from the torque's slope near synchronism: on the rising branch the torque is
+        # concave in slip, so the linear estimate lies below the root and the march
+        # below starts one step short of it instead of at _FIRST_SLIP
         previous = excess(0.0)
-        while True:
+        probe = excess(_LINEAR_SLIP)
+        if probe >= 0.0:
+            high = _LINEAR_SLIP
+        else:
+            estimate = _LINEAR_SLIP * previous / (previous - probe)
+            low, previous = _LINEAR_SLIP, probe
+            high = min(max(estimate, _LINEAR_SLIP * _SLIP_STEP), 1.0)
+        while high > _LINEAR_SLIP:
             current = excess(high)
             if current >= 0.0:
                 break
