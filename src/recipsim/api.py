@@ -111,6 +111,27 @@ class Result:
 
         return _first_axes(plot_loss_breakdown(self.summary, ax=ax, title=self.case.name), ax)
 
+    @property
+    def startup(self) -> pd.DataFrame | None:
+        """The start-up from rest against time (``startup.csv``: time [s], crank angle,
+        speed, motor torque, cylinder and plenum pressures, bearing loads), or None when
+        the case does not start from rest (``solver.start = "periodic"``)."""
+        if self._run.startup is None:
+            return None
+        from recipsim.results.startup import startup_table
+
+        return startup_table(self._run.startup)
+
+    def plot_startup(self) -> Any:
+        """Speed, motor torque, pressures and bearing loads against time from standstill
+        (a run with ``solver.start = "rest"``); returns the figure's array of Axes."""
+        from recipsim.report.startup_plot import plot_startup
+
+        table = self.startup
+        if table is None:
+            raise ValueError(f"{self.case.name} was not run from rest (solver.start)")
+        return plot_startup(table, title=self.case.name).axes
+
     # ---- report -------------------------------------------------------------------------
     def write(self, directory: str | Path, plots: bool = True) -> Path:
         """Write the report (``summary.csv``, ``cycle.csv``, figures, ``case.toml``,

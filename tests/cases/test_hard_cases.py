@@ -126,8 +126,6 @@ def test_refusals_name_the_key(suite: dict[str, CheckRow]) -> None:
     wet = suite["wet_suction"]
     assert wet.outcome == "refused"
     assert "operating_point.suction_temperature" in wet.message and "dome" in wet.message
-    startup = suite["startup_induction_motor"]
-    assert startup.outcome == "refused" and "solver.start" in startup.message
 
 
 def test_near_zero_delivery_closures_need_the_swept_mass_scale(

@@ -171,7 +171,26 @@ SOLVER_SPEC: Spec = {
     "max_step": Field(
         "rad", math.radians(2.0), lo=1e-7, hi=math.pi, doc="largest crank-angle step"
     ),
-    "start": Choice(("periodic", "rest"), "periodic", "periodic steady state; 'rest': not yet"),
+    "start": Choice(
+        ("periodic", "rest"),
+        "periodic",
+        "periodic steady state; 'rest': start-up from standstill (induction_motor drive)",
+    ),
+    "standstill_pressure": Field(
+        "Pa",
+        None,
+        lo=0.0,
+        open_lo=True,
+        hi=1e9,
+        doc="start = 'rest': equalised pressure; default saturation at the ambient temperature",
+    ),
+    "pull_down_time": Field(
+        "s",
+        2.5,
+        lo=0.0,
+        hi=60.0,
+        doc="start = 'rest': plenums ramp from the standstill to the case's pressures",
+    ),
     "periodic": Choice(("auto", "revolutions", "shooting"), "auto", "periodic steady-state solver"),
 }
 
@@ -348,6 +367,12 @@ class SolverSettings:
     max_step: float  # crank angle [rad]
     #: periodic steady-state solver: "revolutions", "shooting" or "auto"
     periodic: str = "auto"
+    #: "periodic", or "rest": the start-up transient first (:mod:`recipsim.solve.startup`)
+    start: str = "periodic"
+    #: equalised pressure at standstill [Pa] (nan: saturation at the ambient temperature)
+    standstill_pressure: float = math.nan
+    #: time over which the plenums move from the standstill to the case's pressures [s]
+    pull_down_time: float = 2.5
 
 
 @dataclass(frozen=True)
@@ -641,13 +666,26 @@ def case_from_dict(
         samples_per_revolution=int(sv["samples_per_revolution"]),
         max_step=sv["max_step"],
         periodic=sv["periodic"],
+        start=sv["start"],
+        standstill_pressure=math.nan
+        if sv["standstill_pressure"] is None
+        else sv["standstill_pressure"],
+        pull_down_time=sv["pull_down_time"],
     )
-    if sv["start"] == "rest":
+    if sv["start"] == "rest" and options.drive != "induction_motor":
         raise CaseError(
             file,
             "solver.start",
-            "'rest' (start-up from zero speed, a transient run on the induction motor) is not "
-            "available yet: recipsim computes periodic steady states; allowed: 'periodic'",
+            f"'rest' (start-up from standstill) needs a motor that starts the crank: "
+            f"options.drive = 'induction_motor' (with options.mechanics = 'flexible'), "
+            f"not {options.drive!r}; allowed with this drive: 'periodic'",
+        )
+    if sv["start"] == "rest" and options.thermal == "network":
+        raise CaseError(
+            file,
+            "solver.start",
+            "'rest' moves the plenums along the pull-down ramp, which the shell's thermal "
+            "network would overwrite; allowed with options.thermal = 'network': 'periodic'",
         )
     if solver.min_revolutions > solver.max_revolutions:
         raise CaseError(file, "solver.min_revolutions", "must not exceed solver.max_revolutions")

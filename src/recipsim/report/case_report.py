@@ -95,6 +95,8 @@ def write_case_report(
 
     op = run.case.operating_point
     text, files = resolved_case(run.case)
+    if run.startup is not None:  # the start-up from rest: startup.csv and startup.png
+        files = {**files, **startup_files(run, plots)}
     return write_report(
         out_dir,
         run.row,
@@ -106,6 +108,27 @@ def write_case_report(
         plots=plots,
         files=files,
     )
+
+
+def startup_files(run: CaseRun, plots: bool | Collection[str] = True) -> dict[str, bytes]:
+    """``startup.csv`` and (unless ``plots`` leaves it out) ``startup.png`` of a run
+    from rest, as file contents (reports/README.md, "startup.csv")."""
+    import io
+
+    from recipsim.results.startup import startup_table
+
+    assert run.startup is not None
+    table = startup_table(run.startup)
+    out = {"startup.csv": table.to_csv(index=False).encode()}
+    if plots is True or (plots and "startup" in plots):
+        from recipsim.report.startup_plot import plot_startup
+
+        buffer = io.BytesIO()
+        plot_startup(table, title=f"{run.case.name}: start-up from rest").savefig(
+            buffer, format="png", dpi=120
+        )
+        out["startup.png"] = buffer.getvalue()
+    return out
 
 
 def overrides_digest(overrides: Sequence[str]) -> str:

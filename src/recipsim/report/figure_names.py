@@ -7,10 +7,11 @@ from collections.abc import Iterable
 
 #: Names of the report's figures (file ``<name>.png``), in the order they are drawn;
 #: ``valves`` needs the simulated gas, ``bearing_loads`` the crank train's forces and
-#: ``orbits`` its flexible bearings, ``loss_breakdown`` the gas (the loss chain's waterfall).
+#: ``orbits`` its flexible bearings, ``loss_breakdown`` the gas (the loss chain's waterfall),
+#: ``startup`` a run from rest (``solver.start = "rest"``).
 FIGURE_NAMES = (
     "p_V", "p_V_loglog", "p_theta", "torque", "valves", "bearing_loads", "orbits",
-    "loss_breakdown",
+    "loss_breakdown", "startup",
 )  # fmt: skip
 
 

@@ -13,6 +13,7 @@ if TYPE_CHECKING:
 
     from recipsim.case.load import Case
     from recipsim.solve.periodic import PeriodicSolution
+    from recipsim.solve.startup import StartupRun
 
 
 logger = logging.getLogger(__name__)
@@ -33,6 +34,8 @@ class CaseRun:
         The summary row (:func:`recipsim.results.tables.summary`), units in the keys.
     meta : dict
         Provenance (versions, options, solver statistics).
+    startup : StartupRun or None
+        The start-up transient before the periodic solve (``solver.start = "rest"``).
     """
 
     case: Case
@@ -40,10 +43,12 @@ class CaseRun:
     cycle: pd.DataFrame
     row: dict[str, Any]
     meta: dict[str, Any]
+    startup: StartupRun | None = None
 
 
 def simulate_case(case: Case, argv: list[str] | None = None) -> CaseRun:
-    """Solve ``case`` to its periodic steady state and tabulate the converged revolution.
+    """Solve ``case`` to its periodic steady state and tabulate the converged revolution
+    (from rest first, through the start-up transient, with ``solver.start = "rest"``).
 
     Raises
     ------
@@ -58,7 +63,17 @@ def simulate_case(case: Case, argv: list[str] | None = None) -> CaseRun:
 
     if numba_cache_lacks("integrator"):
         logger.info("compiling the solver (once per installation: about 30-45 s)")
-    solution = None
+    solution = startup = None
+    if case.solver.start == "rest":  # the start-up transient, then the periodic solve
+        from recipsim.results.startup import startup_summary
+        from recipsim.solve.startup import solve_from_rest
+
+        startup = solve_from_rest(build_model_for(case))
+        solution = startup.solution
+        cycle = cycle_table(solution)
+        meta = provenance(solution, argv)
+        row = summary(solution, cycle, case) | startup_summary(startup)
+        return CaseRun(case, solution, cycle, row, meta, startup)
     if case.options.pressure == "tabulated" and case.options.mechanics == "pinned":
         cycle = pinned_tabulated_cycle(case)  # inverse dynamics only, nothing to integrate
         meta = case_provenance(case, argv)
