@@ -167,6 +167,9 @@ SOLVER_SPEC: Spec = {
     ),
     "start": Choice(("periodic", "rest"), "periodic", "periodic steady state; 'rest': not yet"),
     "periodic": Choice(("auto", "revolutions", "shooting"), "auto", "periodic steady-state solver"),
+    "envelope": Choice(
+        ("refuse", "ignore"), "refuse", "a point outside the refrigerant's [envelope]"
+    ),
 }
 
 TOP_KEYS = {
@@ -340,6 +343,8 @@ class SolverSettings:
     max_step: float  # crank angle [rad]
     #: periodic steady-state solver: "revolutions", "shooting" or "auto"
     periodic: str = "auto"
+    #: outside the refrigerant's envelope: "refuse" or "ignore" (recipsim.case.envelope)
+    envelope: str = "refuse"
 
 
 @dataclass(frozen=True)
@@ -633,6 +638,7 @@ def case_from_dict(
         samples_per_revolution=int(sv["samples_per_revolution"]),
         max_step=sv["max_step"],
         periodic=sv["periodic"],
+        envelope=sv["envelope"],
     )
     if sv["start"] == "rest":
         raise CaseError(

@@ -101,6 +101,9 @@ class PeriodicSolution:
     newton_iterations: int = 0
     jacobians: int = 0
     jacobian_revolutions: int = 0
+    #: revolutions per period: > 1 for a subharmonic response (``final`` then holds the
+    #: quadratures averaged over the period, :mod:`recipsim.solve.periodic`)
+    period_revolutions: int = 1
 
 
 def sample_times(model: Model, n: int) -> tuple[np.ndarray, np.ndarray]:
