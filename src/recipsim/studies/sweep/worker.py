@@ -126,8 +126,9 @@ def run_point(task: PointTask) -> dict[str, Any]:
         return {"status": FAILED, "message": f"{type(exc).__name__}: {exc}", "summary": {}}
     except Exception as exc:  # a bug: keep the sweep going, say what it was
         return {"status": ERROR, "message": f"{type(exc).__name__}: {exc}", "summary": {}}
-    status = str(row.get("status", OK if row.get("converged [-]") else NOT_CONVERGED))
-    return {"status": status, "message": str(row.get("status_message", "")), "summary": row}
+    # the row's status and its message become the sweep's own columns
+    status = str(row.pop("status", OK if row.get("converged [-]") else NOT_CONVERGED))
+    return {"status": status, "message": str(row.pop("status_message", "")), "summary": row}
 
 
 def run_points(tasks: list[PointTask]) -> list[dict[str, Any]]:
