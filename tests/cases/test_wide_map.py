@@ -1,9 +1,10 @@
 """A sample of the shipped wide maps (issue 18): every point ends ok, no_delivery,
 subharmonic or outside_envelope, with consistent values.
 
-The full maps (``cases/sweeps/wide_map_*.toml``, 1820 points) are run by hand with
-``recipsim sweep``; this test takes every 60th point of each (spread over all axes,
-about 30 points, ~30 s on one core) through the sweep worker, as a sweep runs them.
+The full maps (``cases/sweeps/wide_map_*.toml``, 1820 points, 1052 inside the envelopes)
+are run by hand with ``recipsim sweep`` (about 80 s with 2 jobs); this test takes every
+60th point of each (spread over all axes: 32 points, about 10 s on one core with a warm
+cache) through the sweep worker, as a sweep runs them.
 Checks (issue 18, "What must hold"): no NaN among an ok row's numbers, volumetric
 efficiency never negative, mass and energy closures below 1e-3 on every ok row, and a
 point beyond an envelope bound refused before integrating.
