@@ -192,6 +192,9 @@ SOLVER_SPEC: Spec = {
         doc="start = 'rest': plenums ramp from the standstill to the case's pressures",
     ),
     "periodic": Choice(("auto", "revolutions", "shooting"), "auto", "periodic steady-state solver"),
+    "envelope": Choice(
+        ("refuse", "ignore"), "refuse", "a point outside the refrigerant's [envelope]"
+    ),
 }
 
 TOP_KEYS = {
@@ -373,6 +376,8 @@ class SolverSettings:
     standstill_pressure: float = math.nan
     #: time over which the plenums move from the standstill to the case's pressures [s]
     pull_down_time: float = 2.5
+    #: outside the refrigerant's envelope: "refuse" or "ignore" (recipsim.case.envelope)
+    envelope: str = "refuse"
 
 
 @dataclass(frozen=True)
@@ -671,6 +676,7 @@ def case_from_dict(
         if sv["standstill_pressure"] is None
         else sv["standstill_pressure"],
         pull_down_time=sv["pull_down_time"],
+        envelope=sv["envelope"],
     )
     if sv["start"] == "rest" and options.drive != "induction_motor":
         raise CaseError(

@@ -20,6 +20,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any, TypeAlias
 
 from recipsim.atomic import checked_name
+from recipsim.case.envelope import read_envelope
 from recipsim.case.files import package_data, read_toml
 from recipsim.case.schema import Field, Spec, Text, check_keys, read_table
 from recipsim.errors import CaseError
@@ -63,6 +64,8 @@ class RefrigerantSpec:
         Name to a dict of SI values (``evaporating_temperature`` [K], ...).
     path : str
         File the spec was read from.
+    envelope : dict
+        Bounds of the operating envelope in SI (:mod:`recipsim.case.envelope`).
     """
 
     name: str
@@ -75,6 +78,8 @@ class RefrigerantSpec:
     critical_pressure: float
     rating_points: dict[str, dict[str, Any]] = field(default_factory=dict)
     path: str = ""
+    #: operating envelope in SI (:mod:`recipsim.case.envelope`); empty: none documented
+    envelope: dict[str, float] = field(default_factory=dict)
 
 
 def refrigerant_dirs(extra: list[Path] | None = None) -> list[Path]:
@@ -141,7 +146,12 @@ def read_refrigerant_file(path: Path) -> RefrigerantSpec:
     """Read and validate one refrigerant file."""
     file = str(path)
     raw, _ = read_toml(path, "refrigerant")
-    check_keys(raw, {"name", "coolprop_name", "description", "limits", "rating_points"}, file, "")
+    check_keys(
+        raw,
+        {"name", "coolprop_name", "description", "limits", "rating_points", "envelope"},
+        file,
+        "",
+    )
     top = read_table(
         {k: v for k, v in raw.items() if k in ("name", "coolprop_name", "description")},
         {"name": Text(), "coolprop_name": Text(), "description": Text("")},
@@ -178,6 +188,7 @@ def read_refrigerant_file(path: Path) -> RefrigerantSpec:
         critical_pressure=constants.p_crit,
         rating_points=points,
         path=file,
+        envelope=read_envelope(raw.get("envelope"), file),
     )
 
 

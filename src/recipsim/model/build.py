@@ -334,6 +334,10 @@ def cylinder_model(case: Case) -> Model:
     return model
 
 
+#: Largest initial cylinder pressure, a fraction of the discharge pressure.
+START_PRESSURE_CAP = 0.95
+
+
 def _initial_gas_state(
     case: Case, fluid: AnyFluid, suction: PlenumState
 ) -> tuple[np.ndarray, np.ndarray]:
@@ -345,6 +349,12 @@ def _initial_gas_state(
     v_start = geo.clearance_volume + geo.piston_area * x_start
     rho_start = suction.density * (geo.clearance_volume + geo.swept_volume) / v_start
     start = fluid.state_rhos(rho_start, suction.entropy)
+    # at a low pressure ratio the gas would already be above the discharge pressure at
+    # the start angle with the valve shut, and its opening event (a crossing) never fires
+    p_cap = START_PRESSURE_CAP * case.operating_point.discharge_pressure
+    if start["p"] > p_cap:
+        start = fluid.state_ps(p_cap, suction.entropy)
+        rho_start = start["rho"]
     y0[cyl.Y_T] = start["T"]
     y0[cyl.Y_RHO] = rho_start
     scale = np.ones(cyl.N_STATE)

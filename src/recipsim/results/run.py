@@ -50,11 +50,19 @@ def simulate_case(case: Case, argv: list[str] | None = None) -> CaseRun:
     """Solve ``case`` to its periodic steady state and tabulate the converged revolution
     (from rest first, through the start-up transient, with ``solver.start = "rest"``).
 
+    The summary row ends with ``status`` and ``status_message``
+    (:mod:`recipsim.results.outcome`).
+
     Raises
     ------
+    OutsideEnvelopeError
+        Before integrating, for a point outside the refrigerant's envelope.
     SolverError
-        Naming the crank angle and the state where the integration failed.
+        Naming the crank angle and the state where the integration failed, or the
+        quantity and state of a failed property evaluation (never a raw library error).
     """
+    from recipsim.case.envelope import check_envelope
+    from recipsim.results.outcome import classify, explained
     from recipsim.results.provenance import case_provenance, provenance
     from recipsim.results.tables import cycle_table, pinned_tabulated_cycle, summary
     from recipsim.solve.drive import build_model_for
@@ -63,26 +71,37 @@ def simulate_case(case: Case, argv: list[str] | None = None) -> CaseRun:
 
     if numba_cache_lacks("integrator"):
         logger.info("compiling the solver (once per installation: about 30-45 s)")
+    check_envelope(case)  # refuse a point outside the refrigerant's envelope up front
     solution = startup = None
     if case.solver.start == "rest":  # the start-up transient, then the periodic solve
         from recipsim.results.startup import startup_summary
         from recipsim.solve.startup import solve_from_rest
 
-        startup = solve_from_rest(build_model_for(case))
+        with explained("building the model"):
+            model = build_model_for(case)
+        with explained("integrating the start-up from rest"):
+            startup = solve_from_rest(model)
         solution = startup.solution
         cycle = cycle_table(solution)
         meta = provenance(solution, argv)
-        row = summary(solution, cycle, case) | startup_summary(startup)
-        return CaseRun(case, solution, cycle, row, meta, startup)
-    if case.options.pressure == "tabulated" and case.options.mechanics == "pinned":
+    elif case.options.pressure == "tabulated" and case.options.mechanics == "pinned":
         cycle = pinned_tabulated_cycle(case)  # inverse dynamics only, nothing to integrate
         meta = case_provenance(case, argv)
     else:
         if case.options.speed == "motor_slip":
-            at_speed = solve_at_motor_speed(case)
+            with explained("integrating the periodic state at the motor's slip speed"):
+                at_speed = solve_at_motor_speed(case)
             case, solution = at_speed.case, at_speed.solution
         else:
-            solution = solve_periodic(build_model_for(case))
+            with explained("building the model"):
+                model = build_model_for(case)
+            with explained("integrating the periodic state"):
+                solution = solve_periodic(model)
         cycle = cycle_table(solution)
         meta = provenance(solution, argv)
-    return CaseRun(case, solution, cycle, summary(solution, cycle, case), meta)
+    with explained("post-processing the converged revolution"):
+        row = summary(solution, cycle, case)
+        if startup is not None:
+            row |= startup_summary(startup)
+    row["status"], row["status_message"] = classify(solution, cycle, row)
+    return CaseRun(case, solution, cycle, row, meta, startup)

@@ -43,6 +43,7 @@ from recipsim.results.bearings import (
 )
 from recipsim.results.electrical import loss_columns, rating_enthalpies
 from recipsim.results.loss_breakdown import loss_breakdown
+from recipsim.results.outcome import discharge_valve_never_opens, state_or_explain
 from recipsim.results.thermal import thermal_columns
 from recipsim.results.valve_metrics import valve_summary
 from recipsim.solve.periodic import PeriodicSolution, sample_outputs
@@ -281,14 +282,17 @@ def _gas_metrics(
     fluid = model.fluid
     suction = model.compressor_inlet
     h_gas, h_liquid = rating_enthalpies(fluid, op)
-    h_2s = fluid.state_ps(op.discharge_pressure, suction.entropy)["h"]
+    h_2s = state_or_explain(
+        fluid, "ps", op.discharge_pressure, suction.entropy, "the isentropic discharge enthalpy"
+    )["h"]
     mdot_dis = m_dis * freq
     capacity = mdot_dis * (h_gas - h_liquid)
     p_ind = work * freq
     p_isen = mdot_dis * (h_2s - suction.enthalpy)
-    if y[cyl.Q_MDIS_OUT] > 0.0:
+    if not discharge_valve_never_opens(solution):  # else NaN by design (no_delivery)
         h_mix = y[cyl.Q_HDIS_OUT] / y[cyl.Q_MDIS_OUT]
-        t_dis = fluid.state_ph(op.discharge_pressure, h_mix)["T"]
+        what = "the discharge temperature (mass-weighted discharge enthalpy)"
+        t_dis = state_or_explain(fluid, "ph", op.discharge_pressure, h_mix, what)["T"]
     else:
         t_dis = math.nan
     return {

@@ -9,8 +9,12 @@ over the revolution) and the relative change of the revolution's suction mass,
 indicated work, mass-weighted discharge enthalpy and drive work from the
 previous revolution. Undamped flexible bearings never settle this way (their free
 vibration does not decay) and lightly damped ones settle slowly: ``"auto"`` hands
-such runs over to shooting (see :func:`solve_periodic`), ``"revolutions"`` ends them
-at ``max_revolutions`` unconverged.
+such runs over to shooting (see :func:`solve_periodic`), as it does any run whose
+residual stalls (:func:`stalled`: no halving over ``STALL_WINDOW`` revolutions), e.g. the
+slow settling near zero delivery; ``"revolutions"`` ends them at ``max_revolutions``
+unconverged. A stalled run whose end states repeat after n = 2..4 revolutions
+(:func:`subharmonic_period`: valve dynamics locked on a subharmonic) ends there, converged
+with ``period_revolutions = n`` and the quadratures averaged over the period.
 Back-flow through the discharge valve comes from a plenum at
 the mass-weighted discharge enthalpy of the previous revolution (Bell et al.).
 With ``options.thermal = "network"`` the shell's thermal network is solved after every
@@ -66,6 +70,8 @@ __all__ = [
     "sample_times",
     "state_change",
     "predicted_revolutions",
+    "stalled",
+    "subharmonic_period",
     "solve_periodic",
     "solve_revolutions",
 ]
@@ -73,6 +79,71 @@ __all__ = [
 _RATE_WINDOW = 2
 _SHOOTING_OVERHEAD = 4
 _AUTO_MIN_REVOLUTIONS = 4
+#: The residual has stalled when its best over the last ``STALL_WINDOW`` revolutions is
+#: no better than ``STALL_GAIN`` times its best before them.
+STALL_WINDOW = 8
+STALL_GAIN = 0.5
+#: Periods (in revolutions) looked for when the iteration stalls.
+SUBHARMONIC_PERIODS = (2, 3, 4)
+
+
+def stalled(history: list[float]) -> bool:
+    """Whether the cycle residual stopped decaying (see :data:`STALL_WINDOW`)."""
+    if len(history) <= STALL_WINDOW:
+        return False
+    return min(history[-STALL_WINDOW:]) >= STALL_GAIN * min(history[:-STALL_WINDOW])
+
+
+def subharmonic_period(ends: list[np.ndarray], reference: np.ndarray, tolerance: float) -> int:
+    """Smallest n in :data:`SUBHARMONIC_PERIODS` with which the end states repeat.
+
+    Parameters
+    ----------
+    ends : list of ndarray
+        Error-controlled states at the end of each revolution, oldest first.
+    reference : ndarray
+        Size against which a change is judged (0 for states not judged).
+    tolerance : float
+        Largest relative change of a repeating state [-].
+
+    Returns
+    -------
+    int
+        n if the states after n revolutions repeat within ``tolerance`` (checked over
+        the last two periods) while one revolution changes them by more; 1 otherwise.
+    """
+    judged = reference > 0.0
+
+    def change(a: np.ndarray, b: np.ndarray) -> float:
+        return float(np.max(np.abs(a[judged] - b[judged]) / reference[judged]))
+
+    if len(ends) < 2 or change(ends[-1], ends[-2]) < tolerance:
+        return 1
+    for n in SUBHARMONIC_PERIODS:
+        if len(ends) < 2 * n + 1:
+            break
+        if all(change(ends[-1 - k], ends[-1 - k - n]) < tolerance for k in range(n + 1)):
+            return n
+    return 1
+
+
+def _period_average(revs: list[Revolution], n_err: int) -> Revolution:
+    """The last revolution with its quadratures averaged over ``revs`` (one period)."""
+    last = revs[-1]
+    y_end = last.y_end.copy()
+    y_end[n_err:] = np.mean([r.y_end[n_err:] for r in revs], axis=0)
+    rev = Revolution(
+        last.y_start,
+        y_end,
+        last.mode_start,
+        last.mode_end,
+        last.times,
+        last.samples,
+        last.sample_modes,
+        last.stats,
+    )
+    rev.duration = float(np.mean([r.duration for r in revs]))
+    return rev
 
 
 def predicted_revolutions(history: list[float], tolerance: float) -> float:
@@ -148,8 +219,10 @@ def solve_revolutions(
     history: list[float] = []
     tally = _Tally()
     rev: Revolution | None = None
+    recent: list[Revolution] = []
     residual = math.inf
     converged = False
+    period = 1
     for count in range(1, s.max_revolutions + 1):
         rev, h = integrate(model, y, mode, h, s.samples_per_revolution)
         tally.add(rev)
@@ -165,18 +238,26 @@ def solve_revolutions(
         y = rev.y_end.copy()
         mode = rev.mode_end.copy()
         previous = rev
+        recent = [*recent[-2 * SUBHARMONIC_PERIODS[-1] :], rev]
         if residual < s.cycle_tolerance and count >= s.min_revolutions:
             converged = True
             break
+        if stalled(history):
+            ref = residual_reference(model, rev) * (model.scale[: model.n_err] > 0.0)
+            ends = [r.y_end[: model.n_err] for r in recent]
+            period = subharmonic_period(ends, ref, s.cycle_tolerance)
+            if period > 1:  # a period of n revolutions: report its average
+                rev = _period_average(recent[-period:], model.n_err)
+                converged = True
+                break
         if hand_over and count >= _AUTO_MIN_REVOLUTIONS:
             cost = shooting_cost(model, mode)
-            if (
-                cost < s.max_revolutions - count
-                and predicted_revolutions(history, s.cycle_tolerance) > cost
-            ):
+            slow = predicted_revolutions(history, s.cycle_tolerance) > cost or stalled(history)
+            if cost < s.max_revolutions - count and slow:
                 return solve_shooting(model, start=(rev, h), history=history, tally=tally, t0=start)
     assert rev is not None
     return PeriodicSolution(
+        period_revolutions=period,
         model=model,
         final=rev,
         revolutions=tally.revolutions,

@@ -24,6 +24,7 @@ from recipsim.solve.integrator import (
     METHOD_ROSW,
     N_STATS,
     PROPERTY_FAILURE,
+    ST_H,
     ST_NACCEPT,
     ST_NEVENTS,
     ST_NFEV,
@@ -100,6 +101,9 @@ class PeriodicSolution:
     newton_iterations: int = 0
     jacobians: int = 0
     jacobian_revolutions: int = 0
+    #: revolutions per period: > 1 for a subharmonic response (``final`` then holds the
+    #: quadratures averaged over the period, :mod:`recipsim.solve.periodic`)
+    period_revolutions: int = 1
 
 
 def sample_times(model: Model, n: int) -> tuple[np.ndarray, np.ndarray]:
@@ -223,7 +227,24 @@ def integrate_revolution(
         y_run[model.mechanism_offset + mlay.Y_CRANK_ANGLE] -= 2.0 * math.pi
     rev = Revolution(y_start, y_run, mode_start, mode_run, times, samples, sample_modes, stats)
     rev.duration = float(stats[ST_T])
-    return rev, float(stats[6])
+    return rev, next_first_step(model, float(stats[ST_H]))
+
+
+#: Smallest first step carried into the next revolution, as a fraction of the period.
+FIRST_STEP_FLOOR = 1e-6
+
+
+def next_first_step(model: Model, h_last: float) -> float:
+    """First trial step of the next revolution [s] from the integrator's last step.
+
+    The last step of a revolution is cut to land on its end (or on an event there) and
+    can be a round-off (1e-16 s with ideal valves, whose closing event sits at the end
+    angle); carried over as the next revolution's first step it would start below the
+    step floor. Such a step is replaced by the usual first step, 1e-4 of the period.
+    """
+    if not h_last >= FIRST_STEP_FLOOR * model.period:
+        return model.period * 1e-4
+    return h_last
 
 
 def _raise_failure(model: Model, status: int, t: float, y: np.ndarray, mode: np.ndarray) -> None:

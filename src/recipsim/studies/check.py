@@ -4,8 +4,11 @@
 :mod:`recipsim.cli.check`), one row per case, and never stops at a failing case:
 
 - outcome ``converged`` / ``not_converged``: the run went to its end (the periodic
-  steady state was, or was not, reached within ``solver.max_revolutions``);
-- ``refused``: the case was rejected before integrating (:class:`CaseError`);
+  steady state was, or was not, reached within ``solver.max_revolutions``); the message
+  is the run's status message (:mod:`recipsim.results.outcome`: the diagnosis of a
+  ``not_converged`` run, what ``no_delivery`` or ``subharmonic`` leave out);
+- ``refused``: the case was rejected before integrating (:class:`CaseError`, the
+  refrigerant's envelope included);
 - ``failed``: the integration stopped (:class:`SolverError`, crank angle and state in
   the message), or an internal error (its type is named).
 
@@ -463,11 +466,8 @@ def check_case(
 def _fill_run(row: CheckRow, run: CaseRun) -> None:
     r = run.row
     row.outcome = "converged" if r["converged [-]"] else "not_converged"
-    if row.outcome == "not_converged":
-        row.message = (
-            f"cycle residual {float(r['cycle_residual [-]']):.2g} after "
-            f"{r['revolutions [-]']} revolutions (tolerance {run.case.solver.cycle_tolerance:g})"
-        )
+    if r.get("status_message"):  # the diagnosis, or what no_delivery / subharmonic mean
+        row.message = f"{r['status']}: {r['status_message']}"
     row.revolutions = int(r["revolutions [-]"])
     row.cycle_residual = float(r["cycle_residual [-]"])
     row.solve_time = float(r["wall_time [s]"])

@@ -110,6 +110,8 @@ def test_columns_carry_units_and_are_documented(report):
         "friction",
         "motor",
         "thermal",
+        "status",
+        "status_message",
     }
     for col in list(summary.columns) + list(cycle.columns):
         assert col in documented, f"column {col!r} is not documented in reports/README.md"

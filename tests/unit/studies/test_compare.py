@@ -124,6 +124,8 @@ def test_table_arithmetic_against_the_summary_rows(tab_vs_coupled):
         "thermal",
         "converged [-]",
         "periodic_method",
+        "status",
+        "status_message",
     }
     order = [GROUPS.index(g) for g in table["group"]]
     assert order == sorted(order)  # operating point, gas, energy, mechanism, bearing, solver

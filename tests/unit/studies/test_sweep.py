@@ -122,6 +122,8 @@ def _failing_solver(monkeypatch, how: dict[float, str]) -> None:
         if how.get(t_evap) == "solver":
             raise SolverError("step size underflow at crank angle 12.3 deg (test)")
         if how.get(t_evap) == "bug":
+            raise KeyError("a missing key (test)")
+        if how.get(t_evap) == "arithmetic":  # a library's error: failed, with its stage
             raise ZeroDivisionError("division by zero (test)")
         if how.get(t_evap) == "kill":
             os.kill(os.getpid(), signal.SIGKILL)
@@ -137,14 +139,17 @@ def test_solver_failures_and_bugs_are_recorded_and_the_sweep_goes_on(tmp_path, m
         tmp_path,
         '[axes]\noperating_point.evaporating_temperature = ["-30 degC", "-25 degC", "-20 degC"]\n',
     )
-    _failing_solver(monkeypatch, {243.15: "solver", 248.15: "bug"})
+    _failing_solver(monkeypatch, {243.15: "solver", 248.15: "bug", 253.15: "arithmetic"})
     outcome = run_sweep(sweep, out=tmp_path, jobs=1, plots=False)
-    assert list(outcome.table["status"]) == ["failed", "error", "ok"]
-    assert outcome.n_ok == 1 and outcome.n_failed == 2
+    assert list(outcome.table["status"]) == ["failed", "error", "failed"]
+    assert outcome.n_ok == 0 and outcome.n_failed == 3
     messages = list(outcome.table["message"])
     assert messages[0].endswith("step size underflow at crank angle 12.3 deg (test)")
-    assert messages[1] == "ZeroDivisionError: division by zero (test)"
-    assert outcome.table.loc[2, "cooling_capacity [W]"] > 100.0
+    assert messages[1] == "KeyError: 'a missing key (test)'"
+    # issue 18: no ZeroDivisionError (or CoolProp ValueError) escapes as 'error'
+    assert messages[2] == (
+        "ZeroDivisionError while integrating the periodic state: division by zero (test)"
+    )
 
 
 @pytest.mark.skipif(sys.platform != "linux", reason="the patched solver reaches forked workers")

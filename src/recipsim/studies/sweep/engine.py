@@ -26,7 +26,7 @@ from recipsim.report.case_report import report_dir
 from recipsim.studies.sweep.plan import PlannedPoint, plan_sweep
 from recipsim.studies.sweep.spec import SweepSpec, load_sweep
 from recipsim.studies.sweep.store import PointStore
-from recipsim.studies.sweep.worker import NOT_CONVERGED, OK, PointTask
+from recipsim.studies.sweep.worker import OK, SOLVED, PointTask
 
 TIMING_COLUMNS = ("wall_time [s]",)
 """Summary columns that differ from run to run (everything else is deterministic)."""
@@ -348,7 +348,7 @@ def _keep(
     """Whether a stored point is taken as it is."""
     if retry_failed and record["status"] != OK:
         return False
-    if reports and record["status"] in (OK, NOT_CONVERGED):
+    if reports and record["status"] in SOLVED:
         return (store.report_dir(pid) / "summary.csv").is_file()
     return True
 

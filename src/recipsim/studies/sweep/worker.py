@@ -6,11 +6,16 @@ calling process and on Dask workers (which need recipsim installed). It never ra
 for a point that goes wrong: the error becomes the point's ``status`` and
 ``message``.
 
-Statuses: ``ok`` (converged), ``not_converged`` (the periodic iteration stopped at
-``solver.max_revolutions``; the row holds the last revolution's values), ``invalid``
-(the case cannot be built: :class:`~recipsim.errors.CaseError`), ``failed`` (the
-integration failed: :class:`~recipsim.errors.SolverError` or another
-:class:`~recipsim.errors.RecipsimError`) and ``error`` (any other exception, a bug).
+Statuses (:mod:`recipsim.results.outcome`, shared with ``recipsim run``'s summary):
+``ok`` (converged), ``no_delivery`` (converged, the discharge valve never opens:
+discharge quantities NaN by design), ``subharmonic`` (a period of n revolutions; the row
+holds n-revolution averages), ``not_converged`` (``solver.max_revolutions`` spent; the
+message holds the diagnosis, the row the last revolution's values),
+``outside_envelope`` (refused before integrating: :mod:`recipsim.case.envelope`),
+``invalid`` (the case cannot be built: :class:`~recipsim.errors.CaseError`), ``failed``
+(the integration or a property evaluation failed: :class:`~recipsim.errors.SolverError`,
+another :class:`~recipsim.errors.RecipsimError`, or a library's ValueError or
+ArithmeticError, with the stage it came from) and ``error`` (any other exception, a bug).
 """
 
 from __future__ import annotations
@@ -27,12 +32,20 @@ from typing import TYPE_CHECKING, Any
 if TYPE_CHECKING:
     from recipsim.case.load import Case
 
-OK = "ok"
-NOT_CONVERGED = "not_converged"
+from recipsim.results.outcome import (  # light: the status names, no numerics
+    FAILED,
+    NO_DELIVERY,
+    NOT_CONVERGED,
+    OK,
+    OUTSIDE_ENVELOPE,
+    SUBHARMONIC,
+)
+
 INVALID = "invalid"
-FAILED = "failed"
 ERROR = "error"
-STATUSES = (OK, NOT_CONVERGED, INVALID, FAILED, ERROR)
+STATUSES = (OK, NO_DELIVERY, SUBHARMONIC, NOT_CONVERGED, OUTSIDE_ENVELOPE, INVALID, FAILED, ERROR)
+#: statuses whose row holds a solved revolution's values
+SOLVED = (OK, NO_DELIVERY, SUBHARMONIC, NOT_CONVERGED)
 
 
 @dataclass(frozen=True)
@@ -91,6 +104,7 @@ def run_point(task: PointTask) -> dict[str, Any]:
         ``summary``, the summary row of :func:`recipsim.results.tables.summary` (units in
         the keys; empty when the point could not be solved).
     """
+    from recipsim.case.envelope import OutsideEnvelopeError
     from recipsim.errors import CaseError, RecipsimError
     from recipsim.report.case_report import write_case_report
     from recipsim.results.run import simulate_case
@@ -102,20 +116,19 @@ def run_point(task: PointTask) -> dict[str, Any]:
         row = {k: _plain(v) for k, v in run.row.items()}
         if task.report_dir is not None:
             write_case_report(run, Path(task.report_dir), list(task.overrides), task.plots)
+    except OutsideEnvelopeError as exc:
+        return {"status": OUTSIDE_ENVELOPE, "message": exc.message, "summary": {}}
     except CaseError as exc:
         return {"status": INVALID, "message": str(exc), "summary": {}}
     except RecipsimError as exc:
         return {"status": FAILED, "message": str(exc), "summary": {}}
+    except (ValueError, ArithmeticError) as exc:  # a library's error outside the guarded stages
+        return {"status": FAILED, "message": f"{type(exc).__name__}: {exc}", "summary": {}}
     except Exception as exc:  # a bug: keep the sweep going, say what it was
         return {"status": ERROR, "message": f"{type(exc).__name__}: {exc}", "summary": {}}
-    if row.get("converged [-]"):
-        return {"status": OK, "message": "", "summary": row}
-    message = (
-        f"not converged after {row.get('revolutions [-]')} revolutions "
-        f"(cycle residual {row.get('cycle_residual [-]', float('nan')):.2e}); "
-        "try a larger solver.max_revolutions"
-    )
-    return {"status": NOT_CONVERGED, "message": message, "summary": row}
+    # the row's status and its message become the sweep's own columns
+    status = str(row.pop("status", OK if row.get("converged [-]") else NOT_CONVERGED))
+    return {"status": status, "message": str(row.pop("status_message", "")), "summary": row}
 
 
 def run_points(tasks: list[PointTask]) -> list[dict[str, Any]]:
