@@ -26,61 +26,17 @@ integrated with one line naming the quantity, its value and the bound
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
-from recipsim.case.schema import Field, Spec, read_table
+from recipsim.case.envelope_table import ENVELOPE_QUANTITIES
 from recipsim.errors import CaseError
 
 if TYPE_CHECKING:
     from recipsim.case.load import Case
 
-ENVELOPE_SPEC: Spec = {
-    "evaporating_temperature_min": Field("K", None, lo=100.0, hi=700.0),
-    "evaporating_temperature_max": Field("K", None, lo=100.0, hi=700.0),
-    "condensing_temperature_min": Field("K", None, lo=100.0, hi=700.0),
-    "condensing_temperature_max": Field("K", None, lo=100.0, hi=700.0),
-    "discharge_pressure_min": Field("Pa", None, lo=0.0, open_lo=True),
-    "discharge_pressure_max": Field("Pa", None, lo=0.0, open_lo=True),
-    "pressure_ratio_max": Field("dimensionless", None, lo=1.0, open_lo=True),
-    "shaft_speed_min": Field("rad/s", None, lo=0.0, open_lo=True),
-    "shaft_speed_max": Field("rad/s", None, lo=0.0, open_lo=True),
-}
-
-#: quantity -> (envelope key stem, how the value and bound are written)
-_QUANTITIES = {
-    "evaporating_temperature": ("evaporating temperature", "degC"),
-    "condensing_temperature": ("condensing temperature", "degC"),
-    "discharge_pressure": ("discharge pressure", "bar"),
-    "pressure_ratio": ("pressure ratio", ""),
-    "shaft_speed": ("shaft speed", "rpm"),
-}
-
 
 class OutsideEnvelopeError(CaseError):
     """The operating point lies outside the refrigerant's documented envelope."""
-
-
-def read_envelope(raw: Mapping[str, Any] | None, file: str) -> dict[str, float]:
-    """Validate the ``[envelope]`` table of a refrigerant file.
-
-    Returns
-    -------
-    dict
-        The bounds that are set, in SI (K, Pa, rad/s, -); empty without the table.
-
-    Raises
-    ------
-    CaseError
-        For an unknown key, a bad unit or a minimum above its maximum.
-    """
-    values = read_table(raw, ENVELOPE_SPEC, file, "envelope")
-    bounds = {k: float(v) for k, v in values.items() if v is not None}
-    for stem in _QUANTITIES:
-        lo, hi = bounds.get(f"{stem}_min"), bounds.get(f"{stem}_max")
-        if lo is not None and hi is not None and lo > hi:
-            raise CaseError(file, f"envelope.{stem}_min", "must not exceed the maximum")
-    return bounds
 
 
 def _written(value: float, unit: str) -> str:
@@ -112,7 +68,7 @@ def envelope_refusal(case: Case) -> str | None:
     for stem, value in values.items():
         if not math.isfinite(value):  # transcritical: no condensing temperature
             continue
-        name, unit = _QUANTITIES[stem]
+        name, unit = ENVELOPE_QUANTITIES[stem]
         lo, hi = bounds.get(f"{stem}_min"), bounds.get(f"{stem}_max")
         side = "below the minimum" if lo is not None and value < lo * (1 - 1e-9) else None
         if side is None and hi is not None and value > hi * (1 + 1e-9):

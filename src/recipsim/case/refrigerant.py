@@ -20,7 +20,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any, TypeAlias
 
 from recipsim.atomic import checked_name
-from recipsim.case.envelope import read_envelope
+from recipsim.case.envelope_table import read_envelope
 from recipsim.case.files import package_data, read_toml
 from recipsim.case.schema import Field, Spec, Text, check_keys, read_table
 from recipsim.errors import CaseError
