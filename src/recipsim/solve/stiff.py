@@ -37,7 +37,7 @@ import math
 import numpy as np
 from numba import njit
 
-from recipsim.model.scenes import scene_rhs
+from recipsim.solve.step_args import rhs
 
 # ---- ROS34PW2: alpha (stage abscissae), Gamma (lower triangular, gamma on the diagonal),
 # ---- b (order 3) and bhat (order 2)
@@ -91,18 +91,27 @@ _FD_REL = 1e-7
 
 
 @njit(cache=True)
-def jacobian_fd(t, y, f0, mode, par, ipar, props, pbuf, scale, n_err, jac, ytmp, ftmp, aux):
-    """Forward-difference Jacobian ``jac[i, j]`` of every derivative ``i`` with respect
-    to the first ``n_err`` states ``j`` (columns of zero scale, quadratures, stay zero).
+def jacobian_fd(t, y, f0, scene, tol, work):
+    """Forward-difference Jacobian ``work.jac[i, j]`` of every derivative ``i`` with
+    respect to the first ``tol.n_err`` states ``j`` (columns of zero scale, quadratures,
+    stay zero).
 
-    ``f0`` is f(t, y). Returns ``(status, evaluations)``; status != 0 if a perturbed
-    state left the property model in both directions. ``aux`` is overwritten.
+    ``f0`` is f(t [s], y); ``scene`` a :class:`recipsim.solve.step_args.SceneArgs`,
+    ``tol`` a :class:`~recipsim.solve.step_args.Tolerance`, ``work`` a
+    :class:`~recipsim.solve.step_args.Workspace` (``ytmp``, ``ftmp`` and ``aux`` are
+    overwritten). Returns ``(status, evaluations)``; status != 0 if a perturbed state
+    left the property model in both directions.
     """
+    jac = work.jac
+    ytmp = work.ytmp
+    ftmp = work.ftmp
+    aux = work.aux
+    scale = tol.scale
     n = y.shape[0]
     for i in range(n):
         ytmp[i] = y[i]
     nfev = 0
-    for j in range(n_err):
+    for j in range(tol.n_err):
         if scale[j] == 0.0 or f0[j] == 0.0:
             # a quadrature, or a state its mode holds fixed (a seated reed): its
             # increments u_j stay zero, so its column never acts
@@ -111,12 +120,12 @@ def jacobian_fd(t, y, f0, mode, par, ipar, props, pbuf, scale, n_err, jac, ytmp,
             continue
         d = _FD_REL * max(abs(y[j]), scale[j])
         ytmp[j] = y[j] + d
-        st = scene_rhs(t, ytmp, mode, par, ipar, props, pbuf, ftmp, aux)
+        st = rhs(t, ytmp, scene, ftmp, aux)
         nfev += 1
         if st != 0:
             d = -d
             ytmp[j] = y[j] + d
-            st = scene_rhs(t, ytmp, mode, par, ipar, props, pbuf, ftmp, aux)
+            st = rhs(t, ytmp, scene, ftmp, aux)
             nfev += 1
             if st != 0:
                 ytmp[j] = y[j]
@@ -207,33 +216,23 @@ def _solve_stage(lu, piv, jac, n_err, hg, u) -> None:
 
 
 @njit(cache=True)
-def w_step(
-    t,
-    h,
-    y,
-    mode,
-    par,
-    ipar,
-    props,
-    pbuf,
-    rtol,
-    atol,
-    scale,
-    n_err,
-    jac,
-    lu,
-    piv,
-    stages,
-    ytmp,
-    ynew,
-    aux,
-):
-    """One ROS34PW2 step from (t, y) with the Jacobian ``jac``; ``stages[0]`` holds
-    f(t, y) on entry.
+def w_step(t, h, y, ynew, scene, tol, work):
+    """One ROS34PW2 step of ``h`` [s] from (t [s], y) with the Jacobian ``work.jac``;
+    ``work.stages[0]`` holds f(t, y) on entry.
 
-    Uses ``stages[1:6]`` as work space. Returns ``(status, error_norm)``; on success
-    ``ynew`` and ``stages[6] = f(t + h, ynew)`` (status -1: singular iteration matrix).
+    ``scene``, ``tol`` and ``work`` are the bundles of :mod:`recipsim.solve.step_args`;
+    uses ``work.stages[1:6]``, ``work.lu`` and ``work.piv`` as work space. Returns
+    ``(status, error_norm)``; on success ``ynew`` holds the state at ``t + h`` and
+    ``work.stages[6] = f(t + h, ynew)`` (status -1: singular iteration matrix).
     """
+    stages = work.stages
+    jac = work.jac
+    lu = work.lu
+    piv = work.piv
+    ytmp = work.ytmp
+    aux = work.aux
+    n_err = tol.n_err
+    scale = tol.scale
     n = y.shape[0]
     k1 = stages[0]
     u1 = stages[1]
@@ -258,7 +257,7 @@ def w_step(
     # stage 2
     for i in range(n):
         ytmp[i] = y[i] + _A21 * u1[i]
-    st = scene_rhs(t + _AL2 * h, ytmp, mode, par, ipar, props, pbuf, fs, aux)
+    st = rhs(t + _AL2 * h, ytmp, scene, fs, aux)
     if st != 0:
         return st, math.inf
     for i in range(n):
@@ -267,7 +266,7 @@ def w_step(
     # stage 3
     for i in range(n):
         ytmp[i] = y[i] + _A31 * u1[i] + _A32 * u2[i]
-    st = scene_rhs(t + _AL3 * h, ytmp, mode, par, ipar, props, pbuf, fs, aux)
+    st = rhs(t + _AL3 * h, ytmp, scene, fs, aux)
     if st != 0:
         return st, math.inf
     for i in range(n):
@@ -276,7 +275,7 @@ def w_step(
     # stage 4
     for i in range(n):
         ytmp[i] = y[i] + _A41 * u1[i] + _A42 * u2[i] + _A43 * u3[i]
-    st = scene_rhs(t + _AL4 * h, ytmp, mode, par, ipar, props, pbuf, fs, aux)
+    st = rhs(t + _AL4 * h, ytmp, scene, fs, aux)
     if st != 0:
         return st, math.inf
     for i in range(n):
@@ -284,7 +283,7 @@ def w_step(
     _solve_stage(lu, piv, jac, n_err, hg, u4)
     for i in range(n):
         ynew[i] = y[i] + _M1 * u1[i] + _M2 * u2[i] + _M3 * u3[i] + _M4 * u4[i]
-    st = scene_rhs(t + h, ynew, mode, par, ipar, props, pbuf, k7, aux)
+    st = rhs(t + h, ynew, scene, k7, aux)
     if st != 0:
         return st, math.inf
     err = 0.0
@@ -293,7 +292,7 @@ def w_step(
         if scale[i] == 0.0:
             continue
         e = _E1 * u1[i] + _E2 * u2[i] + _E3 * u3[i] + _E4 * u4[i]
-        sc = atol * scale[i] + rtol * max(abs(y[i]), abs(ynew[i]))
+        sc = tol.atol * scale[i] + tol.rtol * max(abs(y[i]), abs(ynew[i]))
         err += (e / sc) ** 2
         m += 1
     return 0, math.sqrt(err / max(m, 1))
