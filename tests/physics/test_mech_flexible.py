@@ -12,7 +12,7 @@ from numba.core.runtime import _nrt_python as nrt
 from numba.core.runtime import rtsys
 from scipy.integrate import solve_ivp
 
-from recipsim.case.mechanism import CrankGeometry, MechanismSpec, with_damping
+from recipsim.case.mechanism_spec import CrankGeometry, MechanismSpec, with_damping
 from recipsim.model.mechanism_parameters import mechanism_parameters
 from recipsim.physics.kinematics import piston_displacement
 from recipsim.physics.mechanics import layout as lay

@@ -30,7 +30,7 @@ import pytest
 from matplotlib.figure import Figure
 
 from recipsim.atomic import MARKER
-from recipsim.case.mechanism import CrankGeometry, MechanismSpec
+from recipsim.case.mechanism_spec import CrankGeometry, MechanismSpec
 from recipsim.model.pinned import pinned_loads
 from recipsim.physics.mechanics.layout import BEARING_NAMES
 from recipsim.physics.mechanics.tabulated import PressureCurve
@@ -382,7 +382,7 @@ def test_undamped_periodic_response_is_a_fixed_point(
     """Independent check: revolutions run on from the periodic state by the plain
     driver stay periodic (each revolution's change below the tolerance), and their
     RMS loads are those of the study (within 1e-3: the periodicity tolerance)."""
-    from recipsim.case.mechanism import with_damping
+    from recipsim.case.mechanism_spec import with_damping
 
     periodic = periodic_study.flexible["gas_flexible"]
     result = paper_study.simulate_mechanism(

@@ -77,7 +77,7 @@ import pandas as pd
 
 from recipsim import __version__
 from recipsim.atomic import atomic_directory
-from recipsim.case.mechanism import CrankGeometry, MechanismSpec, with_damping
+from recipsim.case.mechanism_spec import CrankGeometry, MechanismSpec, with_damping
 from recipsim.model.mechanism_parameters import mechanism_parameters
 from recipsim.model.pinned import pinned_loads
 from recipsim.physics.mechanics.flexible_setup import initial_state
