@@ -30,24 +30,22 @@ def hermite(t0, h, y0, f0, y1, f1, tau, out) -> None:
         out[i] = h00 * y0[i] + h * h10 * f0[i] + h01 * y1[i] + h * h11 * f1[i]
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def record_samples(
-    t, h, y, ynew, t_end, t1, mode, sample_times, i_sample, samples, sample_modes, work
+    t, h, y, f0, ynew, f1, t_end, t1, mode, sample_times, i_sample, samples, sample_modes, yint
 ) -> int:
-    """Record the samples whose times fall in (t, t_end] (and before ``t1``) from the
-    Hermite interpolant of the accepted step of ``h`` [s] from (t, y) to ynew.
+    """Record the samples whose times fall in (t, t_end] (and before ``t1``) [s] from the
+    Hermite interpolant of the accepted step of ``h`` [s] from (t, y, f0) to (ynew, f1).
 
-    ``work.stages[0]`` and ``work.stages[6]`` hold the derivatives at both ends and
-    ``work.yint`` is overwritten. Each sample's row of ``sample_modes`` gets the modes
-    in force over the step. Returns the index of the next sample to record.
+    Each sample's row of ``sample_modes`` gets the modes in force over the step;
+    ``yint`` is overwritten. Returns the index of the next sample to record.
     """
     n = y.shape[0]
-    yint = work.yint
     n_samples = sample_times.shape[0]
     while i_sample < n_samples and sample_times[i_sample] <= t_end:
         if sample_times[i_sample] >= t1:
             break
-        hermite(t, h, y, work.stages[0], ynew, work.stages[6], sample_times[i_sample], yint)
+        hermite(t, h, y, f0, ynew, f1, sample_times[i_sample], yint)
         for i in range(n):
             samples[i_sample, i] = yint[i]
         for i in range(mode.shape[0]):

@@ -13,7 +13,7 @@ import math
 
 from numba import njit
 
-from recipsim.solve.step_args import rhs
+from recipsim.model.scenes import scene_rhs
 
 # Dormand-Prince 5(4) tableau
 _C2, _C3, _C4, _C5 = 0.2, 0.3, 0.8, 8.0 / 9.0
@@ -39,7 +39,7 @@ _E1, _E3, _E4, _E5, _E6, _E7 = (
 )
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def dopri5_step(t, h, y, ynew, scene, tol, work):
     """One Dormand-Prince step of ``h`` [s] from (t [s], y).
 
@@ -67,6 +67,8 @@ def dopri5_step(t, h, y, ynew, scene, tol, work):
         Root-mean-square of the scaled local error estimate [-] (inf on failure).
     """
     n = y.shape[0]
+    # unpacked once per step: the right-hand side then takes the arrays themselves
+    mode, par, ipar, props, pbuf = scene
     stages = work.stages
     ytmp = work.ytmp
     aux = work.aux
@@ -81,34 +83,34 @@ def dopri5_step(t, h, y, ynew, scene, tol, work):
     )
     for i in range(n):
         ytmp[i] = y[i] + h * _A21 * k1[i]
-    st = rhs(t + _C2 * h, ytmp, scene, k2, aux)
+    st = scene_rhs(t + _C2 * h, ytmp, mode, par, ipar, props, pbuf, k2, aux)
     if st != 0:
         return st, math.inf
     for i in range(n):
         ytmp[i] = y[i] + h * (_A31 * k1[i] + _A32 * k2[i])
-    st = rhs(t + _C3 * h, ytmp, scene, k3, aux)
+    st = scene_rhs(t + _C3 * h, ytmp, mode, par, ipar, props, pbuf, k3, aux)
     if st != 0:
         return st, math.inf
     for i in range(n):
         ytmp[i] = y[i] + h * (_A41 * k1[i] + _A42 * k2[i] + _A43 * k3[i])
-    st = rhs(t + _C4 * h, ytmp, scene, k4, aux)
+    st = scene_rhs(t + _C4 * h, ytmp, mode, par, ipar, props, pbuf, k4, aux)
     if st != 0:
         return st, math.inf
     for i in range(n):
         ytmp[i] = y[i] + h * (_A51 * k1[i] + _A52 * k2[i] + _A53 * k3[i] + _A54 * k4[i])
-    st = rhs(t + _C5 * h, ytmp, scene, k5, aux)
+    st = scene_rhs(t + _C5 * h, ytmp, mode, par, ipar, props, pbuf, k5, aux)
     if st != 0:
         return st, math.inf
     for i in range(n):
         ytmp[i] = y[i] + h * (
             _A61 * k1[i] + _A62 * k2[i] + _A63 * k3[i] + _A64 * k4[i] + _A65 * k5[i]
         )
-    st = rhs(t + h, ytmp, scene, k6, aux)
+    st = scene_rhs(t + h, ytmp, mode, par, ipar, props, pbuf, k6, aux)
     if st != 0:
         return st, math.inf
     for i in range(n):
         ynew[i] = y[i] + h * (_B1 * k1[i] + _B3 * k3[i] + _B4 * k4[i] + _B5 * k5[i] + _B6 * k6[i])
-    st = rhs(t + h, ynew, scene, k7, aux)
+    st = scene_rhs(t + h, ynew, mode, par, ipar, props, pbuf, k7, aux)
     if st != 0:
         return st, math.inf
     scale = tol.scale
@@ -124,15 +126,12 @@ def dopri5_step(t, h, y, ynew, scene, tol, work):
     return 0, math.sqrt(err / max(m, 1))
 
 
-@njit(cache=True)
-def stiffness_estimate(h, y, ynew, tol, work) -> float:
+@njit(cache=True, inline="always")
+def stiffness_estimate(h, y, ynew, ytmp, k6, k7, tol) -> float:
     """Hairer's estimate of ``h |lambda|`` [-] after an accepted :func:`dopri5_step` of
     ``h`` [s] from ``y`` to ``ynew``, from its last two stages (both at t + h: the sixth
-    in ``work.stages[5]`` at ``work.ytmp``, the seventh in ``work.stages[6]`` at
-    ``ynew``). Above 3.25 the step is bounded by DOPRI5's stability, not its accuracy."""
-    k6 = work.stages[5]
-    k7 = work.stages[6]
-    ytmp = work.ytmp
+    ``k6`` at ``ytmp``, the seventh ``k7`` at ``ynew``). Above 3.25 the step is bounded
+    by DOPRI5's stability, not its accuracy."""
     scale = tol.scale
     num = 0.0
     den = 0.0

@@ -7,12 +7,21 @@ from __future__ import annotations
 
 from numba import njit
 
-from recipsim.model.scenes import N_EVENTS, scene_event_values
+from recipsim.model.scenes import N_EVENTS, scene_event_values, scene_rhs
 from recipsim.solve.dense_output import hermite
-from recipsim.solve.step_args import rhs
 
 #: Illinois iterations per event at most (the bracket shrinks below 1e-13 s long before)
 MAX_ILLINOIS_ITERATIONS = 80
+
+
+@njit(cache=True, inline="always")
+def any_crossing(g_old, g_new) -> bool:
+    """Whether an event function goes from <= 0 (``g_old``) to > 0 (``g_new``) over a
+    step; :func:`locate_first_event` is needed only then."""
+    for k in range(g_old.shape[0]):
+        if g_old[k] <= 0.0 and g_new[k] > 0.0:
+            return True
+    return False
 
 
 @njit(cache=True)
@@ -34,6 +43,9 @@ def locate_first_event(t, h, y, ynew, scene, work):
     evaluations : int
         Right-hand side evaluations spent.
     """
+    mode, par, ipar, props, pbuf = scene
+    ftmp = work.ftmp
+    aux = work.aux
     g_old = work.g_old
     g_new = work.g_new
     g_int = work.g_int
@@ -53,14 +65,14 @@ def locate_first_event(t, h, y, ynew, scene, work):
                 if not (ta < tm < tb):
                     tm = 0.5 * (ta + tb)
                 hermite(t, h, y, k1, ynew, k7, tm, yint)
-                st2 = rhs(tm, yint, scene, work.ftmp, work.aux)
+                st2 = scene_rhs(tm, yint, mode, par, ipar, props, pbuf, ftmp, aux)
                 nfev += 1
                 if st2 != 0:
                     tm = 0.5 * (ta + tb)
                     hermite(t, h, y, k1, ynew, k7, tm, yint)
-                    st2 = rhs(tm, yint, scene, work.ftmp, work.aux)
+                    st2 = scene_rhs(tm, yint, mode, par, ipar, props, pbuf, ftmp, aux)
                     nfev += 1
-                scene_event_values(yint, scene.mode, scene.par, scene.ipar, work.aux, g_int)
+                scene_event_values(yint, mode, par, ipar, aux, g_int)
                 gm = g_int[k]
                 if gm > 0.0:
                     tb, gb = tm, gm

@@ -48,11 +48,11 @@ import numpy as np
 from numba import njit
 
 from recipsim.model.scenes import scene_event_action, scene_event_values
-from recipsim.model.scenes import scene_rhs as scene_rhs  # re-exported: revolution.py uses it
+from recipsim.model.scenes import scene_rhs as scene_rhs  # also re-exported: revolution.py uses it
 from recipsim.solve.dense_output import hermite, record_samples
 from recipsim.solve.dopri5 import dopri5_step, stiffness_estimate
-from recipsim.solve.events import locate_first_event
-from recipsim.solve.step_args import SceneArgs, Tolerance, new_workspace, rhs
+from recipsim.solve.events import any_crossing, locate_first_event
+from recipsim.solve.step_args import SceneArgs, Tolerance, new_workspace
 from recipsim.solve.stiff import ERR_ORDER, jacobian_fd, spectral_bound, w_step
 
 ST_STATUS = 0
@@ -93,7 +93,7 @@ CHATTERING = 3
 MAX_EVENTS_AT_ONE_INSTANT = 50
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _step(use_w, t, h, y, ynew, scene, tol, work):
     """One DOPRI5 or Rosenbrock-W step: ``(status, error_norm, evaluations)``."""
     if use_w:
@@ -112,7 +112,7 @@ def _refresh_jacobian(t, y, scene, tol, work):
     return stj, nj, jac_life, spectral_bound(work.jac, tol.scale, tol.n_err)
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _rejected_step(h, st, err, use_w) -> float:
     """The next trial step [s] after a rejected one of ``h`` [s] (property failure
     ``st != 0``, error norm ``err`` above 1 or NaN)."""
@@ -123,7 +123,7 @@ def _rejected_step(h, st, err, use_w) -> float:
     return h * max(0.2, 0.9 * err**-0.2)
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _next_step(h, err, use_w, h_max) -> float:
     """The next step [s] after an accepted one of ``h`` [s] with error norm ``err``."""
     if use_w:
@@ -138,7 +138,7 @@ def _next_step(h, err, use_w, h_max) -> float:
     return min(h * fac, h_max)
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _count_stiff(stiff_step, n_stiff, n_nonstiff):
     """Count an accepted DOPRI5 step that looked stiff (or not): ``(n_stiff,
     n_nonstiff)``; :data:`NONSTIFF_RESET` non-stiff steps in a row clear the count."""
@@ -150,7 +150,7 @@ def _count_stiff(stiff_step, n_stiff, n_nonstiff):
     return n_stiff, n_nonstiff
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _switch_method(method, use_w, h, rho_jac, n_stiff, n_nonstiff):
     """After an accepted step: ``(use_w, n_stiff, n_nonstiff, switched_to_w)`` (see
     the module docstring; ``h`` [s] is the next step, ``rho_jac`` [1/s] the Jacobian's
@@ -192,24 +192,22 @@ def _land_on_event(use_w, t, h, t_event, k_event, y, scene, tol, work):
                 yint[i] = work.ystep[i]
     for i in range(n):
         y[i] = yint[i]
-    rhs(t_event, y, scene, work.ftmp, work.aux)
+    mode, par, ipar, props, pbuf = scene
+    scene_rhs(t_event, y, mode, par, ipar, props, pbuf, work.ftmp, work.aux)
     nfev += 1
-    terminal = scene_event_action(k_event, y, scene.mode, scene.par, scene.ipar, work.aux)
+    terminal = scene_event_action(k_event, y, mode, par, ipar, work.aux)
     return terminal, nfev
 
 
-@njit(cache=True)
-def _advance(t, h, last, t1, y, work) -> float:
-    """Accept the step without event: ``y`` and the first stage move to its end, the
-    event values too; returns the new time [s]."""
-    k1 = work.stages[0]
-    k7 = work.stages[6]
-    ynew = work.ynew
+@njit(cache=True, inline="always")
+def _advance(t, h, last, t1, y, ynew, k1, k7, g_old, g_new) -> float:
+    """Accept the step without event: ``y`` and the first stage ``k1`` move to its end
+    (``ynew``, ``k7``), the event values too; returns the new time [s]."""
     for i in range(y.shape[0]):
         y[i] = ynew[i]
         k1[i] = k7[i]
-    for k in range(work.g_old.shape[0]):
-        work.g_old[k] = work.g_new[k]
+    for k in range(g_old.shape[0]):
+        g_old[k] = g_new[k]
     return t1 if last else t + h
 
 
@@ -287,7 +285,16 @@ def integrate(
     scene = SceneArgs(mode, par, ipar, props, pbuf)
     tol = Tolerance(rtol, atol, scale, n_err)
     work = new_workspace(y.shape[0], n_err)
+    # the arrays the loop touches on every step, taken out of the bundle once
     k1 = work.stages[0]
+    k6 = work.stages[5]
+    k7 = work.stages[6]
+    ynew = work.ynew
+    ytmp = work.ytmp
+    yint = work.yint
+    aux = work.aux
+    g_old = work.g_old
+    g_new = work.g_new
     # counts: evaluations, accepted, rejected, events, W-steps, Jacobians
     counts = np.zeros(6, dtype=np.int64)
     n_samples = sample_times.shape[0]
@@ -298,13 +305,13 @@ def integrate(
     t = t0
     h = min(h_init, h_max)
     h_min = 1e-14 * max(1.0, abs(t1))
-    status = rhs(t, y, scene, k1, work.aux)
+    status = scene_rhs(t, y, mode, par, ipar, props, pbuf, k1, aux)
     counts[0] += 1
     if status != 0:
         stats[ST_STATUS] = PROPERTY_FAILURE
         stats[ST_T] = t
         return
-    scene_event_values(y, mode, par, ipar, work.aux, work.g_old)
+    scene_event_values(y, mode, par, ipar, aux, g_old)
     events_here = 0
     t_last_event = -1e300
     result = DONE
@@ -331,7 +338,7 @@ def integrate(
             if stj != 0:
                 result = PROPERTY_FAILURE
                 break
-        st, err, ne = _step(use_w, t, h, y, work.ynew, scene, tol, work)
+        st, err, ne = _step(use_w, t, h, y, ynew, scene, tol, work)
         counts[0] += ne
         property_failed = st > 0
         if st != 0 or not (err <= 1.0):  # also catches NaN
@@ -341,22 +348,26 @@ def integrate(
                 jac_age = -1  # a stale Jacobian may be why: refresh it
             continue
         if method == METHOD_AUTO and not use_w:
-            stiff_step = stiffness_estimate(h, y, work.ynew, tol, work) > STIFF_LIMIT
+            stiff_step = stiffness_estimate(h, y, ynew, ytmp, k6, k7, tol) > STIFF_LIMIT
             n_stiff, n_nonstiff = _count_stiff(stiff_step, n_stiff, n_nonstiff)
 
-        scene_event_values(work.ynew, mode, par, ipar, work.aux, work.g_new)
-        k_event, t_event, ne = locate_first_event(t, h, y, work.ynew, scene, work)
-        counts[0] += ne
+        scene_event_values(ynew, mode, par, ipar, aux, g_new)
+        k_event = -1
+        t_event = t + h
+        if any_crossing(g_old, g_new):
+            k_event, t_event, ne = locate_first_event(t, h, y, ynew, scene, work)
+            counts[0] += ne
         t_end = t + h if k_event < 0 else t_event
         i_sample = record_samples(
-            t, h, y, work.ynew, t_end, t1, mode, sample_times, i_sample, samples, sample_modes, work
-        )
+            t, h, y, k1, ynew, k7, t_end, t1, mode, sample_times, i_sample, samples,
+            sample_modes, yint,
+        )  # fmt: skip
         counts[1] += 1
         if use_w:
             counts[4] += 1
             jac_age += 1
         if k_event < 0:
-            t = _advance(t, h, last, t1, y, work)
+            t = _advance(t, h, last, t1, y, ynew, k1, k7, g_old, g_new)
         else:
             terminal, ne = _land_on_event(use_w, t, h, t_event, k_event, y, scene, tol, work)
             counts[0] += ne
@@ -372,13 +383,13 @@ def integrate(
                 events_here = 0
             t_last_event = t_event
             t = t_event
-            st = rhs(t, y, scene, k1, work.aux)
+            st = scene_rhs(t, y, mode, par, ipar, props, pbuf, k1, aux)
             counts[0] += 1
             if st != 0:
                 result = PROPERTY_FAILURE
                 break
             # a new mode's events fire only on a fresh crossing from <= 0 to > 0
-            scene_event_values(y, mode, par, ipar, work.aux, work.g_old)
+            scene_event_values(y, mode, par, ipar, aux, g_old)
             if t >= t1 or terminal:
                 break
             continue

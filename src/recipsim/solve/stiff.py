@@ -37,7 +37,7 @@ import math
 import numpy as np
 from numba import njit
 
-from recipsim.solve.step_args import rhs
+from recipsim.model.scenes import scene_rhs
 
 # ---- ROS34PW2: alpha (stage abscissae), Gamma (lower triangular, gamma on the diagonal),
 # ---- b (order 3) and bhat (order 2)
@@ -102,6 +102,7 @@ def jacobian_fd(t, y, f0, scene, tol, work):
     overwritten). Returns ``(status, evaluations)``; status != 0 if a perturbed state
     left the property model in both directions.
     """
+    mode, par, ipar, props, pbuf = scene
     jac = work.jac
     ytmp = work.ytmp
     ftmp = work.ftmp
@@ -120,12 +121,12 @@ def jacobian_fd(t, y, f0, scene, tol, work):
             continue
         d = _FD_REL * max(abs(y[j]), scale[j])
         ytmp[j] = y[j] + d
-        st = rhs(t, ytmp, scene, ftmp, aux)
+        st = scene_rhs(t, ytmp, mode, par, ipar, props, pbuf, ftmp, aux)
         nfev += 1
         if st != 0:
             d = -d
             ytmp[j] = y[j] + d
-            st = rhs(t, ytmp, scene, ftmp, aux)
+            st = scene_rhs(t, ytmp, mode, par, ipar, props, pbuf, ftmp, aux)
             nfev += 1
             if st != 0:
                 ytmp[j] = y[j]
@@ -225,6 +226,7 @@ def w_step(t, h, y, ynew, scene, tol, work):
     ``(status, error_norm)``; on success ``ynew`` holds the state at ``t + h`` and
     ``work.stages[6] = f(t + h, ynew)`` (status -1: singular iteration matrix).
     """
+    mode, par, ipar, props, pbuf = scene
     stages = work.stages
     jac = work.jac
     lu = work.lu
@@ -257,7 +259,7 @@ def w_step(t, h, y, ynew, scene, tol, work):
     # stage 2
     for i in range(n):
         ytmp[i] = y[i] + _A21 * u1[i]
-    st = rhs(t + _AL2 * h, ytmp, scene, fs, aux)
+    st = scene_rhs(t + _AL2 * h, ytmp, mode, par, ipar, props, pbuf, fs, aux)
     if st != 0:
         return st, math.inf
     for i in range(n):
@@ -266,7 +268,7 @@ def w_step(t, h, y, ynew, scene, tol, work):
     # stage 3
     for i in range(n):
         ytmp[i] = y[i] + _A31 * u1[i] + _A32 * u2[i]
-    st = rhs(t + _AL3 * h, ytmp, scene, fs, aux)
+    st = scene_rhs(t + _AL3 * h, ytmp, mode, par, ipar, props, pbuf, fs, aux)
     if st != 0:
         return st, math.inf
     for i in range(n):
@@ -275,7 +277,7 @@ def w_step(t, h, y, ynew, scene, tol, work):
     # stage 4
     for i in range(n):
         ytmp[i] = y[i] + _A41 * u1[i] + _A42 * u2[i] + _A43 * u3[i]
-    st = rhs(t + _AL4 * h, ytmp, scene, fs, aux)
+    st = scene_rhs(t + _AL4 * h, ytmp, mode, par, ipar, props, pbuf, fs, aux)
     if st != 0:
         return st, math.inf
     for i in range(n):
@@ -283,7 +285,7 @@ def w_step(t, h, y, ynew, scene, tol, work):
     _solve_stage(lu, piv, jac, n_err, hg, u4)
     for i in range(n):
         ynew[i] = y[i] + _M1 * u1[i] + _M2 * u2[i] + _M3 * u3[i] + _M4 * u4[i]
-    st = rhs(t + h, ynew, scene, k7, aux)
+    st = scene_rhs(t + h, ynew, mode, par, ipar, props, pbuf, k7, aux)
     if st != 0:
         return st, math.inf
     err = 0.0
