@@ -7,10 +7,9 @@ import math
 import numpy as np
 import pytest
 
-from recipsim.case.mechanism import (
+from recipsim.case.mechanism_spec import CrankGeometry, MechanismSpec
+from recipsim.case.reference_mechanism import (
     REFERENCE_SPEED,
-    CrankGeometry,
-    MechanismSpec,
     reference_geometry,
     reference_mechanism,
 )

@@ -15,7 +15,7 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from recipsim.case.mechanism import CrankGeometry, MechanismSpec, RotorSpec, with_damping
+from recipsim.case.mechanism_spec import CrankGeometry, MechanismSpec, RotorSpec, with_damping
 from recipsim.model.mechanism_parameters import mechanism_parameters
 from recipsim.physics.mechanics import layout as lay
 from recipsim.physics.mechanics.flexible import flexible_rhs

@@ -12,7 +12,7 @@ from numba.core.runtime import _nrt_python as nrt
 from numba.core.runtime import rtsys
 from scipy.integrate import solve_ivp
 
-from recipsim.case.mechanism import CrankGeometry, MechanismSpec, with_damping
+from recipsim.case.mechanism_spec import CrankGeometry, MechanismSpec, with_damping
 from recipsim.model.mechanism_parameters import mechanism_parameters
 from recipsim.physics.kinematics import piston_displacement
 from recipsim.physics.mechanics import layout as lay
@@ -20,12 +20,14 @@ from recipsim.physics.mechanics.flexible import (
     flexible_outputs,
     flexible_rhs,
     flexible_rhs_tabulated,
+)
+from recipsim.physics.mechanics.flexible_setup import initial_state, state_scales
+from recipsim.physics.mechanics.pinned import N_PIN_OUT, pinned_reactions
+from recipsim.physics.mechanics.piston_pose import (
     piston_axial_displacement,
     piston_lateral_offset,
     piston_tilt,
 )
-from recipsim.physics.mechanics.flexible_setup import initial_state, state_scales
-from recipsim.physics.mechanics.pinned import N_PIN_OUT, pinned_reactions
 from recipsim.physics.mechanics.tabulated import PressureCurve
 
 NO_TABLE = np.zeros(1)

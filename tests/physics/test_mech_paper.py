@@ -14,7 +14,7 @@ import math
 import numpy as np
 import pytest
 
-from recipsim.case.mechanism import CrankGeometry, MechanismSpec, scale_bearings, with_damping
+from recipsim.case.mechanism_spec import CrankGeometry, MechanismSpec, scale_bearings, with_damping
 from recipsim.model.mechanism_parameters import mechanism_parameters
 from recipsim.model.pinned import pinned_loads
 from recipsim.physics.mechanics.flexible_setup import initial_state

@@ -7,7 +7,7 @@ import math
 import numpy as np
 import pytest
 
-from recipsim.case.mechanism import CrankGeometry, MechanismSpec
+from recipsim.case.mechanism_spec import CrankGeometry, MechanismSpec
 from recipsim.model.mechanism_parameters import mechanism_parameters
 from recipsim.model.pinned import pinned_loads
 from recipsim.physics.kinematics import (

@@ -30,7 +30,7 @@ import pytest
 from matplotlib.figure import Figure
 
 from recipsim.atomic import MARKER
-from recipsim.case.mechanism import CrankGeometry, MechanismSpec
+from recipsim.case.mechanism_spec import CrankGeometry, MechanismSpec
 from recipsim.model.pinned import pinned_loads
 from recipsim.physics.mechanics.layout import BEARING_NAMES
 from recipsim.physics.mechanics.tabulated import PressureCurve
@@ -42,14 +42,9 @@ from recipsim.report.mechanics_plots import (
     save_mechanism_figures,
 )
 from recipsim.studies import paper as paper_study
-from recipsim.studies.paper import (
-    CONFIGURATIONS,
-    RUNS,
-    PaperStudy,
-    run_paper_study,
-    table1_columns,
-    write_paper_study,
-)
+from recipsim.studies.paper import run_paper_study, write_paper_study
+from recipsim.studies.paper_runs import CONFIGURATIONS, RUNS, PaperStudy
+from recipsim.studies.paper_tables import table1_columns
 
 PNG_SIGNATURE = b"\x89PNG\r\n\x1a\n"
 ROTOR_AND_ECCENTRIC = ["primary", "secondary", "eccentric"]
@@ -382,10 +377,11 @@ def test_undamped_periodic_response_is_a_fixed_point(
     """Independent check: revolutions run on from the periodic state by the plain
     driver stay periodic (each revolution's change below the tolerance), and their
     RMS loads are those of the study (within 1e-3: the periodicity tolerance)."""
-    from recipsim.case.mechanism import with_damping
+    from recipsim.case.mechanism_spec import with_damping
+    from recipsim.solve.mechanism_ivp import simulate_mechanism
 
     periodic = periodic_study.flexible["gas_flexible"]
-    result = paper_study.simulate_mechanism(
+    result = simulate_mechanism(
         with_damping(spec, 0.0),
         geometry,
         curve.crank_angle,

@@ -1,4 +1,4 @@
-"""Mechanism data (masses, inertias, bearings) as frozen dataclasses, and their parser.
+"""The parser of the mechanism tables of a case into :mod:`.mechanism_spec`'s dataclasses.
 
 Case tables read here (units as strings are converted by :func:`recipsim.case.units.to_si`;
 bare numbers are taken in SI)::
@@ -16,248 +16,35 @@ bare numbers are taken in SI)::
 for ``<name>`` in primary, secondary, eccentric, pin, piston_top, piston_skirt.
 The slider-crank geometry shared with the cylinder (bore, crank radius, rod length)
 is not read here: it is passed separately as a :class:`CrankGeometry`.
+
+:class:`CrankGeometry` and :class:`MechanismSpec` live in :mod:`.mechanism_spec`; they
+are imported from here by :mod:`recipsim.case.load` and :mod:`recipsim.model.build`.
 """
 
 from __future__ import annotations
 
 import math
 from collections.abc import Collection, Mapping
-from dataclasses import dataclass, replace
 from typing import Any
 
-from recipsim.case.lubrication import (
-    FILM_KEYS,
-    FilmSpec,
-    OilSpec,
-    has_film_keys,
-    parse_film,
-    parse_oil,
-)
+from recipsim.case.lubrication import FILM_KEYS, OilSpec, has_film_keys, parse_film, parse_oil
 from recipsim.case.mechanism_schema import BEARING_SPEC, PISTON_SPEC, ROD_SPEC, ROTOR_SPEC
+from recipsim.case.mechanism_spec import (
+    BearingSpec,
+    ConnectingRodSpec,
+    CrankGeometry,
+    MechanismSpec,
+    PistonSpec,
+    RotorSpec,
+    solid_cylinder_transverse_inertia,
+)
 from recipsim.case.table_reader import TableReader as _Table
 from recipsim.errors import CaseError
 from recipsim.physics.mechanics.layout import BEARING_LAWS, BEARING_NAMES
 
+__all__ = ["PISTON_BEARING_KEYS", "CrankGeometry", "MechanismSpec", "mechanism_from_dict"]
+
 _INERTIA = "kg*m**2"
-
-
-@dataclass(frozen=True)
-class CrankGeometry:
-    """Slider-crank geometry shared with the cylinder model (SI).
-
-    Attributes
-    ----------
-    bore : float
-        Cylinder bore = piston diameter [m].
-    crank_radius : float
-        Crank radius r = stroke / 2 [m].
-    rod_length : float
-        Connecting-rod length L between the big-end and small-end centres [m].
-    """
-
-    bore: float
-    crank_radius: float
-    rod_length: float
-
-    @classmethod
-    def from_stroke(cls, bore: float, stroke: float, rod_length: float) -> CrankGeometry:
-        """Build from bore, stroke and rod length, all in [m]."""
-        return cls(bore=bore, crank_radius=0.5 * stroke, rod_length=rod_length)
-
-    @property
-    def piston_area(self) -> float:
-        """Crown area pi D^2 / 4 [m^2]."""
-        return math.pi * self.bore**2 / 4.0
-
-
-@dataclass(frozen=True)
-class PistonSpec:
-    """Piston as a rigid body (SI).
-
-    Attributes
-    ----------
-    mass : float
-        [kg].
-    length : float
-        Axial length, crown to skirt end [m].
-    pin_offset_from_crown : float
-        Distance of the pin axis below the crown [m].
-    centre_of_mass_from_crown : float
-        Distance of the centre of mass below the crown [m].
-    transverse_inertia : float
-        Moment of inertia about the pin axis (Z) through the centre of mass [kg m^2].
-    """
-
-    mass: float
-    length: float
-    pin_offset_from_crown: float
-    centre_of_mass_from_crown: float
-    transverse_inertia: float
-
-
-@dataclass(frozen=True)
-class ConnectingRodSpec:
-    """Connecting rod as a planar rigid body (SI).
-
-    Attributes
-    ----------
-    mass : float
-        [kg].
-    centre_of_mass_fraction : float
-        Distance of the centre of mass from the big end over the rod length [-].
-    inertia : float
-        Moment of inertia about Z through the centre of mass [kg m^2].
-    """
-
-    mass: float
-    centre_of_mass_fraction: float
-    inertia: float
-
-
-@dataclass(frozen=True)
-class RotorSpec:
-    """Motor rotor plus crankshaft, axisymmetric and balanced (SI).
-
-    Attributes
-    ----------
-    mass : float
-        [kg].
-    polar_inertia, transverse_inertia : float
-        About the spin axis and about a diameter through the centre of mass [kg m^2].
-    centre_of_mass_z : float
-        Axial position of the centre of mass (eccentric plane at z = 0) [m].
-    primary_z, secondary_z : float
-        Axial positions of the primary (1) and secondary (2) bearings [m].
-    counterweight_mass : float
-        Counterweight: a point mass on the rotor [kg] (0: none). ``mass`` and the
-        inertias are the rotor's without it.
-    counterweight_radius : float
-        Its distance from the spin axis [m].
-    counterweight_angle : float
-        Its angle ahead of the crank pin about +Z [rad] (pi: opposite the pin).
-    counterweight_z : float
-        Its axial position [m].
-    """
-
-    mass: float
-    polar_inertia: float
-    transverse_inertia: float
-    centre_of_mass_z: float
-    primary_z: float
-    secondary_z: float
-    counterweight_mass: float = 0.0
-    counterweight_radius: float = 0.0
-    counterweight_angle: float = math.pi
-    counterweight_z: float = 0.0
-
-
-@dataclass(frozen=True)
-class BearingSpec:
-    """One bearing: a law and its parameters (SI).
-
-    Attributes
-    ----------
-    law : str
-        ``"linear"``: isotropic spring and dashpot normal to the bearing axis;
-        ``"short_journal"``, ``"finite_journal"``: hydrodynamic journal;
-        ``"skirt_film"``: the piston's lubricated skirt (piston_top and piston_skirt).
-    stiffness : float
-        [N/m] (linear law; 0 when not given).
-    damping : float
-        [N s/m] (linear law).
-    position_from_crown : float or None
-        Piston bearings only: axial position of the bearing marker below the crown [m].
-    film : FilmSpec or None
-        Film data (geometry, clearance, viscosity, contact), required by the film laws
-        and kept when given for a linear bearing (so the law can be switched).
-    """
-
-    law: str
-    stiffness: float
-    damping: float
-    position_from_crown: float | None = None
-    film: FilmSpec | None = None
-
-
-@dataclass(frozen=True)
-class MechanismSpec:
-    """Everything the mechanism needs besides the slider-crank geometry.
-
-    ``bearings`` holds one :class:`BearingSpec` per name of
-    :data:`recipsim.physics.mechanics.layout.BEARING_NAMES`, in that order.
-    """
-
-    piston: PistonSpec
-    connecting_rod: ConnectingRodSpec
-    rotor: RotorSpec
-    bearings: tuple[BearingSpec, ...]
-    oil: OilSpec | None = None
-
-    def bearing(self, name: str) -> BearingSpec:
-        """The bearing called ``name`` (one of ``BEARING_NAMES``)."""
-        return self.bearings[BEARING_NAMES.index(name)]
-
-
-# --------------------------------------------------------------------------- helpers
-
-
-def solid_cylinder_transverse_inertia(mass: float, diameter: float, length: float) -> float:
-    """Moment of inertia of a solid cylinder about a diameter through its centre.
-
-    ``m (3 R^2 + l^2) / 12``; used as the default piston inertia. A real piston is a
-    hollow cup whose inertia is somewhat larger (a thin shell gives
-    ``m (6 R^2 + l^2) / 12``), so this is an estimate for the reference compressor
-    (35 g, 22 mm x 20 mm: 2.23e-6 kg m^2).
-
-    Parameters
-    ----------
-    mass : float
-        [kg].
-    diameter, length : float
-        [m].
-
-    Returns
-    -------
-    float
-        [kg m^2].
-    """
-    radius = 0.5 * diameter
-    return mass * (3.0 * radius**2 + length**2) / 12.0
-
-
-def scale_bearings(
-    spec: MechanismSpec, stiffness_factor: float, damping_factor: float | None = None
-) -> MechanismSpec:
-    """Return a copy with every bearing stiffness scaled.
-
-    Parameters
-    ----------
-    spec : MechanismSpec
-    stiffness_factor : float
-        Factor on every stiffness [-].
-    damping_factor : float, optional
-        Factor on every damping [-]. Default ``sqrt(stiffness_factor)``, which keeps
-        every damping ratio ``c / (2 sqrt(k m))``.
-    """
-    if damping_factor is None:
-        damping_factor = math.sqrt(stiffness_factor)
-    bearings = tuple(
-        replace(b, stiffness=b.stiffness * stiffness_factor, damping=b.damping * damping_factor)
-        for b in spec.bearings
-    )
-    return replace(spec, bearings=bearings)
-
-
-def with_damping(spec: MechanismSpec, damping: float | Mapping[str, float]) -> MechanismSpec:
-    """Return a copy with the bearing damping replaced [N s/m] (one value or per name)."""
-    bearings = []
-    for name, b in zip(BEARING_NAMES, spec.bearings, strict=True):
-        c = damping[name] if isinstance(damping, Mapping) else damping
-        bearings.append(replace(b, damping=float(c)))
-    return replace(spec, bearings=tuple(bearings))
-
-
-# ---------------------------------------------------------------------------- parser
 
 
 def _positive(v: float) -> bool:
@@ -475,105 +262,3 @@ def mechanism_from_dict(
     if "oil" in tables:
         oil.get()  # validated even when no bearing uses it
     return MechanismSpec(piston, rod, rotor, tuple(bearings), oil.spec)
-
-
-# ------------------------------------------------------------------ reference compressor
-
-
-def reference_mechanism_tables() -> dict[str, Any]:
-    """Case tables of the reference compressor (design notes section 4), with units.
-
-    Masses, inertias and damping are engineering estimates; stiffnesses k1, k2, k3, k5,
-    k6 are the paper's (Kurka et al., ISMA 2010). Choices made here:
-
-    - piston inertia: solid cylinder 35 g, 22 mm x 20 mm (2.23e-6 kg m^2), centre of
-      mass at mid-length, i.e. on the pin axis;
-    - piston pin stiffness: 5e7 N/m (stiff; the paper treats the pin as rigid);
-    - piston_top / piston_skirt markers at the two Gauss points of the piston length
-      (4.23 mm and 15.77 mm below the crown): two springs k/2 there have the same force
-      and moment stiffness as a uniform elastic foundation of total stiffness k;
-    - damping: about 50 % of critical on the carried mass
-      (c = 2 * 0.5 * sqrt(k m), m = 0.45 kg per rotor bearing, 65 g for the eccentric,
-      35 g for the pin, 17.5 g for each piston bearing), rounded. With it the viscous
-      bearing forces are about a tenth of the elastic ones, as the paper reports for
-      its "parametric dissipation" (whose values it does not give). Real oil films
-      damp far more (short-bearing squeeze damping is of order 1e5 N s/m);
-    - journal film data (diameter, length, 10 um radial clearance) and the ISO VG 10
-      oil at 60 C for the hydrodynamic laws; the journals take the default law
-      (``options.bearing_law``, linear unless set).
-    """
-    gauss = 10.0 / math.sqrt(3.0)
-    return {
-        "mechanism": {
-            "piston": {
-                "mass": "35 g",
-                "length": "20 mm",
-                "pin_offset_from_crown": "10 mm",
-                "centre_of_mass_from_crown": "10 mm",
-                "transverse_inertia": "2.2254e-6 kg*m**2",
-            },
-            "connecting_rod": {
-                "mass": "30 g",
-                "centre_of_mass_fraction": 0.35,
-                "inertia": "4e-6 kg*m**2",
-            },
-            "rotor": {
-                "mass": "0.90 kg",
-                "polar_inertia": "3.5e-4 kg*m**2",
-                "transverse_inertia": "7.0e-4 kg*m**2",
-                "centre_of_mass_z": "-40 mm",
-                "primary_z": "-20 mm",
-                "secondary_z": "-52 mm",
-            },
-        },
-        "bearings": {
-            "primary": {
-                "stiffness": "5.0e7 N/m",
-                "damping": "4700 N*s/m",
-                **_journal("16 mm", "20 mm"),
-            },
-            "secondary": {
-                "stiffness": "4.0e7 N/m",
-                "damping": "4200 N*s/m",
-                **_journal("14 mm", "12 mm"),
-            },
-            "eccentric": {
-                "stiffness": "2.5e7 N/m",
-                "damping": "1300 N*s/m",
-                **_journal("14 mm", "12 mm"),
-            },
-            "pin": {"law": "linear", "stiffness": "5.0e7 N/m", "damping": "1300 N*s/m"},
-            "piston_top": {
-                "law": "linear",
-                "stiffness": "3.0e7 N/m",
-                "damping": "730 N*s/m",
-                "position_from_crown": f"{10.0 - gauss:.4f} mm",
-            },
-            "piston_skirt": {
-                "law": "linear",
-                "stiffness": "3.0e7 N/m",
-                "damping": "730 N*s/m",
-                "position_from_crown": f"{10.0 + gauss:.4f} mm",
-            },
-        },
-        "oil": {"name": "iso_vg10", "film_temperature": "60 degC"},
-    }
-
-
-def _journal(diameter: str, length: str) -> dict[str, str]:
-    """Film data of a reference journal (design notes section 4): 10 um radial clearance."""
-    return {"diameter": diameter, "length": length, "radial_clearance": "10 um"}
-
-
-def reference_geometry() -> CrankGeometry:
-    """Reference compressor slider-crank: bore 22 mm, stroke 18.4 mm, rod 36 mm."""
-    return CrankGeometry.from_stroke(bore=0.022, stroke=0.0184, rod_length=0.036)
-
-
-def reference_mechanism() -> MechanismSpec:
-    """:func:`reference_mechanism_tables` parsed."""
-    return mechanism_from_dict(reference_mechanism_tables(), "<reference>")
-
-
-#: Reference compressor speed, 3500 rpm [rad/s].
-REFERENCE_SPEED = 3500.0 * 2.0 * math.pi / 60.0

@@ -77,3 +77,20 @@ BEARING_SPEC: DescribedSpec = {
     ),
     **FILM_SPEC,
 }  # fmt: skip
+
+
+def described_units(*specs: DescribedSpec) -> dict[str, str]:
+    """SI unit (pint syntax) of every numeric key of ``specs`` (string keys left out); a
+    key declared in several tables must have one unit in all of them."""
+    units: dict[str, str] = {}
+    for spec in specs:
+        for key, described in spec.items():
+            if not described.unit:
+                continue
+            if units.setdefault(key, described.unit) != described.unit:
+                raise ValueError(f"{key}: two units, {units[key]} and {described.unit}")
+    return units
+
+
+#: SI unit of every numeric key of the ``[mechanism.*]`` and ``[bearings.<name>]`` tables.
+MECHANISM_UNITS = described_units(PISTON_SPEC, ROD_SPEC, ROTOR_SPEC, BEARING_SPEC)

@@ -7,7 +7,7 @@ import functools
 
 import numpy as np
 
-from recipsim.case.mechanism import CrankGeometry, MechanismSpec
+from recipsim.case.mechanism_spec import CrankGeometry, MechanismSpec
 from recipsim.physics.mechanics import layout as lay
 from recipsim.physics.motor import MotorSpec
 

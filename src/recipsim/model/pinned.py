@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from recipsim.case.mechanism import CrankGeometry, MechanismSpec
+from recipsim.case.mechanism_spec import CrankGeometry, MechanismSpec
 from recipsim.model.mechanism_parameters import mechanism_parameters
 from recipsim.physics.mechanics import layout as lay
 from recipsim.physics.mechanics.pinned import (

@@ -3,7 +3,7 @@
 A scene is a right-hand side, its event functions and its event actions. Three exist:
 
 - ``SCENE_CYLINDER``: the CoolProp cylinder on the rigid crank at constant speed
-  (:mod:`recipsim.physics.thermo.cylinder`);
+  (:mod:`recipsim.physics.thermo.cylinder_rhs`);
 - ``SCENE_MECHANISM``: the flexible crank train driven by a tabulated cylinder
   pressure p(theta) (:mod:`recipsim.physics.mechanics.flexible`);
 - ``SCENE_COUPLED``: both in one state vector: the cylinder volume comes from the
@@ -32,13 +32,12 @@ import math
 from numba import njit
 
 from recipsim.physics.mechanics import layout as lay
-from recipsim.physics.mechanics.flexible import (
-    flexible_rhs,
-    piston_axial_displacement,
-    piston_lateral_offset,
-)
+from recipsim.physics.mechanics.flexible import flexible_rhs
+from recipsim.physics.mechanics.piston_pose import piston_axial_displacement, piston_lateral_offset
 from recipsim.physics.mechanics.tabulated import tabulated_pressure
 from recipsim.physics.thermo import cylinder as cyl
+from recipsim.physics.thermo.cylinder_events import cylinder_event_action, cylinder_event_values
+from recipsim.physics.thermo.cylinder_rhs import cylinder_gas_rhs, cylinder_rhs
 from recipsim.physics.thermo.property_slots import STATUS_OK
 
 SCENE_CYLINDER = 0
@@ -202,7 +201,7 @@ def coupled_rhs(t, y, mode, par, ipar, props, pbuf, dydt, aux) -> int:
     ym = y[m0 : m0 + lay.N_STATE]
     x, xdot = piston_axial_displacement(ym, mpar)
     ecc = leakage_eccentricity(ym, mpar, par[cyl.C_PISTON_LEN], par[P_LEAK_CLEARANCE])
-    status = cyl.cylinder_gas_rhs(
+    status = cylinder_gas_rhs(
         ym[lay.Y_CRANK_ANGLE],
         ym[lay.Y_CRANK_SPEED],
         x,
@@ -232,7 +231,7 @@ def scene_rhs(t, y, mode, par, ipar, props, pbuf, dydt, aux) -> int:
         return mechanism_rhs(t, y, mode, par, ipar, props, pbuf, dydt, aux)
     if scene == SCENE_COUPLED:
         return coupled_rhs(t, y, mode, par, ipar, props, pbuf, dydt, aux)
-    return cyl.cylinder_rhs(t, y, mode, par, ipar, props, pbuf, dydt, aux)
+    return cylinder_rhs(t, y, mode, par, ipar, props, pbuf, dydt, aux)
 
 
 @njit(cache=True)
@@ -243,9 +242,9 @@ def scene_event_values(y, mode, par, ipar, aux, g) -> None:
         for k in range(cyl.N_EVENTS):
             g[k] = -1.0
     elif scene == SCENE_COUPLED:
-        cyl.cylinder_event_values(y[: cyl.N_STATE], mode, par, ipar, aux, g)
+        cylinder_event_values(y[: cyl.N_STATE], mode, par, ipar, aux, g)
     else:
-        cyl.cylinder_event_values(y, mode, par, ipar, aux, g)
+        cylinder_event_values(y, mode, par, ipar, aux, g)
     g[EV_THETA_END] = -1.0
     if ipar[I_STOP_ON_ANGLE] != 0 and scene != SCENE_CYLINDER:
         g[EV_THETA_END] = y[MECH_Y[scene] + lay.Y_CRANK_ANGLE] - par[P_THETA_END]
@@ -258,7 +257,7 @@ def scene_event_action(k, y, mode, par, ipar, aux) -> bool:
         return True
     scene = ipar[cyl.I_SCENE]
     if scene == SCENE_COUPLED:
-        cyl.cylinder_event_action(k, y[: cyl.N_STATE], mode, par, ipar, aux)
+        cylinder_event_action(k, y[: cyl.N_STATE], mode, par, ipar, aux)
     else:
-        cyl.cylinder_event_action(k, y, mode, par, ipar, aux)
+        cylinder_event_action(k, y, mode, par, ipar, aux)
     return False

@@ -39,26 +39,18 @@ from recipsim.case.load import (
     Case,
     toml_literal,
 )
+from recipsim.case.mechanism_schema import MECHANISM_UNITS as DECLARED_MECHANISM_UNITS
 from recipsim.case.motor import MOTOR_SPEC
 from recipsim.case.schema import Field, Spec, read_table
 from recipsim.errors import CaseError
 
-#: SI unit of each key of the hand-validated ``[mechanism.*]`` and ``[bearings.*]`` tables.
+#: SI unit of each ``[mechanism.*]`` and ``[bearings.*]`` key written from the validated
+#: dataclasses (:mod:`recipsim.case.mechanism_schema`); the counterweight keys are copied
+#: as read (without a counterweight the dataclass holds radius 0, which is no valid input).
 MECHANISM_UNITS = {
-    "mass": "kg",
-    "length": "m",
-    "pin_offset_from_crown": "m",
-    "centre_of_mass_from_crown": "m",
-    "transverse_inertia": "kg*m**2",
-    "centre_of_mass_fraction": "dimensionless",
-    "inertia": "kg*m**2",
-    "polar_inertia": "kg*m**2",
-    "centre_of_mass_z": "m",
-    "primary_z": "m",
-    "secondary_z": "m",
-    "stiffness": "N/m",
-    "damping": "N*s/m",
-    "position_from_crown": "m",
+    key: unit
+    for key, unit in DECLARED_MECHANISM_UNITS.items()
+    if not key.startswith("counterweight_")
 }
 
 _SIMPLE_TABLES: dict[str, Spec] = {

@@ -31,6 +31,12 @@ At tight tolerances DOPRI5's steps stay inside its stability region, the test ne
 fires and the integration is pure DOPRI5. :data:`METHOD_DOPRI5` never switches,
 :data:`METHOD_ROSW` uses the W-method throughout (tests).
 
+The pieces: :mod:`.dopri5` (the explicit step and the stiffness test),
+:mod:`.stiff` (the Rosenbrock-W step and its Jacobian), :mod:`.events` (event
+location), :mod:`.dense_output` (Hermite interpolation and samples) and
+:mod:`.step_args` (the scene, tolerance and work-array bundles they take); this module
+holds the loop, the step-size control, the method switching and the counters.
+
 Status codes returned in ``stats[ST_STATUS]``: 0 done, 1 step size underflow,
 2 property failure that smaller steps could not cure, 3 too many events at one
 instant (chattering).
@@ -38,12 +44,15 @@ instant (chattering).
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 from numba import njit
 
-from recipsim.model.scenes import N_AUX, N_EVENTS, scene_event_action, scene_event_values, scene_rhs
+from recipsim.model.scenes import scene_event_action, scene_event_values
+from recipsim.model.scenes import scene_rhs as scene_rhs  # also re-exported: revolution.py uses it
+from recipsim.solve.dense_output import hermite, record_samples
+from recipsim.solve.dopri5 import dopri5_step, stiffness_estimate
+from recipsim.solve.events import any_crossing, locate_first_event
+from recipsim.solve.step_args import SceneArgs, Tolerance, new_workspace
 from recipsim.solve.stiff import ERR_ORDER, jacobian_fd, spectral_bound, w_step
 
 ST_STATUS = 0
@@ -80,171 +89,143 @@ STEP_UNDERFLOW = 1
 PROPERTY_FAILURE = 2
 CHATTERING = 3
 
-# Dormand-Prince 5(4) tableau
-_C2, _C3, _C4, _C5 = 0.2, 0.3, 0.8, 8.0 / 9.0
-_A21 = 0.2
-_A31, _A32 = 3.0 / 40.0, 9.0 / 40.0
-_A41, _A42, _A43 = 44.0 / 45.0, -56.0 / 15.0, 32.0 / 9.0
-_A51, _A52, _A53, _A54 = 19372.0 / 6561.0, -25360.0 / 2187.0, 64448.0 / 6561.0, -212.0 / 729.0
-_A61, _A62, _A63, _A64, _A65 = (
-    9017.0 / 3168.0,
-    -355.0 / 33.0,
-    46732.0 / 5247.0,
-    49.0 / 176.0,
-    -5103.0 / 18656.0,
-)
-_B1, _B3, _B4, _B5, _B6 = 35.0 / 384.0, 500.0 / 1113.0, 125.0 / 192.0, -2187.0 / 6784.0, 11.0 / 84.0
-_E1, _E3, _E4, _E5, _E6, _E7 = (
-    71.0 / 57600.0,
-    -71.0 / 16695.0,
-    71.0 / 1920.0,
-    -17253.0 / 339200.0,
-    22.0 / 525.0,
-    -1.0 / 40.0,
-)
+#: accepted steps in a row at one instant (events) before the run stops as chattering
+MAX_EVENTS_AT_ONE_INSTANT = 50
 
 
-@njit(cache=True)
-def _dp_step(
-    t, h, y, mode, par, ipar, props, pbuf, rtol, atol, scale, n_err, stages, ytmp, ynew, aux
-):
-    """One Dormand-Prince step from (t, y); ``stages[0]`` holds f(t, y) on entry.
-
-    Returns ``(status, error_norm)``; on success ``ynew`` and ``stages[6] = f(t + h, ynew)``.
-    """
-    n = y.shape[0]
-    k1, k2, k3, k4, k5, k6, k7 = (
-        stages[0],
-        stages[1],
-        stages[2],
-        stages[3],
-        stages[4],
-        stages[5],
-        stages[6],
-    )
-    for i in range(n):
-        ytmp[i] = y[i] + h * _A21 * k1[i]
-    st = scene_rhs(t + _C2 * h, ytmp, mode, par, ipar, props, pbuf, k2, aux)
-    if st != 0:
-        return st, math.inf
-    for i in range(n):
-        ytmp[i] = y[i] + h * (_A31 * k1[i] + _A32 * k2[i])
-    st = scene_rhs(t + _C3 * h, ytmp, mode, par, ipar, props, pbuf, k3, aux)
-    if st != 0:
-        return st, math.inf
-    for i in range(n):
-        ytmp[i] = y[i] + h * (_A41 * k1[i] + _A42 * k2[i] + _A43 * k3[i])
-    st = scene_rhs(t + _C4 * h, ytmp, mode, par, ipar, props, pbuf, k4, aux)
-    if st != 0:
-        return st, math.inf
-    for i in range(n):
-        ytmp[i] = y[i] + h * (_A51 * k1[i] + _A52 * k2[i] + _A53 * k3[i] + _A54 * k4[i])
-    st = scene_rhs(t + _C5 * h, ytmp, mode, par, ipar, props, pbuf, k5, aux)
-    if st != 0:
-        return st, math.inf
-    for i in range(n):
-        ytmp[i] = y[i] + h * (
-            _A61 * k1[i] + _A62 * k2[i] + _A63 * k3[i] + _A64 * k4[i] + _A65 * k5[i]
-        )
-    st = scene_rhs(t + h, ytmp, mode, par, ipar, props, pbuf, k6, aux)
-    if st != 0:
-        return st, math.inf
-    for i in range(n):
-        ynew[i] = y[i] + h * (_B1 * k1[i] + _B3 * k3[i] + _B4 * k4[i] + _B5 * k5[i] + _B6 * k6[i])
-    st = scene_rhs(t + h, ynew, mode, par, ipar, props, pbuf, k7, aux)
-    if st != 0:
-        return st, math.inf
-    err = 0.0
-    m = 0
-    for i in range(n_err):
-        if scale[i] == 0.0:  # a quadrature inside the controlled range
-            continue
-        e = h * (_E1 * k1[i] + _E3 * k3[i] + _E4 * k4[i] + _E5 * k5[i] + _E6 * k6[i] + _E7 * k7[i])
-        sc = atol * scale[i] + rtol * max(abs(y[i]), abs(ynew[i]))
-        err += (e / sc) ** 2
-        m += 1
-    return 0, math.sqrt(err / max(m, 1))
-
-
-@njit(cache=True)
-def _hermite(t0, h, y0, f0, y1, f1, tau, out) -> None:
-    """Cubic Hermite interpolation between (t0, y0, f0) and (t0 + h, y1, f1)."""
-    s = (tau - t0) / h
-    h00 = (1.0 + 2.0 * s) * (1.0 - s) ** 2
-    h10 = s * (1.0 - s) ** 2
-    h01 = s * s * (3.0 - 2.0 * s)
-    h11 = s * s * (s - 1.0)
-    for i in range(y0.shape[0]):
-        out[i] = h00 * y0[i] + h * h10 * f0[i] + h01 * y1[i] + h * h11 * f1[i]
-
-
-@njit(cache=True)
-def _step(
-    use_w,
-    t,
-    h,
-    y,
-    mode,
-    par,
-    ipar,
-    props,
-    pbuf,
-    rtol,
-    atol,
-    scale,
-    n_err,
-    jac,
-    lu,
-    piv,
-    stages,
-    ytmp,
-    ynew,
-    aux,
-):
+@njit(cache=True, inline="always")
+def _step(use_w, t, h, y, ynew, scene, tol, work):
     """One DOPRI5 or Rosenbrock-W step: ``(status, error_norm, evaluations)``."""
     if use_w:
-        st, err = w_step(
-            t,
-            h,
-            y,
-            mode,
-            par,
-            ipar,
-            props,
-            pbuf,
-            rtol,
-            atol,
-            scale,
-            n_err,
-            jac,
-            lu,
-            piv,
-            stages,
-            ytmp,
-            ynew,
-            aux,
-        )
+        st, err = w_step(t, h, y, ynew, scene, tol, work)
         return st, err, 4
-    st, err = _dp_step(
-        t, h, y, mode, par, ipar, props, pbuf, rtol, atol, scale, n_err, stages, ytmp, ynew, aux
-    )
+    st, err = dopri5_step(t, h, y, ynew, scene, tol, work)
     return st, err, 6
 
 
 @njit(cache=True)
-def _stiffness(h, y, ynew, ytmp, k6, k7, rtol, atol, scale, n_err) -> float:
-    """Hairer's estimate of ``h |lambda|`` from DOPRI5's last two stages (both at t + h)."""
-    num = 0.0
-    den = 0.0
-    for i in range(n_err):
-        if scale[i] == 0.0:
-            continue
-        sc = atol * scale[i] + rtol * max(abs(y[i]), abs(ynew[i]))
-        num += ((k7[i] - k6[i]) / sc) ** 2
-        den += ((ynew[i] - ytmp[i]) / sc) ** 2
-    if den <= 0.0:
-        return 0.0
-    return h * math.sqrt(num / den)
+def _refresh_jacobian(t, y, scene, tol, work):
+    """Build the W-method's Jacobian at (t [s], y): ``(status, evaluations, accepted
+    steps to keep it, bound on its spectral radius [1/s])``."""
+    stj, nj = jacobian_fd(t, y, work.stages[0], scene, tol, work)
+    jac_life = max(1, nj // JAC_STAGES_PER_STEP)
+    return stj, nj, jac_life, spectral_bound(work.jac, tol.scale, tol.n_err)
+
+
+@njit(cache=True, inline="always")
+def _rejected_step(h, st, err, use_w) -> float:
+    """The next trial step [s] after a rejected one of ``h`` [s] (property failure
+    ``st != 0``, error norm ``err`` above 1 or NaN)."""
+    if st != 0 or err != err:
+        return h * 0.25
+    if use_w:
+        return h * max(0.2, 0.9 * err ** (-1.0 / ERR_ORDER))
+    return h * max(0.2, 0.9 * err**-0.2)
+
+
+@njit(cache=True, inline="always")
+def _next_step(h, err, use_w, h_max) -> float:
+    """The next step [s] after an accepted one of ``h`` [s] with error norm ``err``."""
+    if use_w:
+        if err > 0.0:
+            fac = min(5.0, max(0.2, 0.9 * err ** (-1.0 / ERR_ORDER)))
+        else:
+            fac = 5.0
+    elif err > 0.0:
+        fac = min(5.0, max(0.2, 0.9 * err**-0.2))
+    else:
+        fac = 5.0
+    return min(h * fac, h_max)
+
+
+@njit(cache=True, inline="always")
+def _count_stiff(stiff_step, n_stiff, n_nonstiff):
+    """Count an accepted DOPRI5 step that looked stiff (or not): ``(n_stiff,
+    n_nonstiff)``; :data:`NONSTIFF_RESET` non-stiff steps in a row clear the count."""
+    if stiff_step:
+        return n_stiff + 1, 0
+    n_nonstiff += 1
+    if n_nonstiff >= NONSTIFF_RESET:
+        return 0, n_nonstiff
+    return n_stiff, n_nonstiff
+
+
+@njit(cache=True, inline="always")
+def _switch_method(method, use_w, h, rho_jac, n_stiff, n_nonstiff):
+    """After an accepted step: ``(use_w, n_stiff, n_nonstiff, switched_to_w)`` (see
+    the module docstring; ``h`` [s] is the next step, ``rho_jac`` [1/s] the Jacobian's
+    spectral bound)."""
+    if method != METHOD_AUTO:
+        return use_w, n_stiff, n_nonstiff, False
+    if use_w:
+        # back to DOPRI5 once it could take the step the W-method takes
+        if h * rho_jac < BACK_TO_DOPRI5:
+            n_nonstiff += 1
+            if n_nonstiff >= NONSTIFF_AFTER:
+                return False, 0, 0, False
+            return True, n_stiff, n_nonstiff, False
+        return True, n_stiff, 0, False
+    if n_stiff >= STIFF_AFTER:
+        return True, 0, 0, True
+    return False, n_stiff, n_nonstiff, False
+
+
+@njit(cache=True)
+def _land_on_event(use_w, t, h, t_event, k_event, y, scene, tol, work):
+    """Move ``y`` from ``t`` to the event at ``t_event`` [s] and apply its action.
+
+    The step is re-taken exactly to the event, so the states and quadratures see a
+    smooth right-hand side (no interpolation across the kink at the event); the Hermite
+    interpolant of the accepted step of ``h`` [s] is the fallback if the re-step fails.
+    Returns ``(terminal, evaluations)``.
+    """
+    yint = work.yint
+    n = y.shape[0]
+    hermite(t, h, y, work.stages[0], work.ynew, work.stages[6], t_event, yint)
+    nfev = 0
+    h_event = t_event - t
+    if h_event > 0.0:
+        st, err, ne = _step(use_w, t, h_event, y, work.ystep, scene, tol, work)
+        nfev += ne
+        if st == 0:
+            for i in range(n):
+                yint[i] = work.ystep[i]
+    for i in range(n):
+        y[i] = yint[i]
+    mode, par, ipar, props, pbuf = scene
+    scene_rhs(t_event, y, mode, par, ipar, props, pbuf, work.ftmp, work.aux)
+    nfev += 1
+    terminal = scene_event_action(k_event, y, mode, par, ipar, work.aux)
+    return terminal, nfev
+
+
+@njit(cache=True, inline="always")
+def _advance(t, h, last, t1, y, ynew, k1, k7, g_old, g_new) -> float:
+    """Accept the step without event: ``y`` and the first stage ``k1`` move to its end
+    (``ynew``, ``k7``), the event values too; returns the new time [s]."""
+    for i in range(y.shape[0]):
+        y[i] = ynew[i]
+        k1[i] = k7[i]
+    for k in range(g_old.shape[0]):
+        g_old[k] = g_new[k]
+    return t1 if last else t + h
+
+
+@njit(cache=True)
+def _write_stats(stats, result, t, h, i_sample, counts) -> None:
+    """Fill ``stats`` (see ``ST_*``) from the run's status, last time and step [s], the
+    number of samples recorded and ``counts`` = (nfev, accepted, rejected, events,
+    W-steps, Jacobians)."""
+    stats[ST_STATUS] = result
+    stats[ST_NFEV] = counts[0]
+    stats[ST_NACCEPT] = counts[1]
+    stats[ST_NREJECT] = counts[2]
+    stats[ST_NEVENTS] = counts[3]
+    stats[ST_T] = t
+    stats[ST_H] = h
+    stats[ST_NSAMPLES] = i_sample
+    stats[ST_NSTIFF] = counts[4]
+    stats[ST_NJAC] = counts[5]
 
 
 @njit(cache=True)
@@ -301,29 +282,21 @@ def integrate(
         :data:`METHOD_DOPRI5`, :data:`METHOD_AUTO` (switch to the Rosenbrock-W step
         on stiff stretches) or :data:`METHOD_ROSW` (Rosenbrock-W throughout).
     """
-    n = y.shape[0]
-    stages = np.empty((7, n))  # Dormand-Prince stages: f(t, y) first, f(t + h, y_new) last
-    k1 = stages[0]
-    k6 = stages[5]
-    k7 = stages[6]
-    ytmp = np.empty(n)
-    ynew = np.empty(n)
-    yint = np.empty(n)
-    ystep = np.empty(n)
-    ftmp = np.empty(n)
-    aux = np.zeros(N_AUX)
-    g_old = np.empty(N_EVENTS)
-    g_new = np.empty(N_EVENTS)
-    g_int = np.empty(N_EVENTS)
-    jac = np.zeros((n, n_err))
-    lu = np.empty((n_err, n_err))
-    piv = np.empty(n_err, dtype=np.int64)
-    nfev = 0
-    n_acc = 0
-    n_rej = 0
-    n_ev = 0
-    n_w = 0
-    n_jac = 0
+    scene = SceneArgs(mode, par, ipar, props, pbuf)
+    tol = Tolerance(rtol, atol, scale, n_err)
+    work = new_workspace(y.shape[0], n_err)
+    # the arrays the loop touches on every step, taken out of the bundle once
+    k1 = work.stages[0]
+    k6 = work.stages[5]
+    k7 = work.stages[6]
+    ynew = work.ynew
+    ytmp = work.ytmp
+    yint = work.yint
+    aux = work.aux
+    g_old = work.g_old
+    g_new = work.g_new
+    # counts: evaluations, accepted, rejected, events, W-steps, Jacobians
+    counts = np.zeros(6, dtype=np.int64)
     n_samples = sample_times.shape[0]
     i_sample = 0
     while i_sample < n_samples and sample_times[i_sample] < t0:
@@ -333,7 +306,7 @@ def integrate(
     h = min(h_init, h_max)
     h_min = 1e-14 * max(1.0, abs(t1))
     status = scene_rhs(t, y, mode, par, ipar, props, pbuf, k1, aux)
-    nfev += 1
+    counts[0] += 1
     if status != 0:
         stats[ST_STATUS] = PROPERTY_FAILURE
         stats[ST_T] = t
@@ -358,174 +331,51 @@ def integrate(
             h = t1 - t
             last = True
         if use_w and (jac_age < 0 or jac_age >= jac_life):
-            stj, nj = jacobian_fd(
-                t, y, k1, mode, par, ipar, props, pbuf, scale, n_err, jac, ytmp, ftmp, aux
-            )
-            nfev += nj
-            n_jac += 1
+            stj, nj, jac_life, rho_jac = _refresh_jacobian(t, y, scene, tol, work)
+            counts[0] += nj
+            counts[5] += 1
             jac_age = 0
-            jac_life = max(1, nj // JAC_STAGES_PER_STEP)
-            rho_jac = spectral_bound(jac, scale, n_err)
             if stj != 0:
                 result = PROPERTY_FAILURE
                 break
-        st, err, ne = _step(
-            use_w,
-            t,
-            h,
-            y,
-            mode,
-            par,
-            ipar,
-            props,
-            pbuf,
-            rtol,
-            atol,
-            scale,
-            n_err,
-            jac,
-            lu,
-            piv,
-            stages,
-            ytmp,
-            ynew,
-            aux,
-        )
-        nfev += ne
+        st, err, ne = _step(use_w, t, h, y, ynew, scene, tol, work)
+        counts[0] += ne
         property_failed = st > 0
-        if st != 0:
-            n_rej += 1
-            h *= 0.25
-            if use_w and jac_age > 0:
-                jac_age = -1
-            continue
-        if not (err <= 1.0):  # also catches NaN
-            n_rej += 1
-            if err != err:
-                h *= 0.25
-            elif use_w:
-                h *= max(0.2, 0.9 * err ** (-1.0 / ERR_ORDER))
-            else:
-                h *= max(0.2, 0.9 * err**-0.2)
+        if st != 0 or not (err <= 1.0):  # also catches NaN
+            counts[2] += 1
+            h = _rejected_step(h, st, err, use_w)
             if use_w and jac_age > 0:
                 jac_age = -1  # a stale Jacobian may be why: refresh it
             continue
-
-        # stiffness test on the accepted DOPRI5 step (k6, ytmp: its sixth stage)
         if method == METHOD_AUTO and not use_w:
-            if _stiffness(h, y, ynew, ytmp, k6, k7, rtol, atol, scale, n_err) > STIFF_LIMIT:
-                n_stiff += 1
-                n_nonstiff = 0
-            else:
-                n_nonstiff += 1
-                if n_nonstiff >= NONSTIFF_RESET:
-                    n_stiff = 0
+            stiff_step = stiffness_estimate(h, y, ynew, ytmp, k6, k7, tol) > STIFF_LIMIT
+            n_stiff, n_nonstiff = _count_stiff(stiff_step, n_stiff, n_nonstiff)
 
-        # accepted: look for events on [t, t + h]
         scene_event_values(ynew, mode, par, ipar, aux, g_new)
         k_event = -1
         t_event = t + h
-        for k in range(N_EVENTS):
-            if g_old[k] <= 0.0 and g_new[k] > 0.0:
-                # Illinois on the interpolant
-                ta, tb = t, t + h
-                ga, gb = g_old[k], g_new[k]
-                side = 0
-                for _ in range(80):
-                    tm = (ta * gb - tb * ga) / (gb - ga)
-                    if not (ta < tm < tb):
-                        tm = 0.5 * (ta + tb)
-                    _hermite(t, h, y, k1, ynew, k7, tm, yint)
-                    st2 = scene_rhs(tm, yint, mode, par, ipar, props, pbuf, ftmp, aux)
-                    nfev += 1
-                    if st2 != 0:
-                        tm = 0.5 * (ta + tb)
-                        _hermite(t, h, y, k1, ynew, k7, tm, yint)
-                        st2 = scene_rhs(tm, yint, mode, par, ipar, props, pbuf, ftmp, aux)
-                        nfev += 1
-                    scene_event_values(yint, mode, par, ipar, aux, g_int)
-                    gm = g_int[k]
-                    if gm > 0.0:
-                        tb, gb = tm, gm
-                        if side == -1:
-                            ga *= 0.5
-                        side = -1
-                    else:
-                        ta, ga = tm, gm
-                        if side == 1:
-                            gb *= 0.5
-                        side = 1
-                    if tb - ta <= 1e-13 * max(1.0, abs(tb)) + 1e-15:
-                        break
-                if tb < t_event or k_event < 0:
-                    t_event = tb
-                    k_event = k
-
+        if any_crossing(g_old, g_new):
+            k_event, t_event, ne = locate_first_event(t, h, y, ynew, scene, work)
+            counts[0] += ne
         t_end = t + h if k_event < 0 else t_event
-        # samples on (t, t_end]
-        while i_sample < n_samples and sample_times[i_sample] <= t_end:
-            if sample_times[i_sample] >= t1:
-                break
-            _hermite(t, h, y, k1, ynew, k7, sample_times[i_sample], yint)
-            for i in range(n):
-                samples[i_sample, i] = yint[i]
-            for i in range(mode.shape[0]):
-                sample_modes[i_sample, i] = mode[i]
-            i_sample += 1
-        n_acc += 1
+        i_sample = record_samples(
+            t, h, y, k1, ynew, k7, t_end, t1, mode, sample_times, i_sample, samples,
+            sample_modes, yint,
+        )  # fmt: skip
+        counts[1] += 1
         if use_w:
-            n_w += 1
+            counts[4] += 1
             jac_age += 1
         if k_event < 0:
-            t = t + h
-            for i in range(n):
-                y[i] = ynew[i]
-                k1[i] = k7[i]
-            for k in range(N_EVENTS):
-                g_old[k] = g_new[k]
-            if last:
-                t = t1
+            t = _advance(t, h, last, t1, y, ynew, k1, k7, g_old, g_new)
         else:
-            # re-take the step exactly to the event: the states and quadratures then see a
-            # smooth right-hand side (no interpolation across the kink at the event)
-            h_event = t_event - t
-            _hermite(t, h, y, k1, ynew, k7, t_event, yint)  # fallback if the re-step fails
-            if h_event > 0.0:
-                st, err, ne = _step(
-                    use_w,
-                    t,
-                    h_event,
-                    y,
-                    mode,
-                    par,
-                    ipar,
-                    props,
-                    pbuf,
-                    rtol,
-                    atol,
-                    scale,
-                    n_err,
-                    jac,
-                    lu,
-                    piv,
-                    stages,
-                    ytmp,
-                    ystep,
-                    aux,
-                )
-                nfev += ne
-                if st == 0:
-                    for i in range(n):
-                        yint[i] = ystep[i]
-            for i in range(n):
-                y[i] = yint[i]
-            scene_rhs(t_event, y, mode, par, ipar, props, pbuf, ftmp, aux)
-            terminal = scene_event_action(k_event, y, mode, par, ipar, aux)
-            n_ev += 1
+            terminal, ne = _land_on_event(use_w, t, h, t_event, k_event, y, scene, tol, work)
+            counts[0] += ne
+            counts[3] += 1
             jac_age = -1  # new mode or impact: the Jacobian is rebuilt if needed
             if t_event - t_last_event < 1e-12 * max(1.0, abs(t_event)):
                 events_here += 1
-                if events_here > 50:
+                if events_here > MAX_EVENTS_AT_ONE_INSTANT:
                     result = CHATTERING
                     t = t_event
                     break
@@ -534,7 +384,7 @@ def integrate(
             t_last_event = t_event
             t = t_event
             st = scene_rhs(t, y, mode, par, ipar, props, pbuf, k1, aux)
-            nfev += 2
+            counts[0] += 1
             if st != 0:
                 result = PROPERTY_FAILURE
                 break
@@ -543,41 +393,11 @@ def integrate(
             if t >= t1 or terminal:
                 break
             continue
-        if use_w:
-            if err > 0.0:
-                fac = min(5.0, max(0.2, 0.9 * err ** (-1.0 / ERR_ORDER)))
-            else:
-                fac = 5.0
-            h = min(h * fac, h_max)
-            if method == METHOD_AUTO:
-                # back to DOPRI5 once it could take the step the W-method takes
-                if h * rho_jac < BACK_TO_DOPRI5:
-                    n_nonstiff += 1
-                    if n_nonstiff >= NONSTIFF_AFTER:
-                        use_w = False
-                        n_stiff = 0
-                        n_nonstiff = 0
-                else:
-                    n_nonstiff = 0
-            continue
-        if err > 0.0:
-            fac = min(5.0, max(0.2, 0.9 * err**-0.2))
-        else:
-            fac = 5.0
-        h = min(h * fac, h_max)
-        if method == METHOD_AUTO and n_stiff >= STIFF_AFTER:
-            use_w = True
+        h = _next_step(h, err, use_w, h_max)
+        use_w, n_stiff, n_nonstiff, to_w = _switch_method(
+            method, use_w, h, rho_jac, n_stiff, n_nonstiff
+        )
+        if to_w:
             jac_age = -1
-            n_stiff = 0
-            n_nonstiff = 0
 
-    stats[ST_STATUS] = result
-    stats[ST_NFEV] = nfev
-    stats[ST_NACCEPT] = n_acc
-    stats[ST_NREJECT] = n_rej
-    stats[ST_NEVENTS] = n_ev
-    stats[ST_T] = t
-    stats[ST_H] = h
-    stats[ST_NSAMPLES] = i_sample
-    stats[ST_NSTIFF] = n_w
-    stats[ST_NJAC] = n_jac
+    _write_stats(stats, result, t, h, i_sample, counts)

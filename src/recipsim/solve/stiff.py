@@ -91,18 +91,28 @@ _FD_REL = 1e-7
 
 
 @njit(cache=True)
-def jacobian_fd(t, y, f0, mode, par, ipar, props, pbuf, scale, n_err, jac, ytmp, ftmp, aux):
-    """Forward-difference Jacobian ``jac[i, j]`` of every derivative ``i`` with respect
-    to the first ``n_err`` states ``j`` (columns of zero scale, quadratures, stay zero).
+def jacobian_fd(t, y, f0, scene, tol, work):
+    """Forward-difference Jacobian ``work.jac[i, j]`` of every derivative ``i`` with
+    respect to the first ``tol.n_err`` states ``j`` (columns of zero scale, quadratures,
+    stay zero).
 
-    ``f0`` is f(t, y). Returns ``(status, evaluations)``; status != 0 if a perturbed
-    state left the property model in both directions. ``aux`` is overwritten.
+    ``f0`` is f(t [s], y); ``scene`` a :class:`recipsim.solve.step_args.SceneArgs`,
+    ``tol`` a :class:`~recipsim.solve.step_args.Tolerance`, ``work`` a
+    :class:`~recipsim.solve.step_args.Workspace` (``ytmp``, ``ftmp`` and ``aux`` are
+    overwritten). Returns ``(status, evaluations)``; status != 0 if a perturbed state
+    left the property model in both directions.
     """
+    mode, par, ipar, props, pbuf = scene
+    jac = work.jac
+    ytmp = work.ytmp
+    ftmp = work.ftmp
+    aux = work.aux
+    scale = tol.scale
     n = y.shape[0]
     for i in range(n):
         ytmp[i] = y[i]
     nfev = 0
-    for j in range(n_err):
+    for j in range(tol.n_err):
         if scale[j] == 0.0 or f0[j] == 0.0:
             # a quadrature, or a state its mode holds fixed (a seated reed): its
             # increments u_j stay zero, so its column never acts
@@ -207,33 +217,24 @@ def _solve_stage(lu, piv, jac, n_err, hg, u) -> None:
 
 
 @njit(cache=True)
-def w_step(
-    t,
-    h,
-    y,
-    mode,
-    par,
-    ipar,
-    props,
-    pbuf,
-    rtol,
-    atol,
-    scale,
-    n_err,
-    jac,
-    lu,
-    piv,
-    stages,
-    ytmp,
-    ynew,
-    aux,
-):
-    """One ROS34PW2 step from (t, y) with the Jacobian ``jac``; ``stages[0]`` holds
-    f(t, y) on entry.
+def w_step(t, h, y, ynew, scene, tol, work):
+    """One ROS34PW2 step of ``h`` [s] from (t [s], y) with the Jacobian ``work.jac``;
+    ``work.stages[0]`` holds f(t, y) on entry.
 
-    Uses ``stages[1:6]`` as work space. Returns ``(status, error_norm)``; on success
-    ``ynew`` and ``stages[6] = f(t + h, ynew)`` (status -1: singular iteration matrix).
+    ``scene``, ``tol`` and ``work`` are the bundles of :mod:`recipsim.solve.step_args`;
+    uses ``work.stages[1:6]``, ``work.lu`` and ``work.piv`` as work space. Returns
+    ``(status, error_norm)``; on success ``ynew`` holds the state at ``t + h`` and
+    ``work.stages[6] = f(t + h, ynew)`` (status -1: singular iteration matrix).
     """
+    mode, par, ipar, props, pbuf = scene
+    stages = work.stages
+    jac = work.jac
+    lu = work.lu
+    piv = work.piv
+    ytmp = work.ytmp
+    aux = work.aux
+    n_err = tol.n_err
+    scale = tol.scale
     n = y.shape[0]
     k1 = stages[0]
     u1 = stages[1]
@@ -293,7 +294,7 @@ def w_step(
         if scale[i] == 0.0:
             continue
         e = _E1 * u1[i] + _E2 * u2[i] + _E3 * u3[i] + _E4 * u4[i]
-        sc = atol * scale[i] + rtol * max(abs(y[i]), abs(ynew[i]))
+        sc = tol.atol * scale[i] + tol.rtol * max(abs(y[i]), abs(ynew[i]))
         err += (e / sc) ** 2
         m += 1
     return 0, math.sqrt(err / max(m, 1))

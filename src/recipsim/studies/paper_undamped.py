@@ -15,7 +15,7 @@ from dataclasses import replace
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from recipsim.case.mechanism import CrankGeometry, MechanismSpec
+from recipsim.case.mechanism_spec import CrankGeometry, MechanismSpec
 from recipsim.model.mechanism_parameters import mechanism_parameters
 from recipsim.physics.mechanics import layout as lay
 from recipsim.physics.mechanics.flexible import flexible_rhs_tabulated

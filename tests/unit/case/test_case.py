@@ -107,7 +107,7 @@ def test_extends_merges_tables():
 
 def test_reference_case_carries_the_reference_mechanism():
     """One source of mechanism data: the case tables equal the library's reference spec."""
-    from recipsim.case.mechanism import reference_mechanism
+    from recipsim.case.reference_mechanism import reference_mechanism
 
     case = load_case(REFERENCE)
     assert case.mechanism == reference_mechanism()

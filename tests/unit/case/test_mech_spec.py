@@ -7,12 +7,9 @@ import math
 
 import pytest
 
-from recipsim.case.mechanism import (
-    mechanism_from_dict,
-    reference_mechanism_tables,
-    scale_bearings,
-    solid_cylinder_transverse_inertia,
-)
+from recipsim.case.mechanism import mechanism_from_dict
+from recipsim.case.mechanism_spec import scale_bearings, solid_cylinder_transverse_inertia
+from recipsim.case.reference_mechanism import reference_mechanism_tables
 from recipsim.errors import CaseError
 from recipsim.physics.mechanics.layout import BEARING_NAMES
 

@@ -3,7 +3,7 @@
 with different ``--set`` values never share a directory.
 
 ``paper`` and ``bench`` are checked where their outputs are (tests/unit/model/test_scenes.py,
-tests/unit/studies/test_bench.py: ``<out>/<case>/table1.csv``, ``<out>/<case>/bench.json``);
+tests/unit/studies/bench/test_bench.py: ``<out>/<case>/table1.csv``, ``<out>/<case>/bench.json``);
 here, the cheap subcommands and every ``--help``.
 """
 

@@ -24,10 +24,11 @@ the crank speed is free; ``induction_motor`` applies the motor's torque at the r
 spin rate (:mod:`recipsim.physics.motor`), the crank speed is free.
 
 All compiled functions take every parameter as an argument and do not allocate in
-the right-hand side. The module is one piece (over 400 lines) because it is the
-right-hand side: the three bodies' Newton-Euler equations share every kinematic
-quantity of one evaluation; its start pose and scales are in :mod:`.flexible_setup`,
-the bearing laws in :mod:`.bearings`, the counterweight's solve in :mod:`.bodies`.
+the right-hand side. The three bodies' Newton-Euler equations share every kinematic
+quantity of one evaluation, so they stay here; the start pose and scales are in
+:mod:`.flexible_setup`, the bearing laws in :mod:`.bearings` (evaluated and recorded by
+:mod:`.bearing_forces`), the counterweight's solve in :mod:`.bodies`, the piston's pose
+in :mod:`.piston_pose`.
 """
 
 from __future__ import annotations
@@ -39,127 +40,15 @@ from numba import njit
 
 from recipsim.physics.kinematics import piston_displacement, rod_angle, rod_centre_of_mass
 from recipsim.physics.mechanics import layout as lay
-from recipsim.physics.mechanics.bearings import (
-    bearing_load,
-    bearing_peak_pressure,
-    bearing_spring_energy,
-)
+from recipsim.physics.mechanics.bearing_forces import bearing_force, piston_skirt_forces
 from recipsim.physics.mechanics.bodies import (
     counterweight_accelerations,
     planar_marker,
     rotor_marker,
     rotor_moment,
 )
-from recipsim.physics.mechanics.skirt import skirt_contact, skirt_film, skirt_peak_pressure
 from recipsim.physics.mechanics.tabulated import periodic_linear_interpolation, tabulated_pressure
 from recipsim.physics.motor import induction_motor_torque
-
-_ROW = lay.P_BEARINGS
-_NB = lay.N_BEARING_PAR
-
-
-@njit(cache=True)
-def _bearing(
-    i: int,
-    par: np.ndarray,
-    tables: np.ndarray,
-    aux: np.ndarray,
-    ex: float,
-    ey: float,
-    vx: float,
-    vy: float,
-    spin_journal: float,
-    spin_bushing: float,
-) -> tuple[float, float, float, float, float, float]:
-    """Evaluate bearing ``i`` (relative motion in X-Y), record it in ``aux``.
-
-    Returns fx, fy (force on the journal), the friction torques on journal and bushing,
-    the power absorbed [W] and the spring energy [J].
-    """
-    row = _ROW + i * _NB
-    if int(par[row + lay.BP_AXIS]) == lay.AXIS_X:
-        ex = 0.0
-        vx = 0.0
-    fx, fy, tj, tb, absorbed, contact = bearing_load(
-        par, row, tables, ex, ey, vx, vy, spin_journal, spin_bushing
-    )
-    aux[lay.A_BEARING_FORCE + 3 * i] = fx
-    aux[lay.A_BEARING_FORCE + 3 * i + 1] = fy
-    aux[lay.A_BEARING_FORCE + 3 * i + 2] = 0.0
-    aux[lay.A_BEARING_DISPLACEMENT + 3 * i] = ex
-    aux[lay.A_BEARING_DISPLACEMENT + 3 * i + 1] = ey
-    aux[lay.A_BEARING_DISPLACEMENT + 3 * i + 2] = 0.0
-    aux[lay.A_BEARING_TORQUE + 2 * i] = tj
-    aux[lay.A_BEARING_TORQUE + 2 * i + 1] = tb
-    aux[lay.A_BEARING_DISSIPATION + i] = absorbed
-    aux[lay.A_BEARING_CONTACT + i] = contact
-    peak = 0.0
-    if par[lay.P_DETAILED_OUTPUTS] != 0.0:
-        peak = bearing_peak_pressure(par, row, tables, ex, ey, vx, vy, spin_journal, spin_bushing)
-    aux[lay.A_BEARING_PEAK_PRESSURE + i] = peak
-    return fx, fy, tj, tb, absorbed, bearing_spring_energy(par, row, ex, ey)
-
-
-@njit(cache=True)
-def _record_station(
-    i: int, aux: np.ndarray, e: float, f: float, absorbed: float, contact: float, peak: float
-) -> None:
-    """Record a piston station of the skirt film as bearing ``i`` in ``aux``."""
-    for k in range(3):
-        aux[lay.A_BEARING_FORCE + 3 * i + k] = 0.0
-        aux[lay.A_BEARING_DISPLACEMENT + 3 * i + k] = 0.0
-    aux[lay.A_BEARING_FORCE + 3 * i + 1] = f
-    aux[lay.A_BEARING_DISPLACEMENT + 3 * i + 1] = e
-    aux[lay.A_BEARING_TORQUE + 2 * i] = 0.0
-    aux[lay.A_BEARING_TORQUE + 2 * i + 1] = 0.0
-    aux[lay.A_BEARING_DISSIPATION + i] = absorbed
-    aux[lay.A_BEARING_CONTACT + i] = contact
-    aux[lay.A_BEARING_PEAK_PRESSURE + i] = peak
-
-
-@njit(cache=True)
-def _skirt(
-    par: np.ndarray,
-    aux: np.ndarray,
-    e_top: float,
-    e_skirt: float,
-    v_top: float,
-    v_skirt: float,
-    sliding_speed: float,
-    top_to_skirt: float,
-) -> tuple[float, float, float]:
-    """The lubricated skirt between the ``piston_top`` and ``piston_skirt`` stations.
-
-    Returns the lateral (Y) forces on the piston at the two stations and the axial
-    friction force on the piston (positive towards the head) [N]; records the stations
-    in ``aux`` as bearings 5 and 6 (the film's peak pressure at ``piston_skirt``).
-    """
-    row = _ROW + lay.B_PISTON_SKIRT * _NB
-    radius = 0.5 * par[row + lay.BP_DIAMETER]
-    clearance = par[row + lay.BP_CLEARANCE]
-    mu = par[row + lay.BP_VISCOSITY]
-    f_top, f_skirt, friction = skirt_film(
-        e_top, e_skirt, v_top, v_skirt, sliding_speed, radius, top_to_skirt, clearance, mu
-    )
-    c_top, c_skirt, c_friction = skirt_contact(
-        e_top, e_skirt, v_top, v_skirt, sliding_speed, radius, top_to_skirt, clearance,
-        par[row + lay.BP_CONTACT_FILM], par[row + lay.BP_CONTACT_STIFFNESS],
-        par[row + lay.BP_CONTACT_FRICTION],
-    )  # fmt: skip
-    f_top += c_top
-    f_skirt += c_skirt
-    friction += c_friction
-    peak = 0.0
-    if par[lay.P_DETAILED_OUTPUTS] != 0.0:
-        peak = skirt_peak_pressure(
-            e_top, e_skirt, v_top, v_skirt, sliding_speed, radius, top_to_skirt, clearance, mu
-        )
-    _record_station(lay.B_PISTON_TOP, aux, e_top, f_top, -f_top * v_top, abs(c_top), 0.0)
-    _record_station(
-        lay.B_PISTON_SKIRT, aux, e_skirt, f_skirt, -f_skirt * v_skirt, abs(c_skirt), peak
-    )
-    aux[lay.A_PISTON_FRICTION] = friction
-    return f_top, f_skirt, friction
 
 
 @njit(cache=True)
@@ -272,22 +161,25 @@ def flexible_rhs(
     _, p6y, _, v6y = planar_marker(xp, yp, vxp, vyp, gamd, u_skirt * cg, u_skirt * sg)
 
     # ------------------------------------------------------------- bearings
-    f1x, f1y, t1, _, w1, e1 = _bearing(
+    f1x, f1y, t1, _, w1, e1 = bearing_force(
         lay.B_PRIMARY, par, bearing_tables, aux, p1x, p1y, v1x, v1y, wz, 0.0
     )
-    f2x, f2y, t2, _, w2, e2 = _bearing(
+    f2x, f2y, t2, _, w2, e2 = bearing_force(
         lay.B_SECONDARY, par, bearing_tables, aux, p2x, p2y, v2x, v2y, wz, 0.0
     )
-    f3x, f3y, t3, t3b, w3, e3 = _bearing(
+    f3x, f3y, t3, t3b, w3, e3 = bearing_force(
         lay.B_ECCENTRIC, par, bearing_tables, aux,
         pex - pbx, pey - pby, vex - vbx, vey - vby, wz, phid,
     )  # fmt: skip
-    f4x, f4y, _, t4b, w4, e4 = _bearing(
+    f4x, f4y, _, t4b, w4, e4 = bearing_force(
         lay.B_PIN, par, bearing_tables, aux, ppx - psx, ppy - psy, vpx - vsx, vpy - vsy, gamd, phid
     )
     friction = 0.0
-    if int(par[_ROW + lay.B_PISTON_SKIRT * _NB + lay.BP_LAW]) == lay.LAW_SKIRT_FILM:
-        f5y, f6y, friction = _skirt(par, aux, p5y, p6y, v5y, v6y, vxp, u_top - u_skirt)
+    if (
+        int(par[lay.P_BEARINGS + lay.B_PISTON_SKIRT * lay.N_BEARING_PAR + lay.BP_LAW])
+        == lay.LAW_SKIRT_FILM
+    ):
+        f5y, f6y, friction = piston_skirt_forces(par, aux, p5y, p6y, v5y, v6y, vxp, u_top - u_skirt)
         f5x = 0.0
         f6x = 0.0
         w5 = aux[lay.A_BEARING_DISSIPATION + lay.B_PISTON_TOP]
@@ -298,10 +190,10 @@ def flexible_rhs(
     else:
         aux[lay.A_PISTON_FRICTION] = 0.0
         aux[lay.A_PISTON_FRICTION_POWER] = 0.0
-        f5x, f5y, _, _, w5, e5 = _bearing(
+        f5x, f5y, _, _, w5, e5 = bearing_force(
             lay.B_PISTON_TOP, par, bearing_tables, aux, 0.0, p5y, 0.0, v5y, 0.0, 0.0
         )
-        f6x, f6y, _, _, w6, e6 = _bearing(
+        f6x, f6y, _, _, w6, e6 = bearing_force(
             lay.B_PISTON_SKIRT, par, bearing_tables, aux, 0.0, p6y, 0.0, v6y, 0.0, 0.0
         )
 
@@ -493,51 +385,3 @@ def flexible_output_history(
 
 
 # ------------------------------------------------------------ state accessors
-
-
-@njit(cache=True)
-def piston_axial_displacement(y: np.ndarray, par: np.ndarray) -> tuple[float, float]:
-    """Crown displacement from its rigid TDC position and its rate.
-
-    The cylinder volume is ``V_clearance + A_p * x`` with this ``x``; it equals the
-    slider-crank displacement when the bearings are rigid.
-
-    Returns
-    -------
-    x, dx_dt : float
-        [m], [m/s].
-    """
-    r = par[lay.P_CRANK_RADIUS]
-    big_l = par[lay.P_ROD_LENGTH]
-    th = y[lay.Y_CRANK_ANGLE]
-    xd, dxd, _ = piston_displacement(th, r, big_l)
-    u_crown = par[lay.P_PISTON_CROWN_U]
-    gam = y[lay.Y_PISTON_TILT]
-    # crown X = (r + L - x_kin - u_pin + dX) + u_crown cos(gam); u_crown - u_pin = pin offset
-    x = xd - y[lay.Y_PISTON_DX] + u_crown * (1.0 - math.cos(gam))
-    dx = dxd * y[lay.Y_CRANK_SPEED] - y[lay.Y_PISTON_DVX]
-    dx += u_crown * math.sin(gam) * y[lay.Y_PISTON_TILT_RATE]
-    return x, dx
-
-
-@njit(cache=True)
-def piston_lateral_offset(y: np.ndarray, par: np.ndarray, from_crown: float) -> float:
-    """Lateral (Y) offset of the piston axis from the bore axis [m].
-
-    Parameters
-    ----------
-    y : numpy.ndarray
-        State.
-    par : numpy.ndarray
-        Parameters.
-    from_crown : float
-        Axial station below the crown [m] (0: crown, piston length: skirt end).
-    """
-    u = par[lay.P_PISTON_CROWN_U] - from_crown
-    return y[lay.Y_PISTON_Y] + u * math.sin(y[lay.Y_PISTON_TILT])
-
-
-@njit(cache=True)
-def piston_tilt(y: np.ndarray) -> float:
-    """Piston tilt about the pin axis Z [rad] (positive: crown towards +Y)."""
-    return y[lay.Y_PISTON_TILT]

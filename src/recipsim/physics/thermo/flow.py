@@ -4,7 +4,7 @@ Both forms use the expansion law ``p v^kappa = const`` from the upstream state:
 - ``real_gas``: ``kappa = rho c^2 / p`` (the real-gas isentropic exponent) with the
   real upstream density. Against the exact isentropic expansion in CoolProp (PS
   flashes) it is within 0.1 % unchoked and 0.6 % choked for R134a, R600a and CO2
-  (``tests/unit/physics/test_flow.py``);
+  (``tests/unit/physics/thermo/test_flow.py``);
 - ``ideal_gas``: ``kappa = c_p0/c_v0`` and ``rho = p / (R T)`` (PDSim's form), 7 %
   low on R134a discharge and 12-14 % low for CO2.
 

@@ -42,6 +42,7 @@ from recipsim.case.load import (
     parse_override,
     resolve_extends,
 )
+from recipsim.case.mechanism_schema import MECHANISM_UNITS
 from recipsim.case.refrigerant import find_refrigerant_file
 from recipsim.case.schema import Choice, Field, Flag, Text
 from recipsim.case.units import to_si
@@ -51,24 +52,6 @@ from recipsim.studies.sweep.spec import SweepSpec
 # Messages of :mod:`recipsim.case.schema` and :mod:`recipsim.case.mechanism` that mean "this
 # key does not exist or is not where a table is expected": an error of the sweep file.
 _KEY_ERRORS = ("unknown key", "expected a table", "is not a table", "empty part in")
-
-# Units of the mechanism and bearing keys (see recipsim.case.mechanism), for the columns.
-_MECHANISM_UNITS = {
-    "mass": "kg",
-    "length": "m",
-    "pin_offset_from_crown": "m",
-    "centre_of_mass_from_crown": "m",
-    "transverse_inertia": "kg*m^2",
-    "polar_inertia": "kg*m^2",
-    "inertia": "kg*m^2",
-    "centre_of_mass_fraction": "dimensionless",
-    "centre_of_mass_z": "m",
-    "primary_z": "m",
-    "secondary_z": "m",
-    "stiffness": "N/m",
-    "damping": "N*s/m",
-    "position_from_crown": "m",
-}
 
 _TABLE_SPECS = {
     "operating_point": OPERATING_POINT_SPEC,
@@ -113,8 +96,8 @@ def _field_for(key: str) -> Field | Choice | Flag | Text | None:
     spec = _TABLE_SPECS.get(table)
     if spec is not None:
         return spec.get(leaf)
-    if table.startswith(("mechanism.", "bearings.")) and leaf in _MECHANISM_UNITS:
-        return Field(_MECHANISM_UNITS[leaf])
+    if table.startswith(("mechanism.", "bearings.")) and leaf in MECHANISM_UNITS:
+        return Field(MECHANISM_UNITS[leaf])
     return None
 
 

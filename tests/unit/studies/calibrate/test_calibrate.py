@@ -21,7 +21,7 @@ from recipsim.studies.calibrate.data import printed_resolution, read_points
 from recipsim.studies.calibrate.fit import CalibrationError, parse_parameter
 from recipsim.studies.calibrate.run import calibrate_case
 
-CATALOGUE = Path(__file__).parents[3] / "src/recipsim/data/catalogue/danfoss_tles5.7kk.3_r600a.csv"
+CATALOGUE = Path(__file__).parents[4] / "src/recipsim/data/catalogue/danfoss_tles5.7kk.3_r600a.csv"
 FS, FD = "valves.suction.flow_coefficient", "valves.discharge.flow_coefficient"
 
 
