@@ -39,6 +39,14 @@ FIGURE_COST = {
 }
 
 
+def _read_exactly(fd: int, size: int) -> bytes:
+    chunks, left = [], size
+    while left and (chunk := os.read(fd, min(left, 1 << 20))):
+        chunks.append(chunk)
+        left -= len(chunk)
+    return b"".join(chunks)
+
+
 def _read_all(fd: int) -> bytes:
     chunks = []
     while chunk := os.read(fd, 1 << 20):
@@ -52,25 +60,39 @@ def _write_all(fd: int, data: bytes) -> None:
         view = view[os.write(fd, view) :]
 
 
-def _child(jobs: int, results: int) -> None:
-    """Body of a forked child: import the plotting modules, draw one job, report."""
-    reply: Any = None
+def _child(jobs: int, results: int, preload: tuple[str, ...]) -> None:
+    """Body of a forked child: import ``preload``, run one job, report.
+
+    A job is a length-prefixed pickle of ``(module, function, kwargs)``; length 0 (or
+    end-of-file: the parent is gone) means none. Length-prefixed rather than read to
+    end-of-file, because processes the parent forks later (sweep workers) inherit the
+    pipe's write end.
+    """
+    import importlib
+
+    reply: Any = b""
     try:
-        import recipsim.report.loss_plot  # noqa: F401 - imports matplotlib
-        import recipsim.report.plotting  # noqa: F401
-        import recipsim.report.report_figures  # noqa: F401
-
-        data = _read_all(jobs)
-        if data:
-            from recipsim.report.report_figures import draw_report_figures
-
-            draw_report_figures(**pickle.loads(data))
+        for module in preload:
+            importlib.import_module(module)
+        size = int.from_bytes(_read_exactly(jobs, 8) or bytes(8), "little")
+        if size:
+            module, function, kwargs = pickle.loads(_read_exactly(jobs, size))
+            value = getattr(importlib.import_module(module), function)(**kwargs)
+            reply = pickle.dumps((True, value))
     except BaseException as exc:  # noqa: BLE001 - everything goes back to the parent
         try:
-            reply = pickle.dumps(exc)
+            reply = pickle.dumps((False, exc))
         except Exception:  # noqa: BLE001 - an exception that cannot be pickled
-            reply = pickle.dumps(RuntimeError(f"figure process: {exc!r}"))
-    _write_all(results, reply or b"")
+            reply = pickle.dumps((False, RuntimeError(f"figure process: {exc!r}")))
+    _write_all(results, reply)
+
+
+#: What the children of a case report import before their job arrives.
+REPORT_PRELOAD = (
+    "recipsim.report.loss_plot",
+    "recipsim.report.plotting",
+    "recipsim.report.report_figures",
+)
 
 
 class FigureProcesses:
@@ -80,10 +102,13 @@ class FigureProcesses:
     ----------
     count : int
         Children to fork (at least 1).
+    preload : tuple of str
+        Modules each child imports while it waits for its job.
     """
 
-    def __init__(self, count: int) -> None:
+    def __init__(self, count: int, preload: tuple[str, ...] = REPORT_PRELOAD) -> None:
         self._children: list[tuple[int, int, int]] = []  # pid, job fd, result fd
+        self._jobs_open = True
         for _ in range(count):
             job_read, job_write = os.pipe()
             result_read, result_write = os.pipe()
@@ -98,7 +123,7 @@ class FigureProcesses:
                     for _pid, job, result in self._children:
                         os.close(job)
                         os.close(result)
-                    _child(job_read, result_write)
+                    _child(job_read, result_write, preload)
                 except BaseException:  # noqa: BLE001 - never return into the parent's code
                     status = 1
                 finally:
@@ -106,6 +131,11 @@ class FigureProcesses:
             os.close(job_read)
             os.close(result_write)
             self._children.append((pid, job_write, result_read))
+
+    @property
+    def pids(self) -> list[int]:
+        """Process ids of the children."""
+        return [pid for pid, _job, _result in self._children]
 
     def draw(
         self,
@@ -115,60 +145,102 @@ class FigureProcesses:
         plenum: tuple[float, float] | None,
         names: Collection[str],
     ) -> None:
-        """Send the figures ``names`` of one report to the children, shared by cost.
+        """Send the figures ``names`` of one case report to the children, shared by cost
+        (:func:`recipsim.report.report_figures.draw_report_figures`).
 
-        Returns at once; :meth:`wait` waits for the files. Can be called once.
+        Returns at once; :meth:`wait` waits for the files. Call it (or :meth:`submit`)
+        once.
         """
-        shares: list[list[str]] = [[] for _ in self._children]
-        loads = [0.0] * len(self._children)
-        for name in sorted(names, key=lambda n: -FIGURE_COST.get(n, 0.1)):
-            least = loads.index(min(loads))
-            shares[least].append(name)
-            loads[least] += FIGURE_COST.get(name, 0.1)
-        for (_pid, job, _result), share in zip(self._children, shares, strict=True):
-            if share:
-                job_data = {
-                    "directory": Path(directory),
-                    "cycle": cycle,
-                    "summary_row": dict(summary_row),
-                    "plenum": plenum,
-                    "names": tuple(share),
-                }
-                _write_all(job, pickle.dumps(job_data, protocol=pickle.HIGHEST_PROTOCOL))
-        self.close()
+        jobs = [
+            {
+                "directory": Path(directory),
+                "cycle": cycle,
+                "summary_row": dict(summary_row),
+                "plenum": plenum,
+                "names": tuple(share),
+            }
+            for share in share_by_cost(names, len(self.pids), FIGURE_COST)
+        ]
+        self.submit("recipsim.report.report_figures", "draw_report_figures", jobs)
+
+    def submit(self, module: str, function: str, jobs: list[dict[str, Any]]) -> None:
+        """Run ``module.function(**kwargs)`` for each ``kwargs`` of ``jobs``, one per child
+        (at most as many jobs as children); the other children get none.
+
+        Returns at once; :meth:`wait` waits for them.
+        """
+        if not self._jobs_open:
+            raise RuntimeError("the figure processes had their jobs already")
+        if len(jobs) > len(self._children):
+            raise ValueError(f"{len(jobs)} jobs for {len(self._children)} figure processes")
+        for index, (_pid, job, _result) in enumerate(self._children):
+            data = b""
+            if index < len(jobs):
+                data = pickle.dumps((module, function, jobs[index]), pickle.HIGHEST_PROTOCOL)
+            _write_all(job, len(data).to_bytes(8, "little") + data)
+            os.close(job)
+        self._jobs_open = False
 
     def close(self) -> None:
         """Tell the children that no (more) job comes: they finish and exit."""
-        for _pid, job, _result in self._children:
-            try:
+        if self._jobs_open:
+            self._jobs_open = False
+            for _pid, job, _result in self._children:
+                try:
+                    _write_all(job, bytes(8))  # no job
+                except OSError:
+                    pass  # the child is gone: wait() reports it
                 os.close(job)
-            except OSError:
-                pass  # already closed
 
-    def wait(self) -> None:
+    def wait(self) -> list[Any]:
         """Wait for every child; re-raise the first failure of a child.
+
+        Returns
+        -------
+        list
+            What each job's function returned, in the order of the jobs.
 
         Raises
         ------
         Exception
-            What a child raised while drawing; RuntimeError when a child died.
+            What a child raised; RuntimeError when a child died.
         """
         self.close()
         failure: BaseException | None = None
+        values = []
         for pid, _job, result in self._children:
             reply = _read_all(result)
             os.close(result)
             _, status = os.waitpid(pid, 0)
-            if failure is None and reply:
-                failure = pickle.loads(reply)
+            if reply:
+                ok, value = pickle.loads(reply)
+                if ok:
+                    values.append(value)
+                elif failure is None:
+                    failure = value
             elif failure is None and status != 0:
                 failure = RuntimeError(f"figure process {pid} ended with status {status}")
         self._children = []
         if failure is not None:
             raise failure
+        return values
 
 
-def start_figure_processes(count: int | None = None) -> FigureProcesses | None:
+def share_by_cost(names: Collection[str], parts: int, cost: Mapping[str, float]) -> list[list[str]]:
+    """``names`` shared into at most ``parts`` non-empty lists of about equal total
+    ``cost`` (largest first, each to the lightest list; unknown names cost 0.1)."""
+    shares: list[list[str]] = [[] for _ in range(parts)]
+    loads = [0.0] * parts
+    for name in sorted(names, key=lambda n: -cost.get(n, 0.1)):
+        lightest = loads.index(min(loads))
+        shares[lightest].append(name)
+        loads[lightest] += cost.get(name, 0.1)
+    return [share for share in shares if share]
+
+
+def start_figure_processes(
+    count: int | None = None, preload: tuple[str, ...] = REPORT_PRELOAD
+) -> FigureProcesses | None:
     """Fork the figure children of one report, or None where forking is not available.
 
     Parameters
@@ -176,6 +248,8 @@ def start_figure_processes(count: int | None = None) -> FigureProcesses | None:
     count : int, optional
         Children; default ``RECIPSIM_FIGURE_PROCESSES`` when set, else the usable
         cores, at most 2 (more do not pay for their start-up on a report's 7 figures).
+    preload : tuple of str
+        Modules the children import while they wait (default: the case report's).
 
     Returns
     -------
@@ -193,6 +267,6 @@ def start_figure_processes(count: int | None = None) -> FigureProcesses | None:
         count = max(1, min(2, cores))
     # pandas, which the parent needs anyway, is imported once before forking: the
     # children import only matplotlib (0.25 s each instead of 0.5 s)
-    import recipsim.report.report_figures  # noqa: F401
+    import pandas  # noqa: F401
 
-    return FigureProcesses(count)
+    return FigureProcesses(count, preload)

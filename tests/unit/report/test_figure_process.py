@@ -86,3 +86,25 @@ def test_run_command_writes_the_same_report_with_and_without_forking(
     assert names == sorted(p.name for p in forked.glob("*.png")) and len(names) == 7
     for name in [*names, "cycle.csv"]:
         assert (serial / name).read_bytes() == (forked / name).read_bytes(), name
+
+
+def test_forked_map_plots_are_the_in_process_files(tmp_path: Path) -> None:
+    """The sweep's map plots shared between two children: the same files, in the same
+    order, byte for byte, as :func:`save_map_plots` draws in-process."""
+    from recipsim.report.figure_process import FigureProcesses
+    from recipsim.studies.sweep.plots import MAP_PRELOAD, save_map_plots, submit_map_plots
+    from unit.studies.test_sweep_plots import AXES, synthetic
+
+    table = synthetic(bearings=True)
+    serial, forked = tmp_path / "serial", tmp_path / "forked"
+    serial.mkdir()
+    forked.mkdir()
+    in_process = save_map_plots(table, AXES, serial)
+    figures = FigureProcesses(2, MAP_PRELOAD)
+    submit_map_plots(figures, table, AXES, forked)
+    shares = figures.wait()
+    assert len(shares) == 2 and all(shares)  # both children drew
+    names = sorted(p.name for share in shares for p in share)
+    assert names == sorted(p.name for p in in_process) and len(names) == 6
+    for name in names:
+        assert (serial / name).read_bytes() == (forked / name).read_bytes(), name
