@@ -20,6 +20,7 @@ import pandas as pd
 
 from recipsim.atomic import atomic_write
 from recipsim.errors import CaseError
+from recipsim.report.figure_names import TITLE_Y
 
 if TYPE_CHECKING:  # matplotlib is imported where a plot is drawn
     from matplotlib.figure import Figure
@@ -160,7 +161,7 @@ def plot_bearing_loads(table: pd.DataFrame, x: str, groups: list[str]) -> Figure
     for ax, column in zip(axes.flat, columns, strict=False):
         name = BEARING_COLUMN.match(column).group(1)  # type: ignore[union-attr]
         plot_map(table, column, x, groups, ylabel="peak load [N]", ax=ax)
-        ax.set_title(name.replace("_", " "))
+        ax.set_title(name.replace("_", " "), y=TITLE_Y)
         legend = ax.get_legend()
         if legend is not None:
             legend.remove()
@@ -245,7 +246,7 @@ def save_map_plots(
             continue
         if column:
             fig = plot_map(ok, column, x, groups, ylabel=label)
-            fig.axes[0].set_title(label.rsplit(" [", 1)[0])
+            fig.axes[0].set_title(label.rsplit(" [", 1)[0], y=TITLE_Y)
             fixed_margins(fig, "single")
         else:  # panels and a legend: left to the layout engine
             panels = plot_bearing_loads(ok, x, groups)
