@@ -238,6 +238,18 @@ def share_by_cost(names: Collection[str], parts: int, cost: Mapping[str, float])
     return [share for share in shares if share]
 
 
+def idle_cores(most: int) -> int:
+    """Cores that other work leaves idle, at most ``most``: the usable cores less the
+    one-minute load average, rounded to the nearest whole core (0 when the machine is
+    busy; ``most`` where the load average is unknown)."""
+    cores = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count()
+    try:
+        load = os.getloadavg()[0]
+    except (AttributeError, OSError):
+        return most
+    return max(0, min(most, int((cores or 1) - load + 0.5)))
+
+
 def start_figure_processes(
     count: int | None = None, preload: tuple[str, ...] = REPORT_PRELOAD
 ) -> FigureProcesses | None:
@@ -246,8 +258,10 @@ def start_figure_processes(
     Parameters
     ----------
     count : int, optional
-        Children; default ``RECIPSIM_FIGURE_PROCESSES`` when set, else the usable
-        cores, at most 2 (more do not pay for their start-up on a report's 7 figures).
+        Children; default ``RECIPSIM_FIGURE_PROCESSES`` when set, else the cores other
+        work leaves idle (:func:`idle_cores`), at most 2 (more do not pay for their
+        start-up on a report's 7 figures). On a busy machine the children's own
+        matplotlib imports would cost more than their parallel drawing saves.
     preload : tuple of str
         Modules the children import while they wait (default: the case report's).
 
@@ -263,8 +277,9 @@ def start_figure_processes(
     if not hasattr(os, "fork") or count == 0:
         return None
     if count is None:
-        cores = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else 1
-        count = max(1, min(2, cores))
+        count = idle_cores(2)
+        if count == 0:
+            return None
     # pandas, which the parent needs anyway, is imported once before forking: the
     # children import only matplotlib (0.25 s each instead of 0.5 s)
     import pandas  # noqa: F401

@@ -108,3 +108,22 @@ def test_forked_map_plots_are_the_in_process_files(tmp_path: Path) -> None:
     assert names == sorted(p.name for p in in_process) and len(names) == 6
     for name in names:
         assert (serial / name).read_bytes() == (forked / name).read_bytes(), name
+
+
+@pytest.mark.parametrize(("load", "expected"), [(0.0, 2), (0.4, 2), (0.6, 1), (1.0, 1), (1.6, 0)])
+def test_children_only_on_idle_cores(
+    monkeypatch: pytest.MonkeyPatch, load: float, expected: int
+) -> None:
+    """Two usable cores less the one-minute load, rounded: the children never compete
+    with other work for a busy core."""
+    from recipsim.report import figure_process
+
+    monkeypatch.setattr(os, "sched_getaffinity", lambda pid: {0, 1}, raising=False)
+    monkeypatch.setattr(os, "getloadavg", lambda: (load, 0.0, 0.0))
+    assert figure_process.idle_cores(2) == expected
+    monkeypatch.delenv("RECIPSIM_FIGURE_PROCESSES", raising=False)
+    started = figure_process.start_figure_processes()
+    assert (started is None) == (expected == 0)
+    if started is not None:
+        assert len(started.pids) == expected
+        started.wait()
