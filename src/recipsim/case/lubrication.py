@@ -150,10 +150,15 @@ class FilmSpec:
     contact_friction: float
 
 
-def _named_oils() -> dict[str, Any]:
-    from recipsim.physics.lubricant import DEFAULT_OIL, SPINDLE_OIL
+_OIL_NAMES = ("iso_vg10", "spindle_oil")
 
-    return {"iso_vg10": DEFAULT_OIL, "spindle_oil": SPINDLE_OIL}
+
+def _named_oil(name: str) -> Any:
+    """The shipped oil called ``name`` (one of ``_OIL_NAMES``); the spindle oil's Vogel
+    fit runs only when it is asked for."""
+    from recipsim.physics.lubricant import DEFAULT_OIL, spindle_oil
+
+    return DEFAULT_OIL if name == "iso_vg10" else spindle_oil()
 
 
 def _points(t: TableReader, name: str, unit: str) -> tuple[float, ...]:
@@ -170,13 +175,12 @@ def parse_oil(data: Any, file: str) -> OilSpec:
     temperature = t.described(
         OIL_SPEC, "film_temperature", lambda v: 200.0 < v < 500.0, DEFAULT_FILM_TEMPERATURE
     )
-    named = _named_oils()
     if "law" not in t.data:
-        name = t.choice("name", tuple(named), "iso_vg10")
+        name = t.choice("name", _OIL_NAMES, "iso_vg10")
         extra = set(t.data) - {"name", "film_temperature"}
         if extra:
             raise CaseError(file, t.key(sorted(extra)[0]), "needs oil.law (vogel or walther)")
-        return OilSpec(named[name], temperature)
+        return OilSpec(_named_oil(name), temperature)
     from recipsim.physics.lubricant import fit_vogel, fit_walther
 
     law = t.choice("law", ("vogel", "walther"))

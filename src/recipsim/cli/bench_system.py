@@ -3,7 +3,8 @@
 Time to answer, around the solver (:mod:`recipsim.studies.bench.system_time`): the stages
 of ``recipsim run`` (imports, case loading, model build, solve, tables, each figure,
 report writing) and the command end to end; a sweep on 1..J workers with its overhead
-ratio and parallel efficiency; optionally the first run with empty caches. Writes
+ratio (end to end, and after start-up: modules imported, numba cache loaded) and parallel
+efficiency; optionally the first run with empty caches. Writes
 ``<out>/system/system.json`` (default ``--out``: ``reports/bench``) and prints a table.
 
 A subcommand of its own rather than ``bench --system``: ``bench`` ranks solver settings
@@ -54,6 +55,7 @@ def _bench_system(args: argparse.Namespace) -> int:
         extrapolate,
         measure_first_run,
         measure_map,
+        measure_map_after_startup,
         measure_run_stages,
     )
 
@@ -62,6 +64,7 @@ def _bench_system(args: argparse.Namespace) -> int:
     if not args.no_map:
         jobs = list(range(1, args.jobs + 1))
         result["map"] = measure_map(args.sweep, jobs, args.map_repeats)
+        result["map"]["after_startup"] = measure_map_after_startup(args.sweep)
         model = result["map"]["model"]
         if model:
             result["map"]["extrapolated"] = {
@@ -96,7 +99,16 @@ def format_system(result: dict[str, Any]) -> str:
                 f"efficiency {t['efficiency [-]']:.2f}"
             )
         if m["overhead_ratio [-]"] is not None:
-            lines.append(f"  overhead / solves (1 worker): {m['overhead_ratio [-]']:.2f}")
+            lines.append(
+                f"  overhead / solves (1 worker, end to end): {m['overhead_ratio [-]']:.2f}"
+            )
+        for label, t in m.get("after_startup", {}).items():
+            if t["overhead_ratio [-]"] is not None:
+                lines.append(
+                    f"  overhead / solves (1 worker, after start-up, {label}): "
+                    f"{t['overhead_ratio [-]']:.2f} ({t['wall [s]']:.2f} s, "
+                    f"solves {t['solve_sum [s]']:.2f} s)"
+                )
         if m["model"]:
             serial, parallel = m["model"]["serial [s]"], m["model"]["parallel [s]"]
             lines.append(f"  T(J) = {serial:.2f} s + {parallel:.2f} s / J")

@@ -18,6 +18,7 @@ written and says so) or the file system failed (disk full, read-only, no permiss
 from __future__ import annotations
 
 import argparse
+import contextlib
 import sys
 from collections.abc import Collection
 from pathlib import Path
@@ -95,22 +96,37 @@ def run_case(
     plots: bool | Collection[str] = True,
     argv: list[str] | None = None,
     allow_external_paths: bool = False,
+    fork_figures: bool = False,
 ) -> tuple[dict[str, Any], Path]:
     """Load, simulate and report one case; returns its summary row and report directory.
 
     The report goes to ``out/<case name>`` (``out/<case name>+<digest>`` with overrides,
     :func:`recipsim.report.case_report.report_name`). It is checked before the
     simulation (it must be new, empty or a recipsim report), so a refused ``--out``
-    costs nothing. ``plots``: every figure, none, or those named.
+    costs nothing. ``plots``: every figure, none, or those named. ``fork_figures``:
+    draw the figures in forked processes that import matplotlib while this one solves
+    (:mod:`recipsim.report.figure_process`; the command line's choice, never a
+    library's).
     """
-    from recipsim.case.load import load_case
-    from recipsim.report.case_report import report_dir, write_case_report
-    from recipsim.results.run import simulate_case
+    figures = None
+    if fork_figures and plots:
+        from recipsim.report.figure_process import start_figure_processes
 
-    case = load_case(path, overrides, allow_external_paths=allow_external_paths)
-    target = report_dir(out, case.name, case.overrides)
-    run = simulate_case(case, argv)
-    write_case_report(run, target, overrides, plots)
+        figures = start_figure_processes()
+    try:
+        from recipsim.case.load import load_case
+        from recipsim.report.case_report import report_dir, write_case_report
+        from recipsim.results.run import simulate_case
+
+        case = load_case(path, overrides, allow_external_paths=allow_external_paths)
+        target = report_dir(out, case.name, case.overrides)
+        run = simulate_case(case, argv)
+        write_case_report(run, target, overrides, plots, figures)
+    except BaseException:
+        if figures is not None:  # the children exit without drawing; the first error wins
+            with contextlib.suppress(Exception):
+                figures.wait()
+        raise
     return run.row, target
 
 
@@ -127,6 +143,7 @@ def _run_command(args: argparse.Namespace, argv: list[str] | None) -> int:
                 False if args.no_plots else (args.plots if args.plots is not None else True),
                 argv if argv is not None else sys.argv,
                 args.allow_external_paths,
+                fork_figures=True,
             )
             if not args.quiet:
                 _print_summary(row, target)

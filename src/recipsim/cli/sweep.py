@@ -11,6 +11,7 @@ every command.
 from __future__ import annotations
 
 import argparse
+import contextlib
 import shlex
 import sys
 import time
@@ -110,6 +111,12 @@ def _run_sweep(args: argparse.Namespace, argv: list[str] | None, started: float)
     from recipsim.studies.sweep.runner import WorkerLost
 
     resume = f"rerun `{_command_line(argv)}` to resume (finished points are not recomputed)"
+    figures = None
+    if not args.no_plots:  # map plots drawn by forked processes that import matplotlib now
+        from recipsim.report.figure_process import start_figure_processes
+        from recipsim.studies.sweep.plots import MAP_PRELOAD
+
+        figures = start_figure_processes(preload=MAP_PRELOAD)
     try:
         outcome = run_sweep(
             args.sweep,
@@ -128,10 +135,15 @@ def _run_sweep(args: argparse.Namespace, argv: list[str] | None, started: float)
             max_points=args.max_points,
             scheduler_timeout=args.scheduler_timeout,
             allow_external_paths=args.allow_external_paths,
+            figures=figures,
         )
     except (SweepInterrupted, WorkerLost) as exc:
         print(f"recipsim: {exc}; {resume}", file=sys.stderr)
         return 130 if isinstance(exc, SweepInterrupted) else 1
+    finally:
+        if figures is not None:  # unused after a failure: the children exit
+            with contextlib.suppress(Exception):
+                figures.wait()
     if not args.quiet:
         print(format_outcome(outcome))
     return 0 if outcome.n_failed == 0 else 1

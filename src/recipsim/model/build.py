@@ -305,7 +305,7 @@ def cylinder_model(case: Case) -> Model:
         transport=transport,
         t_min=ref.min_temperature,
         t_max=ref.max_temperature,
-        tail=None if table is None else table.buffer_tail(transport),
+        buffer=None if table is None else table.property_buffer(transport),
     )
     props.table = table
     ipar[cyl.I_PROPS] = cyl.PROPS_HEOS if table is None else cyl.PROPS_TABLE

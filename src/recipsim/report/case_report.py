@@ -9,7 +9,6 @@ from __future__ import annotations
 
 import hashlib
 import json
-import math
 from collections.abc import Collection, Mapping, Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -18,8 +17,11 @@ import pandas as pd
 
 from recipsim.atomic import atomic_directory, check_replaceable, checked_name, normalised
 from recipsim.errors import CaseError
+from recipsim.report.report_figures import draw_report_figures, report_figure_names
+from recipsim.report.report_figures import run_title as run_title  # re-exported
 
 if TYPE_CHECKING:
+    from recipsim.report.figure_process import FigureProcesses
     from recipsim.results.run import CaseRun
 
 
@@ -33,6 +35,7 @@ def write_report(
     plenum: tuple[float, float] | None = None,
     plots: bool | Collection[str] = True,
     files: Mapping[str, bytes] | None = None,
+    figures: FigureProcesses | None = None,
 ) -> Path:
     """Write one case's report into ``out_dir`` atomically.
 
@@ -41,7 +44,10 @@ def write_report(
     ``case_text`` becomes ``case.toml`` (headed by the overrides when it does not name
     them itself); ``files`` (relative path to content) are written beside it.
     ``plots``: every figure (True), none (False) or those named
-    (:data:`recipsim.report.figure_names.FIGURE_NAMES`).
+    (:data:`recipsim.report.figure_names.FIGURE_NAMES`). ``figures``: forked processes
+    that draw them while the tables are written
+    (:func:`recipsim.report.figure_process.start_figure_processes`); None draws them
+    here, one after the other.
 
     Returns
     -------
@@ -50,6 +56,9 @@ def write_report(
     """
     out_dir = Path(out_dir)
     with atomic_directory(out_dir) as tmp:
+        names = report_figure_names(cycle, summary_row, plots)
+        if figures is not None:
+            figures.draw(tmp, cycle, summary_row, plenum, names)
         pd.DataFrame([summary_row]).to_csv(tmp / "summary.csv", index=False)
         cycle.to_csv(tmp / "cycle.csv", index=False)
         header = "".join(f"# --set {o}\n" for o in overrides if f"# --set {o}" not in case_text)
@@ -60,36 +69,25 @@ def write_report(
             (tmp / name).parent.mkdir(parents=True, exist_ok=True)
             (tmp / name).write_bytes(content)
         (tmp / "provenance.json").write_text(json.dumps(meta, indent=2, default=str))
-        if plots:
-            from recipsim.report.plotting import save_cycle_figures
-
-            only = None if plots is True else tuple(plots)
-            save_cycle_figures(cycle, tmp, plenum, run_title(summary_row), only)
-            loss_chain = math.isfinite(summary_row.get("loss_motor [W]", math.nan))
-            if loss_chain and (only is None or "loss_breakdown" in only):
-                from recipsim.report.loss_plot import plot_loss_breakdown
-                from recipsim.report.mechanics_plots import save_figure
-
-                figure = plot_loss_breakdown(summary_row, title=run_title(summary_row))
-                save_figure(figure, tmp / "loss_breakdown.png")
+        if figures is not None:
+            figures.wait()
+        elif names:
+            draw_report_figures(tmp, cycle, summary_row, plenum, names)
     return out_dir
 
 
-def run_title(row: Mapping[str, Any]) -> str:
-    """What was run, for plot titles: case name, mechanics, drive and pressure source."""
-    pressure = {"cylinder": "cylinder model", "tabulated": "tabulated pressure"}.get(
-        str(row.get("pressure")), str(row.get("pressure"))
-    )
-    return f"{row.get('case')}: {row.get('mechanics')} crank, {row.get('drive')}, {pressure}"
-
-
 def write_case_report(
-    run: CaseRun, out_dir: Path, overrides: list[str], plots: bool | Collection[str] = True
+    run: CaseRun,
+    out_dir: Path,
+    overrides: list[str],
+    plots: bool | Collection[str] = True,
+    figures: FigureProcesses | None = None,
 ) -> Path:
     """Write the report of ``run`` atomically into ``out_dir`` (see reports/README.md).
 
     Its ``case.toml`` is the case fully resolved (:mod:`recipsim.report.resolved_case`),
-    with the refrigerant file and a tabulated pressure curve beside it.
+    with the refrigerant file and a tabulated pressure curve beside it. ``figures``: see
+    :func:`write_report`.
     """
     from recipsim.report.resolved_case import resolved_case
 
@@ -107,6 +105,7 @@ def write_case_report(
         plenum=(op.suction_pressure, op.discharge_pressure),
         plots=plots,
         files=files,
+        figures=figures,
     )
 
 

@@ -22,6 +22,7 @@ import pandas as pd
 from matplotlib.figure import Figure
 
 from recipsim.physics.mechanics.layout import BEARING_NAMES
+from recipsim.report.figure_names import TITLE_Y
 
 ANGLE_COLUMN = "crank_angle [deg]"
 TORQUE_COLUMN = "drive_torque [N m]"
@@ -180,7 +181,7 @@ def plot_bearing_loads(
             angle = table[ANGLE_COLUMN].to_numpy(dtype=float)
             a, f = _closed(angle, force_magnitude(table, bearing))
             ax.plot(a, f, ls=LINE_STYLES[k % len(LINE_STYLES)], lw=1.2, label=label)
-        ax.set_title(bearing)
+        ax.set_title(bearing, y=TITLE_Y)
         ax.set_ylabel("force [N]")
         _angle_axis(ax)
     for ax in axes[n:]:

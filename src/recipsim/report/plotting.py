@@ -14,7 +14,7 @@ from typing import Any
 import pandas as pd
 from matplotlib.figure import Figure
 
-from recipsim.report.figure_names import FIGURE_NAMES, check_figure_names
+from recipsim.report.figure_names import FIGURE_NAMES, TITLE_Y, check_figure_names
 
 
 def _axes(ax: Any) -> tuple[Figure, Any]:
@@ -43,9 +43,9 @@ def plot_pv(cycle: pd.DataFrame, ax: Any = None, log: bool = False, label: str =
             axis.set_major_locator(LogLocator(subs=(1.0, 2.0, 5.0)))
             axis.set_major_formatter(FormatStrFormatter("%g"))
             axis.set_minor_formatter(NullFormatter())
-        ax.set_title("p-V diagram (log-log)")
+        ax.set_title("p-V diagram (log-log)", y=TITLE_Y)
     else:
-        ax.set_title("p-V diagram")
+        ax.set_title("p-V diagram", y=TITLE_Y)
     ax.grid(True, which="both", alpha=0.3)
     return fig
 
@@ -63,7 +63,7 @@ def plot_pressure(
     ax.set_xlabel("crank angle from TDC [deg]")
     ax.set_ylabel("pressure [bar]")
     ax.set_xlim(0, 360)
-    ax.set_title("cylinder pressure")
+    ax.set_title("cylinder pressure", y=TITLE_Y)
     ax.grid(True, alpha=0.3)
     ax.legend()
     return fig
@@ -82,7 +82,7 @@ def plot_valves(cycle: pd.DataFrame, ax: Any = None) -> Figure:
     ax2.plot(theta, cycle["suction_mass_flow [kg/s]"] * 1e3, ":", color="tab:blue")
     ax2.plot(theta, cycle["discharge_mass_flow [kg/s]"] * 1e3, ":", color="tab:orange")
     ax2.set_ylabel("mass flow [g/s] (dotted)")
-    ax.set_title("valves")
+    ax.set_title("valves", y=TITLE_Y)
     ax.grid(True, alpha=0.3)
     ax.legend(loc="upper left")
     return fig
@@ -108,7 +108,7 @@ def plot_torque(cycle: pd.DataFrame, ax: Any = None, label: str = "") -> Figure:
     ax.set_xlabel("crank angle from TDC [deg]")
     ax.set_ylabel("torque on the crankshaft [N m]")
     ax.set_xlim(0, 360)
-    ax.set_title("torques (positive: along the rotation)")
+    ax.set_title("torques (positive: along the rotation)", y=TITLE_Y)
     ax.grid(True, alpha=0.3)
     ax.legend()
     return fig

@@ -34,13 +34,13 @@ named term matches its own definition.
 from __future__ import annotations
 
 import math
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 import pandas as pd
 
-from recipsim.physics.thermo import cylinder as cyl
-from recipsim.solve.periodic import PeriodicSolution
+if TYPE_CHECKING:  # the figure processes read LOSS_COLUMNS without importing the solver
+    from recipsim.solve.periodic import PeriodicSolution
 
 #: Breakdown columns, from the socket down (``isentropic_power [W]`` closes the chain).
 LOSS_COLUMNS = (
@@ -105,6 +105,8 @@ def loss_breakdown(
         dh_s_heated = fluid.state_ps(op.discharge_pressure, heated["s"])["h"] - heated["h"]
     else:
         dh_s_heated = dh_s_line
+    from recipsim.physics.thermo import cylinder as cyl
+
     y = solution.final.y_end  # type: ignore[union-attr]
     suction_flow = (y[cyl.Q_MSUC_IN] - y[cyl.Q_MSUC_OUT]) * freq
     mufflers = suction_flow * (op.suction_pressure - p_s) / inlet.density

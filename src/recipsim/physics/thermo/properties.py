@@ -20,6 +20,7 @@ step is rejected and retried with a smaller step).
 from __future__ import annotations
 
 import ctypes
+import weakref
 from typing import TYPE_CHECKING, Any
 
 import numba.experimental.function_type  # noqa: F401  (registers typeof for WAP objects)
@@ -68,6 +69,10 @@ class HeosProperties(types.WrapperAddressProtocol):
         Data appended to the buffer after its ``N_PROPS`` outputs: a property table
         (:meth:`recipsim.physics.thermo.property_table.PropertyTable.buffer_tail`) that the
         compiled code evaluates instead of this callback where it can.
+    buffer : numpy.ndarray, optional
+        The whole buffer, outputs and tail, made by the caller
+        (:meth:`recipsim.physics.thermo.property_table.PropertyTable.property_buffer`,
+        which reuses memory); replaces ``tail``.
 
     Attributes
     ----------
@@ -85,18 +90,25 @@ class HeosProperties(types.WrapperAddressProtocol):
         t_max: float,
         backend: str = "HEOS",
         tail: np.ndarray | None = None,
+        buffer: np.ndarray | None = None,
     ) -> None:
         self.coolprop_name = coolprop_name
         self.backend = backend
-        self.buffer = (
-            np.zeros(N_PROPS) if tail is None else np.concatenate([np.zeros(N_PROPS), tail])
-        )
+        if buffer is not None:
+            self.buffer = buffer
+        else:
+            self.buffer = (
+                np.zeros(N_PROPS) if tail is None else np.concatenate([np.zeros(N_PROPS), tail])
+            )
         self.table: PropertyTable | None = None
         self.calls = 0
         self.failures = 0
         constants = fluid_constants(coolprop_name)
         r_gas, t_crit = constants.gas_constant, constants.t_crit
-        buf = self.buffer
+        # ctypes keeps the callback below in a reference cycle, freed only by the cyclic
+        # collector: held weakly, the buffer (11 MB with a table) is freed, or reused by
+        # PropertyTable.property_buffer, as soon as this object goes
+        buffer_ref = weakref.ref(self.buffer)
         # CoolProp (about 2 s to import) is loaded at the first call: with a property
         # table in the buffer's tail the compiled code may never need it
         state: Any = None
@@ -122,6 +134,9 @@ class HeosProperties(types.WrapperAddressProtocol):
                 if interrupted[0]:
                     return STATUS_DOMAIN
                 if not (t_min <= temperature <= t_max) or not (density > 0.0):
+                    return STATUS_DOMAIN
+                buf = buffer_ref()
+                if buf is None:  # the object is gone: nothing to fill
                     return STATUS_DOMAIN
                 if state is None:
                     load_coolprop()

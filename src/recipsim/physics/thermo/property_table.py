@@ -49,6 +49,8 @@ evaluation that reads them; to be split with :mod:`.property_table_build` (issue
 from __future__ import annotations
 
 import math
+import sys
+import threading
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -221,6 +223,14 @@ class PropertyTable:
     from_cache: bool = False
     build_time: float = 0.0
     load_time: float = 0.0
+    #: Buffers handed out by :meth:`property_buffer`, reused once nothing else holds them.
+    _buffers: list[np.ndarray] = field(default_factory=list, repr=False, compare=False)
+
+    def __getstate__(self) -> dict[str, Any]:
+        """Pickled (to sweep workers) without the reusable buffers."""
+        state = dict(self.__dict__)
+        state["_buffers"] = []
+        return state
 
     def header(self, slot: int) -> float:
         """A header value (``H_*``)."""
@@ -252,6 +262,57 @@ class PropertyTable:
         tail = self.data.copy()
         tail[H_TRANSPORT] = 1.0 if transport else 0.0
         return tail
+
+    def property_buffer(self, transport: bool) -> np.ndarray:
+        """A whole property buffer: ``N_PROPS`` zeroed outputs, then :attr:`data` with
+        the transport flag set, as ``np.concatenate([np.zeros(N_PROPS),
+        self.buffer_tail(transport)])`` gives, in one copy.
+
+        The memory of an earlier buffer that nothing but this table holds any more is
+        reused (a model build otherwise allocates, page-faults and frees 11 MB twice);
+        its content is rewritten whole, so a reused buffer equals a new one.
+
+        Parameters
+        ----------
+        transport : bool
+            Fill viscosity, conductivity and c_p.
+        """
+        size = N_PROPS + self.data.size
+        with _BUFFERS_LOCK:
+            buf = _unreferenced(self._buffers)
+            if buf is None or buf.size != size:
+                buf = np.empty(size)
+                if len(self._buffers) < _KEPT_BUFFERS:
+                    self._buffers.append(buf)
+        buf[:N_PROPS] = 0.0
+        buf[N_PROPS:] = self.data
+        buf[N_PROPS + H_TRANSPORT] = 1.0 if transport else 0.0
+        return buf
+
+
+#: Buffers a table keeps for reuse (a sweep worker needs one at a time; threads more).
+_KEPT_BUFFERS = 4
+_BUFFERS_LOCK = threading.Lock()
+
+
+def _refcount_in_loop(items: list[np.ndarray]) -> int:
+    for item in items:
+        return sys.getrefcount(item)
+    return 0
+
+
+def _unreferenced(buffers: list[np.ndarray]) -> np.ndarray | None:
+    """The first of ``buffers`` that only the list references, or None."""
+    for buf in buffers:
+        if sys.getrefcount(buf) <= _FREE_REFCOUNT:
+            return buf
+    return None
+
+
+#: The reference count of an array held only by a list, seen inside the loop of
+#: :func:`_unreferenced` (measured, not assumed: interpreters count borrowed references
+#: differently).
+_FREE_REFCOUNT = _refcount_in_loop([np.empty(1)])
 
 
 # ======================================================================================

@@ -229,8 +229,8 @@ class TableFluid:
         self.gas_constant = gas_constant
         self.critical_temperature = critical_temperature
         self.critical_pressure = critical_pressure
-        self._buf = np.concatenate([np.zeros(N_PROPS), table.buffer_tail(transport=False)])
-        self._buf_transport = np.concatenate([np.zeros(N_PROPS), table.buffer_tail(transport=True)])
+        self._buf = table.property_buffer(transport=False)
+        self._buf_transport = table.property_buffer(transport=True)
         self._heos: Fluid | None = None
         # pseudo-pure mixtures have no QT saturation data (NaN rows): their saturation
         # questions go to HEOS

@@ -12,6 +12,9 @@ wall time and CPU time (the CPU time is the steadier figure on a shared machine)
   ``wall_time [s]``), overhead ratio (everything but the solves, over the solves, with
   one worker), parallel efficiency ``T(1) / (J T(J))`` and the serial/parallel split of
   the overhead model ``T(J) = S + P / J`` fitted to the first and last worker counts;
+- :func:`measure_map_after_startup`: the same sweep on one worker inside an interpreter
+  that has already imported recipsim and loaded numba's cache, with and without map
+  plots: the overhead ratio without process start-up, beside the end-to-end one;
 - :func:`measure_first_run`: ``recipsim run`` with empty caches (numba, property table,
   fluid constants, pint) in a temporary directory.
 """
@@ -78,6 +81,58 @@ for name, kind, make in plotting._figure_makers(cycle, plenum):
     lap("figure_" + name)
 print(json.dumps(marks))
 """
+
+
+# runs in the child: the sweep after start-up (recipsim's modules imported, numba's cache
+# loaded by one solve of the base case), one worker, with and without the map plots
+_MAP_CHILD = r"""
+import json, sys, tempfile, time
+import recipsim.report.plotting, recipsim.studies.sweep.plots
+from recipsim.case.load import load_case
+from recipsim.results.run import simulate_case
+from recipsim.studies.sweep.engine import run_sweep
+from recipsim.studies.sweep.spec import load_sweep
+spec = load_sweep(sys.argv[1])
+simulate_case(load_case(str(spec.base), []), [])
+result = {}
+with tempfile.TemporaryDirectory() as out:
+    for label, plots in (("no_plots", False), ("with_plots", True)):
+        start, cpu = time.perf_counter(), time.process_time()
+        outcome = run_sweep(spec, jobs=1, out=out, plots=plots, fresh=True)
+        wall = time.perf_counter() - start
+        solves = float(outcome.table["wall_time [s]"].fillna(0.0).sum())
+        result[label] = [wall, time.process_time() - cpu, solves]
+print(json.dumps(result))
+"""
+
+
+def measure_map_after_startup(sweep: str) -> dict[str, Any]:
+    """The sweep on one worker in an interpreter already started (modules imported, numba's
+    cache loaded), with and without its map plots: the overhead that start-up does not
+    explain.
+
+    Parameters
+    ----------
+    sweep : str
+        Sweep file or shipped sweep name.
+
+    Returns
+    -------
+    dict
+        For ``no_plots`` and ``with_plots``: ``wall [s]``, ``cpu [s]``, ``solve_sum [s]``
+        and ``overhead_ratio [-]`` = (wall - solves) / solves.
+    """
+    _timed([sys.executable, "-c", _MAP_CHILD, sweep])  # fill the caches
+    measured = json.loads(_timed([sys.executable, "-c", _MAP_CHILD, sweep])[2].splitlines()[-1])
+    return {
+        label: {
+            "wall [s]": wall,
+            "cpu [s]": cpu,
+            "solve_sum [s]": solves,
+            "overhead_ratio [-]": (wall - solves) / solves if solves > 0 else None,
+        }
+        for label, (wall, cpu, solves) in measured.items()
+    }
 
 
 def _child_seconds() -> float:

@@ -15,7 +15,7 @@ from collections import Counter
 from collections.abc import Collection, Iterable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import pandas as pd
 
@@ -27,6 +27,9 @@ from recipsim.studies.sweep.plan import PlannedPoint, plan_sweep
 from recipsim.studies.sweep.spec import SweepSpec, load_sweep
 from recipsim.studies.sweep.store import PointStore
 from recipsim.studies.sweep.worker import OK, SOLVED, PointTask
+
+if TYPE_CHECKING:
+    from recipsim.report.figure_process import FigureProcesses
 
 TIMING_COLUMNS = ("wall_time [s]",)
 """Summary columns that differ from run to run (everything else is deterministic)."""
@@ -176,6 +179,7 @@ def run_sweep(
     max_points: int | None = None,
     scheduler_timeout: float = 10.0,
     allow_external_paths: bool = False,
+    figures: FigureProcesses | None = None,
 ) -> SweepOutcome:
     """Run (or resume) a sweep.
 
@@ -218,6 +222,10 @@ def run_sweep(
         Seconds to wait for the Dask scheduler to answer [s].
     allow_external_paths : bool
         Let the sweep's ``base`` and the cases name files outside their directory.
+    figures : FigureProcesses, optional
+        Forked processes that draw the map plots, shared between them
+        (:func:`recipsim.report.figure_process.start_figure_processes`, the command
+        line's); None draws them here, one after the other.
 
     Returns
     -------
@@ -324,7 +332,7 @@ def run_sweep(
 
     table = build_table(planned, records)
     axes = [c for c in table.columns if c in {c for p in planned for c in p.columns}]
-    files = _write_outputs(spec, root, table, axes, plots, parquet)
+    files = _write_outputs(spec, root, table, axes, plots, parquet, figures)
     wall = time.perf_counter() - start
     outcome = SweepOutcome(
         spec=spec,
@@ -378,8 +386,18 @@ def _execute(
 
 
 def _write_outputs(
-    spec: SweepSpec, root: Path, table: pd.DataFrame, axes: list[str], plots: Plots, parquet: bool
+    spec: SweepSpec,
+    root: Path,
+    table: pd.DataFrame,
+    axes: list[str],
+    plots: Plots,
+    parquet: bool,
+    figures: FigureProcesses | None = None,
 ) -> list[Path]:
+    if plots and figures is not None:
+        from recipsim.studies.sweep.plots import submit_map_plots
+
+        submit_map_plots(figures, table, axes, root, None if plots is True else plots)
     files = []
     csv = root / "summary.csv"
     atomic_write(csv, lambda p: table.to_csv(p, index=False))
@@ -390,7 +408,12 @@ def _write_outputs(
         files.append(pq)
     with atomic_file(root / "sweep.toml") as handle:
         handle.write(spec.text)
-    if plots:
+    if plots and figures is not None:
+        from recipsim.studies.sweep.plots import MAP_NAMES
+
+        drawn = {path.name: path for written in figures.wait() for path in written}
+        files.extend(drawn[f"map_{n}.png"] for n in MAP_NAMES if f"map_{n}.png" in drawn)
+    elif plots:
         from recipsim.studies.sweep.plots import save_map_plots
 
         files.extend(save_map_plots(table, axes, root, None if plots is True else plots))

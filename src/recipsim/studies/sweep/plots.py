@@ -14,13 +14,16 @@ import math
 import re
 from collections.abc import Collection, Iterable, Sequence
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import pandas as pd
-from matplotlib.figure import Figure
 
 from recipsim.atomic import atomic_write
 from recipsim.errors import CaseError
+from recipsim.report.figure_names import TITLE_Y
+
+if TYPE_CHECKING:  # matplotlib is imported where a plot is drawn
+    from matplotlib.figure import Figure
 
 MAP_QUANTITIES: tuple[tuple[str, str, str], ...] = (
     ("cooling_capacity [W]", "cooling capacity [W]", "map_cooling_capacity.png"),
@@ -121,6 +124,8 @@ def plot_map(
 ) -> Figure:
     """One quantity against ``x``, a line per combination of the ``groups`` columns."""
     if ax is None:
+        from matplotlib.figure import Figure
+
         fig = Figure(figsize=(7.0, 4.8), layout="constrained")
         ax = fig.add_subplot()
     else:
@@ -149,12 +154,14 @@ def plot_bearing_loads(table: pd.DataFrame, x: str, groups: list[str]) -> Figure
         return None
     ncols = min(3, len(columns))
     nrows = math.ceil(len(columns) / ncols)
+    from matplotlib.figure import Figure
+
     fig = Figure(figsize=(4.2 * ncols, 3.4 * nrows))
     axes = fig.subplots(nrows, ncols, squeeze=False)
     for ax, column in zip(axes.flat, columns, strict=False):
         name = BEARING_COLUMN.match(column).group(1)  # type: ignore[union-attr]
         plot_map(table, column, x, groups, ylabel="peak load [N]", ax=ax)
-        ax.set_title(name.replace("_", " "))
+        ax.set_title(name.replace("_", " "), y=TITLE_Y)
         legend = ax.get_legend()
         if legend is not None:
             legend.remove()
@@ -239,7 +246,7 @@ def save_map_plots(
             continue
         if column:
             fig = plot_map(ok, column, x, groups, ylabel=label)
-            fig.axes[0].set_title(label.rsplit(" [", 1)[0])
+            fig.axes[0].set_title(label.rsplit(" [", 1)[0], y=TITLE_Y)
             fixed_margins(fig, "single")
         else:  # panels and a legend: left to the layout engine
             panels = plot_bearing_loads(ok, x, groups)
@@ -254,3 +261,31 @@ def save_map_plots(
         atomic_write(path, save)
         written.append(path)
     return written
+
+
+#: Measured CPU cost of each map plot of the 100-point map [s] (warm), used only to
+#: share the plots between figure processes.
+MAP_COST = {name: 0.057 for name in MAP_NAMES} | {"bearing_loads": 0.2}
+
+#: What a figure process of the map plots imports while the sweep runs.
+MAP_PRELOAD = ("matplotlib.figure", "recipsim.report.plotting", "recipsim.studies.sweep.plots")
+
+
+def submit_map_plots(
+    figures: Any,
+    table: pd.DataFrame,
+    axes: Sequence[str],
+    out_dir: Path,
+    only: Collection[str] | None = None,
+) -> None:
+    """Have forked figure processes (:class:`recipsim.report.figure_process.FigureProcesses`)
+    draw the map plots of :func:`save_map_plots`, shared between them by cost; returns at
+    once, ``figures.wait()`` waits for them and returns each process's list of files."""
+    from recipsim.report.figure_process import share_by_cost
+
+    names = MAP_NAMES if only is None else check_map_names(only)
+    jobs = [
+        {"table": table, "axes": list(axes), "out_dir": Path(out_dir), "only": share}
+        for share in share_by_cost(names, len(figures.pids), MAP_COST)
+    ]
+    figures.submit("recipsim.studies.sweep.plots", "save_map_plots", jobs)

@@ -55,3 +55,30 @@ def test_warmup_solves_one_revolution_of_each_case(capsys: pytest.CaptureFixture
     err = capsys.readouterr().err
     assert "property table of R134a ready" in err
     assert "reference_r134a_lbp: solver compiled for its scene (pinned crank" in err
+
+
+def test_both_overhead_ratios_are_printed() -> None:
+    """End to end and after start-up, each with its definition's inputs."""
+    after = {
+        "no_plots": {"wall [s]": 1.5, "cpu [s]": 1.5, "solve_sum [s]": 0.6},
+        "with_plots": {"wall [s]": 2.1, "cpu [s]": 2.1, "solve_sum [s]": 0.6},
+    }
+    for t in after.values():
+        t["overhead_ratio [-]"] = (t["wall [s]"] - t["solve_sum [s]"]) / t["solve_sum [s]"]
+    result = {
+        "machine": {"load_average": [0, 0, 0]},
+        "run": {"stages": {}, "run": {}},
+        "map": {
+            "sweep": "s",
+            "points": 100,
+            "solve_sum [s]": 0.6,
+            "runs": {"1": {"wall [s]": 3.0, "cpu [s]": 3.0, "efficiency [-]": 1.0}},
+            "overhead_ratio [-]": 4.0,
+            "model": {},
+            "after_startup": after,
+        },
+    }
+    text = format_system(result)
+    assert "overhead / solves (1 worker, end to end): 4.00" in text
+    assert "after start-up, no_plots): 1.50 (1.50 s, solves 0.60 s)" in text
+    assert "after start-up, with_plots): 2.50 (2.10 s, solves 0.60 s)" in text

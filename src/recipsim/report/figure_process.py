@@ -1,0 +1,287 @@
+"""Report figures drawn in forked helper processes, concurrently with the solve.
+
+A ``recipsim run`` spends about as long drawing its figures (0.6 s of CPU for the
+default case, plus 0.2-0.3 s to import matplotlib) as on everything else. The command
+line therefore forks :class:`FigureProcesses` before it loads anything heavy: each child
+imports matplotlib and the plotting modules while the parent imports numba, loads the
+case and solves, then waits for a job on a pipe. The parent sends the cycle table and
+the names of the figures each child draws (split by their measured cost,
+:data:`FIGURE_COST`), writes its tables meanwhile, and waits for the children before its
+report directory is renamed into place, so the report stays atomic.
+
+Only the command line forks (a library never starts processes behind its caller's
+back), only where ``os.fork`` exists, and before any thread or numba's compiler has
+started. A child that fails sends its exception back; the parent raises it. A child
+whose parent dies reads end-of-file and exits. The figures are the same files as
+those drawn in-process (:func:`recipsim.report.report_figures.draw_report_figures`).
+"""
+
+from __future__ import annotations
+
+import os
+import pickle
+import sys
+from collections.abc import Collection, Mapping
+from pathlib import Path
+from typing import Any
+
+#: Measured CPU cost of each figure of the default case [s] (warm, 2-core machine),
+#: used only to share the figures evenly between the children.
+FIGURE_COST = {
+    "p_V": 0.057,
+    "p_V_loglog": 0.073,
+    "p_theta": 0.071,
+    "torque": 0.077,
+    "valves": 0.087,
+    "bearing_loads": 0.25,
+    "orbits": 0.25,
+    "loss_breakdown": 0.08,
+}
+
+
+def _read_exactly(fd: int, size: int) -> bytes:
+    chunks, left = [], size
+    while left and (chunk := os.read(fd, min(left, 1 << 20))):
+        chunks.append(chunk)
+        left -= len(chunk)
+    return b"".join(chunks)
+
+
+def _read_all(fd: int) -> bytes:
+    chunks = []
+    while chunk := os.read(fd, 1 << 20):
+        chunks.append(chunk)
+    return b"".join(chunks)
+
+
+def _write_all(fd: int, data: bytes) -> None:
+    view = memoryview(data)
+    while view:
+        view = view[os.write(fd, view) :]
+
+
+def _child(jobs: int, results: int, preload: tuple[str, ...]) -> None:
+    """Body of a forked child: import ``preload``, run one job, report.
+
+    A job is a length-prefixed pickle of ``(module, function, kwargs)``; length 0 (or
+    end-of-file: the parent is gone) means none. Length-prefixed rather than read to
+    end-of-file, because processes the parent forks later (sweep workers) inherit the
+    pipe's write end.
+    """
+    import importlib
+
+    reply: Any = b""
+    try:
+        for module in preload:
+            importlib.import_module(module)
+        size = int.from_bytes(_read_exactly(jobs, 8) or bytes(8), "little")
+        if size:
+            module, function, kwargs = pickle.loads(_read_exactly(jobs, size))
+            value = getattr(importlib.import_module(module), function)(**kwargs)
+            reply = pickle.dumps((True, value))
+    except BaseException as exc:  # noqa: BLE001 - everything goes back to the parent
+        try:
+            reply = pickle.dumps((False, exc))
+        except Exception:  # noqa: BLE001 - an exception that cannot be pickled
+            reply = pickle.dumps((False, RuntimeError(f"figure process: {exc!r}")))
+    _write_all(results, reply)
+
+
+#: What the children of a case report import before their job arrives.
+REPORT_PRELOAD = (
+    "recipsim.report.loss_plot",
+    "recipsim.report.plotting",
+    "recipsim.report.report_figures",
+)
+
+
+class FigureProcesses:
+    """Forked children that draw a report's figures (see the module docstring).
+
+    Parameters
+    ----------
+    count : int
+        Children to fork (at least 1).
+    preload : tuple of str
+        Modules each child imports while it waits for its job.
+    """
+
+    def __init__(self, count: int, preload: tuple[str, ...] = REPORT_PRELOAD) -> None:
+        self._children: list[tuple[int, int, int]] = []  # pid, job fd, result fd
+        self._jobs_open = True
+        for _ in range(count):
+            job_read, job_write = os.pipe()
+            result_read, result_write = os.pipe()
+            sys.stdout.flush()
+            sys.stderr.flush()
+            pid = os.fork()
+            if pid == 0:  # child
+                status = 0
+                try:
+                    os.close(job_write)
+                    os.close(result_read)
+                    for _pid, job, result in self._children:
+                        os.close(job)
+                        os.close(result)
+                    _child(job_read, result_write, preload)
+                except BaseException:  # noqa: BLE001 - never return into the parent's code
+                    status = 1
+                finally:
+                    os._exit(status)
+            os.close(job_read)
+            os.close(result_write)
+            self._children.append((pid, job_write, result_read))
+
+    @property
+    def pids(self) -> list[int]:
+        """Process ids of the children."""
+        return [pid for pid, _job, _result in self._children]
+
+    def draw(
+        self,
+        directory: Path,
+        cycle: Any,
+        summary_row: Mapping[str, Any],
+        plenum: tuple[float, float] | None,
+        names: Collection[str],
+    ) -> None:
+        """Send the figures ``names`` of one case report to the children, shared by cost
+        (:func:`recipsim.report.report_figures.draw_report_figures`).
+
+        Returns at once; :meth:`wait` waits for the files. Call it (or :meth:`submit`)
+        once.
+        """
+        jobs = [
+            {
+                "directory": Path(directory),
+                "cycle": cycle,
+                "summary_row": dict(summary_row),
+                "plenum": plenum,
+                "names": tuple(share),
+            }
+            for share in share_by_cost(names, len(self.pids), FIGURE_COST)
+        ]
+        self.submit("recipsim.report.report_figures", "draw_report_figures", jobs)
+
+    def submit(self, module: str, function: str, jobs: list[dict[str, Any]]) -> None:
+        """Run ``module.function(**kwargs)`` for each ``kwargs`` of ``jobs``, one per child
+        (at most as many jobs as children); the other children get none.
+
+        Returns at once; :meth:`wait` waits for them.
+        """
+        if not self._jobs_open:
+            raise RuntimeError("the figure processes had their jobs already")
+        if len(jobs) > len(self._children):
+            raise ValueError(f"{len(jobs)} jobs for {len(self._children)} figure processes")
+        for index, (_pid, job, _result) in enumerate(self._children):
+            data = b""
+            if index < len(jobs):
+                data = pickle.dumps((module, function, jobs[index]), pickle.HIGHEST_PROTOCOL)
+            _write_all(job, len(data).to_bytes(8, "little") + data)
+            os.close(job)
+        self._jobs_open = False
+
+    def close(self) -> None:
+        """Tell the children that no (more) job comes: they finish and exit."""
+        if self._jobs_open:
+            self._jobs_open = False
+            for _pid, job, _result in self._children:
+                try:
+                    _write_all(job, bytes(8))  # no job
+                except OSError:
+                    pass  # the child is gone: wait() reports it
+                os.close(job)
+
+    def wait(self) -> list[Any]:
+        """Wait for every child; re-raise the first failure of a child.
+
+        Returns
+        -------
+        list
+            What each job's function returned, in the order of the jobs.
+
+        Raises
+        ------
+        Exception
+            What a child raised; RuntimeError when a child died.
+        """
+        self.close()
+        failure: BaseException | None = None
+        values = []
+        for pid, _job, result in self._children:
+            reply = _read_all(result)
+            os.close(result)
+            _, status = os.waitpid(pid, 0)
+            if reply:
+                ok, value = pickle.loads(reply)
+                if ok:
+                    values.append(value)
+                elif failure is None:
+                    failure = value
+            elif failure is None and status != 0:
+                failure = RuntimeError(f"figure process {pid} ended with status {status}")
+        self._children = []
+        if failure is not None:
+            raise failure
+        return values
+
+
+def share_by_cost(names: Collection[str], parts: int, cost: Mapping[str, float]) -> list[list[str]]:
+    """``names`` shared into at most ``parts`` non-empty lists of about equal total
+    ``cost`` (largest first, each to the lightest list; unknown names cost 0.1)."""
+    shares: list[list[str]] = [[] for _ in range(parts)]
+    loads = [0.0] * parts
+    for name in sorted(names, key=lambda n: -cost.get(n, 0.1)):
+        lightest = loads.index(min(loads))
+        shares[lightest].append(name)
+        loads[lightest] += cost.get(name, 0.1)
+    return [share for share in shares if share]
+
+
+def idle_cores(most: int) -> int:
+    """Cores that other work leaves idle, at most ``most``: the usable cores less the
+    one-minute load average, rounded to the nearest whole core (0 when the machine is
+    busy; ``most`` where the load average is unknown)."""
+    cores = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count()
+    try:
+        load = os.getloadavg()[0]
+    except (AttributeError, OSError):
+        return most
+    return max(0, min(most, int((cores or 1) - load + 0.5)))
+
+
+def start_figure_processes(
+    count: int | None = None, preload: tuple[str, ...] = REPORT_PRELOAD
+) -> FigureProcesses | None:
+    """Fork the figure children of one report, or None where forking is not available.
+
+    Parameters
+    ----------
+    count : int, optional
+        Children; default ``RECIPSIM_FIGURE_PROCESSES`` when set, else the cores other
+        work leaves idle (:func:`idle_cores`), at most 2 (more do not pay for their
+        start-up on a report's 7 figures). On a busy machine the children's own
+        matplotlib imports would cost more than their parallel drawing saves.
+    preload : tuple of str
+        Modules the children import while they wait (default: the case report's).
+
+    Returns
+    -------
+    FigureProcesses or None
+        None without ``os.fork`` (Windows) or with a count of 0; the caller then draws
+        in-process.
+    """
+    setting = os.environ.get("RECIPSIM_FIGURE_PROCESSES", "").strip()
+    if count is None and setting.isdigit():
+        count = int(setting)
+    if not hasattr(os, "fork") or count == 0:
+        return None
+    if count is None:
+        count = idle_cores(2)
+        if count == 0:
+            return None
+    # pandas, which the parent needs anyway, is imported once before forking: the
+    # children import only matplotlib (0.25 s each instead of 0.5 s)
+    import pandas  # noqa: F401
+
+    return FigureProcesses(count, preload)

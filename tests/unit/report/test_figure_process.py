@@ -1,0 +1,129 @@
+"""Report figures drawn in forked processes (``recipsim run``): the same files, byte for
+byte, as those drawn in-process, and a child's failure raised in the parent."""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+
+import pytest
+
+from helpers import REFERENCE
+
+pytestmark = pytest.mark.skipif(not hasattr(os, "fork"), reason="forks (POSIX only)")
+
+
+@pytest.fixture(scope="module")
+def run():
+    from recipsim.case.load import load_case
+    from recipsim.results.run import simulate_case
+
+    return simulate_case(load_case(REFERENCE), [])
+
+
+def test_forked_figures_are_the_in_process_files(run, tmp_path: Path) -> None:
+    """Every figure that applies (the in-process drawer's own choice, loss chain
+    included) is written by the children, and the PNG bytes are identical: the
+    children draw with the same code from an exact copy of the cycle table."""
+    from recipsim.report.figure_process import FigureProcesses
+    from recipsim.report.loss_plot import plot_loss_breakdown
+    from recipsim.report.mechanics_plots import save_figure
+    from recipsim.report.plotting import save_cycle_figures
+    from recipsim.report.report_figures import report_figure_names, run_title
+
+    op = run.case.operating_point
+    plenum = (op.suction_pressure, op.discharge_pressure)
+    serial, forked = tmp_path / "serial", tmp_path / "forked"
+    serial.mkdir()
+    forked.mkdir()
+    title = run_title(run.row)
+    save_cycle_figures(run.cycle, serial, plenum, title)  # decides itself what applies
+    save_figure(plot_loss_breakdown(run.row, title=title), serial / "loss_breakdown.png")
+
+    figures = FigureProcesses(2)
+    figures.draw(forked, run.cycle, run.row, plenum, report_figure_names(run.cycle, run.row))
+    figures.wait()
+
+    names = sorted(p.name for p in serial.glob("*.png"))
+    assert names == sorted(p.name for p in forked.glob("*.png"))
+    assert len(names) == 7  # p-V (2), pressure, torque, valves, bearing loads, loss chain
+    for name in names:
+        assert (serial / name).read_bytes() == (forked / name).read_bytes(), name
+
+
+def test_a_childs_failure_is_raised_in_the_parent(run, tmp_path: Path) -> None:
+    from recipsim.report.figure_process import FigureProcesses
+
+    figures = FigureProcesses(1)
+    broken = run.cycle.drop(columns=["cylinder_pressure [Pa]"])
+    figures.draw(tmp_path, broken, run.row, None, ("p_theta",))
+    with pytest.raises(KeyError, match="cylinder_pressure"):
+        figures.wait()
+
+
+def test_children_without_a_job_exit_cleanly() -> None:
+    from recipsim.report.figure_process import FigureProcesses
+
+    figures = FigureProcesses(2)
+    pids = [pid for pid, _job, _result in figures._children]
+    figures.wait()
+    for pid in pids:  # reaped: no such child any more
+        with pytest.raises(ChildProcessError):
+            os.waitpid(pid, os.WNOHANG)
+
+
+def test_run_command_writes_the_same_report_with_and_without_forking(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    from recipsim.cli.main import main
+
+    for label, setting in (("forked", "2"), ("serial", "0")):
+        monkeypatch.setenv("RECIPSIM_FIGURE_PROCESSES", setting)
+        assert main(["run", str(REFERENCE), "--out", str(tmp_path / label), "--quiet"]) == 0
+    forked = tmp_path / "forked" / "reference_r134a_lbp"
+    serial = tmp_path / "serial" / "reference_r134a_lbp"
+    names = sorted(p.name for p in serial.glob("*.png"))
+    assert names == sorted(p.name for p in forked.glob("*.png")) and len(names) == 7
+    for name in [*names, "cycle.csv"]:
+        assert (serial / name).read_bytes() == (forked / name).read_bytes(), name
+
+
+def test_forked_map_plots_are_the_in_process_files(tmp_path: Path) -> None:
+    """The sweep's map plots shared between two children: the same files, in the same
+    order, byte for byte, as :func:`save_map_plots` draws in-process."""
+    from recipsim.report.figure_process import FigureProcesses
+    from recipsim.studies.sweep.plots import MAP_PRELOAD, save_map_plots, submit_map_plots
+    from unit.studies.test_sweep_plots import AXES, synthetic
+
+    table = synthetic(bearings=True)
+    serial, forked = tmp_path / "serial", tmp_path / "forked"
+    serial.mkdir()
+    forked.mkdir()
+    in_process = save_map_plots(table, AXES, serial)
+    figures = FigureProcesses(2, MAP_PRELOAD)
+    submit_map_plots(figures, table, AXES, forked)
+    shares = figures.wait()
+    assert len(shares) == 2 and all(shares)  # both children drew
+    names = sorted(p.name for share in shares for p in share)
+    assert names == sorted(p.name for p in in_process) and len(names) == 6
+    for name in names:
+        assert (serial / name).read_bytes() == (forked / name).read_bytes(), name
+
+
+@pytest.mark.parametrize(("load", "expected"), [(0.0, 2), (0.4, 2), (0.6, 1), (1.0, 1), (1.6, 0)])
+def test_children_only_on_idle_cores(
+    monkeypatch: pytest.MonkeyPatch, load: float, expected: int
+) -> None:
+    """Two usable cores less the one-minute load, rounded: the children never compete
+    with other work for a busy core."""
+    from recipsim.report import figure_process
+
+    monkeypatch.setattr(os, "sched_getaffinity", lambda pid: {0, 1}, raising=False)
+    monkeypatch.setattr(os, "getloadavg", lambda: (load, 0.0, 0.0))
+    assert figure_process.idle_cores(2) == expected
+    monkeypatch.delenv("RECIPSIM_FIGURE_PROCESSES", raising=False)
+    started = figure_process.start_figure_processes()
+    assert (started is None) == (expected == 0)
+    if started is not None:
+        assert len(started.pids) == expected
+        started.wait()
