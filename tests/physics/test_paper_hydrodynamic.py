@@ -28,10 +28,10 @@ from recipsim.studies.paper import (
     RUNS,
     PaperStudy,
     run_paper_study,
-    table1_columns,
 )
 from recipsim.studies.paper_hydrodynamic import JOURNALS, hydrodynamic_case
 from recipsim.studies.paper_report import CLOSE_TO_PINNED, conclusion_three
+from recipsim.studies.paper_tables import table1_columns
 
 SAMPLES = 180
 

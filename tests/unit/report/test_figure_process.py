@@ -93,7 +93,7 @@ def test_forked_map_plots_are_the_in_process_files(tmp_path: Path) -> None:
     order, byte for byte, as :func:`save_map_plots` draws in-process."""
     from recipsim.report.figure_process import FigureProcesses
     from recipsim.studies.sweep.plots import MAP_PRELOAD, save_map_plots, submit_map_plots
-    from unit.studies.test_sweep_plots import AXES, synthetic
+    from unit.studies.sweep.test_sweep_plots import AXES, synthetic
 
     table = synthetic(bearings=True)
     serial, forked = tmp_path / "serial", tmp_path / "forked"
