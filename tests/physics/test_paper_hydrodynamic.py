@@ -23,14 +23,10 @@ from recipsim.case.load import Case, load_case
 from recipsim.model.build import crank_geometry
 from recipsim.physics.mechanics.layout import BEARING_NAMES
 from recipsim.report.mechanics_plots import film_bearings, film_clearance, plot_orbits
-from recipsim.studies.paper import (
-    HYDRODYNAMIC_RUNS,
-    RUNS,
-    PaperStudy,
-    run_paper_study,
-)
+from recipsim.studies.paper import run_paper_study
 from recipsim.studies.paper_hydrodynamic import JOURNALS, hydrodynamic_case
 from recipsim.studies.paper_report import CLOSE_TO_PINNED, conclusion_three
+from recipsim.studies.paper_runs import HYDRODYNAMIC_RUNS, RUNS, PaperStudy
 from recipsim.studies.paper_tables import table1_columns
 
 SAMPLES = 180

@@ -18,15 +18,16 @@ Stiff stretches (``method`` = :data:`METHOD_AUTO`, ``solver.method =
 "dopri5_stiff"``): after every accepted DOPRI5 step, Hairer's stiffness
 test estimates ``h |lambda|`` from the last two stages (both at ``t + h``); once it has
 exceeded 3.25 (DOPRI5's stability boundary on the negative real axis) on
-:data:`STIFF_AFTER` steps without :data:`NONSTIFF_RESET` non-stiff steps in between,
+:data:`.step_control.STIFF_AFTER` steps without :data:`.step_control.NONSTIFF_RESET`
+non-stiff steps in between,
 the integrator continues with the L-stable Rosenbrock-W step of
 :mod:`recipsim.solve.stiff` (finite-difference Jacobian of the error-controlled
 states, kept for as many accepted steps as amortise its cost, see
 :data:`JAC_STAGES_PER_STEP`, and refreshed after a rejection), with
 the same error norm, events, impacts, re-step to the event and Hermite dense output.
 It returns to DOPRI5 once the step the W-method takes would be inside DOPRI5's
-stability region (``h * rho(J) <`` :data:`BACK_TO_DOPRI5`, ``rho`` bounded by the
-scaled infinity norm of the Jacobian) on :data:`NONSTIFF_AFTER` consecutive steps.
+stability region (``h * rho(J) <`` :data:`.step_control.BACK_TO_DOPRI5`, ``rho`` bounded by the
+scaled infinity norm of the Jacobian) on :data:`.step_control.NONSTIFF_AFTER` consecutive steps.
 At tight tolerances DOPRI5's steps stay inside its stability region, the test never
 fires and the integration is pure DOPRI5. :data:`METHOD_DOPRI5` never switches,
 :data:`METHOD_ROSW` uses the W-method throughout (tests).
@@ -34,8 +35,9 @@ fires and the integration is pure DOPRI5. :data:`METHOD_DOPRI5` never switches,
 The pieces: :mod:`.dopri5` (the explicit step and the stiffness test),
 :mod:`.stiff` (the Rosenbrock-W step and its Jacobian), :mod:`.events` (event
 location), :mod:`.dense_output` (Hermite interpolation and samples) and
-:mod:`.step_args` (the scene, tolerance and work-array bundles they take); this module
-holds the loop, the step-size control, the method switching and the counters.
+:mod:`.step_args` (the scene, tolerance and work-array bundles they take),
+:mod:`.step_control` (step-size control and method switching); this module holds the
+loop, the event landing and the counters.
 
 Status codes returned in ``stats[ST_STATUS]``: 0 done, 1 step size underflow,
 2 property failure that smaller steps could not cure, 3 too many events at one
@@ -53,7 +55,18 @@ from recipsim.solve.dense_output import hermite, record_samples
 from recipsim.solve.dopri5 import dopri5_step, stiffness_estimate
 from recipsim.solve.events import any_crossing, locate_first_event
 from recipsim.solve.step_args import SceneArgs, Tolerance, new_workspace
-from recipsim.solve.stiff import ERR_ORDER, jacobian_fd, spectral_bound, w_step
+from recipsim.solve.step_control import (  # METHOD_*: also the integrator's public names
+    JAC_STAGES_PER_STEP,
+    METHOD_AUTO,
+    METHOD_DOPRI5,
+    METHOD_ROSW,
+    STIFF_LIMIT,
+    count_stiff_step,
+    next_step,
+    rejected_step,
+    switch_method,
+)
+from recipsim.solve.stiff import jacobian_fd, spectral_bound, w_step
 
 ST_STATUS = 0
 ST_NFEV = 1
@@ -67,22 +80,6 @@ ST_NSTIFF = 8  # accepted Rosenbrock-W steps
 ST_NJAC = 9  # finite-difference Jacobians
 N_STATS = 10
 
-#: ``method`` of :func:`integrate`
-METHOD_DOPRI5 = 0
-METHOD_AUTO = 1
-METHOD_ROSW = 2
-#: stiffness switching (see the module docstring)
-STIFF_LIMIT = 3.25
-STIFF_AFTER = 5
-NONSTIFF_RESET = 6
-BACK_TO_DOPRI5 = 2.0
-NONSTIFF_AFTER = 3
-#: A Jacobian of ``n_j`` finite-difference evaluations is kept for
-#: ``max(1, n_j // JAC_STAGES_PER_STEP)`` accepted W-steps (each costs 4 evaluations), so
-#: building it costs at most about two steps' worth: every step for the 4-6 gas states
-#: of a rigid crank, every 3-4 steps for the 30-odd states of a crank train on oil
-#: films (1.6x fewer evaluations there; the W-method keeps its order with a stale matrix).
-JAC_STAGES_PER_STEP = 8
 
 DONE = 0
 STEP_UNDERFLOW = 1
@@ -110,64 +107,6 @@ def _refresh_jacobian(t, y, scene, tol, work):
     stj, nj = jacobian_fd(t, y, work.stages[0], scene, tol, work)
     jac_life = max(1, nj // JAC_STAGES_PER_STEP)
     return stj, nj, jac_life, spectral_bound(work.jac, tol.scale, tol.n_err)
-
-
-@njit(cache=True, inline="always")
-def _rejected_step(h, st, err, use_w) -> float:
-    """The next trial step [s] after a rejected one of ``h`` [s] (property failure
-    ``st != 0``, error norm ``err`` above 1 or NaN)."""
-    if st != 0 or err != err:
-        return h * 0.25
-    if use_w:
-        return h * max(0.2, 0.9 * err ** (-1.0 / ERR_ORDER))
-    return h * max(0.2, 0.9 * err**-0.2)
-
-
-@njit(cache=True, inline="always")
-def _next_step(h, err, use_w, h_max) -> float:
-    """The next step [s] after an accepted one of ``h`` [s] with error norm ``err``."""
-    if use_w:
-        if err > 0.0:
-            fac = min(5.0, max(0.2, 0.9 * err ** (-1.0 / ERR_ORDER)))
-        else:
-            fac = 5.0
-    elif err > 0.0:
-        fac = min(5.0, max(0.2, 0.9 * err**-0.2))
-    else:
-        fac = 5.0
-    return min(h * fac, h_max)
-
-
-@njit(cache=True, inline="always")
-def _count_stiff(stiff_step, n_stiff, n_nonstiff):
-    """Count an accepted DOPRI5 step that looked stiff (or not): ``(n_stiff,
-    n_nonstiff)``; :data:`NONSTIFF_RESET` non-stiff steps in a row clear the count."""
-    if stiff_step:
-        return n_stiff + 1, 0
-    n_nonstiff += 1
-    if n_nonstiff >= NONSTIFF_RESET:
-        return 0, n_nonstiff
-    return n_stiff, n_nonstiff
-
-
-@njit(cache=True, inline="always")
-def _switch_method(method, use_w, h, rho_jac, n_stiff, n_nonstiff):
-    """After an accepted step: ``(use_w, n_stiff, n_nonstiff, switched_to_w)`` (see
-    the module docstring; ``h`` [s] is the next step, ``rho_jac`` [1/s] the Jacobian's
-    spectral bound)."""
-    if method != METHOD_AUTO:
-        return use_w, n_stiff, n_nonstiff, False
-    if use_w:
-        # back to DOPRI5 once it could take the step the W-method takes
-        if h * rho_jac < BACK_TO_DOPRI5:
-            n_nonstiff += 1
-            if n_nonstiff >= NONSTIFF_AFTER:
-                return False, 0, 0, False
-            return True, n_stiff, n_nonstiff, False
-        return True, n_stiff, 0, False
-    if n_stiff >= STIFF_AFTER:
-        return True, 0, 0, True
-    return False, n_stiff, n_nonstiff, False
 
 
 @njit(cache=True)
@@ -343,13 +282,13 @@ def integrate(
         property_failed = st > 0
         if st != 0 or not (err <= 1.0):  # also catches NaN
             counts[2] += 1
-            h = _rejected_step(h, st, err, use_w)
+            h = rejected_step(h, st, err, use_w)
             if use_w and jac_age > 0:
                 jac_age = -1  # a stale Jacobian may be why: refresh it
             continue
         if method == METHOD_AUTO and not use_w:
             stiff_step = stiffness_estimate(h, y, ynew, ytmp, k6, k7, tol) > STIFF_LIMIT
-            n_stiff, n_nonstiff = _count_stiff(stiff_step, n_stiff, n_nonstiff)
+            n_stiff, n_nonstiff = count_stiff_step(stiff_step, n_stiff, n_nonstiff)
 
         scene_event_values(ynew, mode, par, ipar, aux, g_new)
         k_event = -1
@@ -393,8 +332,8 @@ def integrate(
             if t >= t1 or terminal:
                 break
             continue
-        h = _next_step(h, err, use_w, h_max)
-        use_w, n_stiff, n_nonstiff, to_w = _switch_method(
+        h = next_step(h, err, use_w, h_max)
+        use_w, n_stiff, n_nonstiff, to_w = switch_method(
             method, use_w, h, rho_jac, n_stiff, n_nonstiff
         )
         if to_w:

@@ -13,11 +13,12 @@ handful of arguments and the integrator allocates its work arrays once per call:
 - :class:`Workspace`: the stages, trial states, event values and the Rosenbrock-W
   matrices, allocated by :func:`new_workspace`.
 
-Taking an array out of a bundle costs a reference-count increment and decrement (about
-10 ns each, atomic); a function called many times per step therefore unpacks the bundle
-once at its top and hands the arrays themselves to the right-hand side (measured: a
-wrapper ``rhs(t, y, scene, out, aux)`` made every evaluation 150 ns slower), and the step
-functions the integrator calls on every step are inlined into its loop.
+Taking an array out of a bundle costs a reference-count increment and decrement, so a
+function that evaluates the right-hand side unpacks the bundle once at its top and hands
+the arrays themselves to :func:`recipsim.model.scenes.scene_rhs` (measured: a wrapper
+``rhs(t, y, scene, out, aux)`` made every evaluation about 150 ns slower, 619 against
+469 ns per evaluation on ``reference_r134a_lbp``), and the functions the integrator calls
+on every step are inlined into its loop (``inline="always"``).
 """
 
 from __future__ import annotations
