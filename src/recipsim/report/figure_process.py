@@ -10,9 +10,10 @@ the names of the figures each child draws (split by their measured cost,
 report directory is renamed into place, so the report stays atomic.
 
 Only the command line forks (a library never starts processes behind its caller's
-back), only where ``os.fork`` exists, and before any thread or numba's compiler has
-started. A child that fails sends its exception back; the parent raises it. A child
-whose parent dies reads end-of-file and exits. The figures are the same files as
+back), only where ``os.fork`` exists, before any thread or numba's compiler has
+started, and only onto cores that other work leaves idle (:func:`idle_cores`). A child
+that fails sends its exception back; the parent raises it. A child whose parent dies
+reads end-of-file and exits. The figures are the same files as
 those drawn in-process (:func:`recipsim.report.report_figures.draw_report_figures`).
 """
 
