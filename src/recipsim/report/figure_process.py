@@ -70,7 +70,11 @@ def _child(jobs: int, results: int, preload: tuple[str, ...]) -> None:
     pipe's write end.
     """
     import importlib
+    import signal
 
+    # Ctrl-C reaches the whole process group: the parent handles it and tells the
+    # children to stop (no job), so that its own exit status is the one reported
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
     reply: Any = b""
     try:
         for module in preload:
