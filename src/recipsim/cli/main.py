@@ -124,7 +124,7 @@ def run_case(
         write_case_report(run, target, overrides, plots, figures)
     except BaseException:
         if figures is not None:  # the children exit without drawing; the first error wins
-            with contextlib.suppress(Exception):
+            with contextlib.suppress(BaseException):
                 figures.wait()
         raise
     return run.row, target

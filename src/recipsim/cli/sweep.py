@@ -142,7 +142,7 @@ def _run_sweep(args: argparse.Namespace, argv: list[str] | None, started: float)
         return 130 if isinstance(exc, SweepInterrupted) else 1
     finally:
         if figures is not None:  # unused after a failure: the children exit
-            with contextlib.suppress(Exception):
+            with contextlib.suppress(BaseException):
                 figures.wait()
     if not args.quiet:
         print(format_outcome(outcome))

@@ -10,9 +10,10 @@ the names of the figures each child draws (split by their measured cost,
 report directory is renamed into place, so the report stays atomic.
 
 Only the command line forks (a library never starts processes behind its caller's
-back), only where ``os.fork`` exists, and before any thread or numba's compiler has
-started. A child that fails sends its exception back; the parent raises it. A child
-whose parent dies reads end-of-file and exits. The figures are the same files as
+back), only where ``os.fork`` exists, before any thread or numba's compiler has
+started, and only onto cores that other work leaves idle (:func:`idle_cores`). A child
+that fails sends its exception back; the parent raises it. A child whose parent dies
+reads end-of-file and exits. The figures are the same files as
 those drawn in-process (:func:`recipsim.report.report_figures.draw_report_figures`).
 """
 
@@ -69,7 +70,11 @@ def _child(jobs: int, results: int, preload: tuple[str, ...]) -> None:
     pipe's write end.
     """
     import importlib
+    import signal
 
+    # Ctrl-C reaches the whole process group: the parent handles it and tells the
+    # children to stop (no job), so that its own exit status is the one reported
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
     reply: Any = b""
     try:
         for module in preload:

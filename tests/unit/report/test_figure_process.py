@@ -127,3 +127,26 @@ def test_children_only_on_idle_cores(
     if started is not None:
         assert len(started.pids) == expected
         started.wait()
+
+
+def test_children_ignore_ctrl_c_and_leave_it_to_the_parent() -> None:
+    """A SIGINT sent to a waiting child (as Ctrl-C reaches the whole process group) does
+    not end it: it exits cleanly when the parent says that no job comes."""
+    import signal
+    import time
+
+    from recipsim.report.figure_process import FigureProcesses
+
+    figures = FigureProcesses(1, preload=())
+    pid = figures.pids[0]
+    status = Path(f"/proc/{pid}/status")
+    for _ in range(500):  # until the child ignores SIGINT (Linux shows it in /proc)
+        if not status.exists():
+            time.sleep(0.5)
+            break
+        ignored = next(ln for ln in status.read_text().splitlines() if ln.startswith("SigIgn"))
+        if int(ignored.split()[1], 16) & (1 << (signal.SIGINT - 1)):
+            break
+        time.sleep(0.01)
+    os.kill(pid, signal.SIGINT)
+    assert figures.wait() == []

@@ -49,8 +49,6 @@ evaluation that reads them; to be split with :mod:`.property_table_build` (issue
 from __future__ import annotations
 
 import math
-import sys
-import threading
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -58,6 +56,7 @@ from typing import Any
 import numpy as np
 from numba import njit
 
+from recipsim.physics.thermo.buffer_pool import reusable_buffer
 from recipsim.physics.thermo.property_slots import (
     N_PROPS,
     PROP_CONDUCTIVITY,
@@ -277,42 +276,11 @@ class PropertyTable:
         transport : bool
             Fill viscosity, conductivity and c_p.
         """
-        size = N_PROPS + self.data.size
-        with _BUFFERS_LOCK:
-            buf = _unreferenced(self._buffers)
-            if buf is None or buf.size != size:
-                buf = np.empty(size)
-                if len(self._buffers) < _KEPT_BUFFERS:
-                    self._buffers.append(buf)
+        buf = reusable_buffer(self._buffers, N_PROPS + self.data.size)
         buf[:N_PROPS] = 0.0
         buf[N_PROPS:] = self.data
         buf[N_PROPS + H_TRANSPORT] = 1.0 if transport else 0.0
         return buf
-
-
-#: Buffers a table keeps for reuse (a sweep worker needs one at a time; threads more).
-_KEPT_BUFFERS = 4
-_BUFFERS_LOCK = threading.Lock()
-
-
-def _refcount_in_loop(items: list[np.ndarray]) -> int:
-    for item in items:
-        return sys.getrefcount(item)
-    return 0
-
-
-def _unreferenced(buffers: list[np.ndarray]) -> np.ndarray | None:
-    """The first of ``buffers`` that only the list references, or None."""
-    for buf in buffers:
-        if sys.getrefcount(buf) <= _FREE_REFCOUNT:
-            return buf
-    return None
-
-
-#: The reference count of an array held only by a list, seen inside the loop of
-#: :func:`_unreferenced` (measured, not assumed: interpreters count borrowed references
-#: differently).
-_FREE_REFCOUNT = _refcount_in_loop([np.empty(1)])
 
 
 # ======================================================================================
