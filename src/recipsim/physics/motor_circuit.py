@@ -30,7 +30,13 @@ loss a fraction ``k`` of the shaft output power. Electromagnetic torque
 
 Speed and torques are positive in the forward field's direction, slip
 ``s = (omega_s - omega) / omega_s``, ``omega_s = 4 pi f / poles``. Plain complex Python
-(about 10 us per evaluation): called once per converged cycle, never in an ODE.
+(about 10 us per evaluation): called by the summary, by the thermal network after each
+revolution (the motor's heat) and by the slip-speed iteration, never in an ODE; the
+inverse at a torque takes about 13 evaluations.
+
+Size (over the project's 400 lines): the circuit's solution at a slip, its inverse at a
+torque and the breakdown search share the private winding-current and impedance helpers
+and the one ``MotorCircuit``; split apart, each half would import the other's privates.
 """
 
 from __future__ import annotations

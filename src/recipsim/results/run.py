@@ -73,22 +73,19 @@ def simulate_case(case: Case, argv: list[str] | None = None) -> CaseRun:
         logger.info("compiling the solver (once per installation: about 30-45 s)")
     check_envelope(case)  # refuse a point outside the refrigerant's envelope up front
     solution = startup = None
-    if case.solver.start == "rest":  # the start-up transient, then the periodic solve
-        from recipsim.results.startup import startup_summary
-        from recipsim.solve.startup import solve_from_rest
-
-        with explained("building the model"):
-            model = build_model_for(case)
-        with explained("integrating the start-up from rest"):
-            startup = solve_from_rest(model)
-        solution = startup.solution
-        cycle = cycle_table(solution)
-        meta = provenance(solution, argv)
-    elif case.options.pressure == "tabulated" and case.options.mechanics == "pinned":
+    if case.options.pressure == "tabulated" and case.options.mechanics == "pinned":
         cycle = pinned_tabulated_cycle(case)  # inverse dynamics only, nothing to integrate
         meta = case_provenance(case, argv)
     else:
-        if case.options.speed == "motor_slip":
+        if case.solver.start == "rest":  # the start-up transient, then the periodic solve
+            from recipsim.solve.startup import solve_from_rest
+
+            with explained("building the model"):
+                model = build_model_for(case)
+            with explained("integrating the start-up from rest"):
+                startup = solve_from_rest(model)
+            solution = startup.solution
+        elif case.options.speed == "motor_slip":
             with explained("integrating the periodic state at the motor's slip speed"):
                 at_speed = solve_at_motor_speed(case)
             case, solution = at_speed.case, at_speed.solution
@@ -102,6 +99,8 @@ def simulate_case(case: Case, argv: list[str] | None = None) -> CaseRun:
     with explained("post-processing the converged revolution"):
         row = summary(solution, cycle, case)
         if startup is not None:
+            from recipsim.results.startup import startup_summary
+
             row |= startup_summary(startup)
     row["status"], row["status_message"] = classify(solution, cycle, row)
     return CaseRun(case, solution, cycle, row, meta, startup)
