@@ -7,11 +7,11 @@
   every loss is zero to 1e-3 of the indicated power (the valves' flow work at the
   numerical pressure overshoot of the ideal-valve constraint).
 - The TLES5.7KK.3 case (``cases/tles5.7kk3_r600a.toml``, two parameters calibrated on
-  four of the catalogue's seven points, at the motor's slip speed) against every catalogue
-  point: capacity within 2.5 % (1.6 % at worst today, at -35 C; the predicted points
-  within 0.9 %), COP within 1 % at both rating points (0.4 % and 0.3 % today); the trends
-  a compressor engineer checks (capacity and
-  COP fall with the evaporating temperature, suction heating rises as capacity falls);
+  the catalogue's two rating points, at the motor's slip speed) against every catalogue
+  point: capacity within 2.5 % (1.6 % at worst today, at -35 C, a predicted point), COP
+  within 1 % at both rating points (0.3 % today); the trends a compressor engineer checks
+  (capacity and COP fall with the evaporating temperature, suction heating rises as
+  capacity falls);
   energy closed around the whole compressor (electrical input = delivered enthalpy rise
   + shell heat) to 0.5 %; suction heating about half of the thermodynamic losses, as the
   literature reports for small household compressors (issue 16; Ribas et al. 2008, Purdue

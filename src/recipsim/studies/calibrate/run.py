@@ -21,6 +21,9 @@ from recipsim.studies.calibrate.fit import (
     parse_parameter,
 )
 
+#: A fitted value this close (relative) to a bound ended on it: the fit's ``xtol``.
+AT_BOUND_TOLERANCE = 1e-4
+
 
 @dataclass(frozen=True)
 class Calibration:
@@ -125,6 +128,15 @@ def calibrate_case(
     )
 
 
+def _at_bound(value: float, lower: float, upper: float) -> bool:
+    """Whether ``value`` ended on a bound, to the fit's own resolution (``xtol`` 1e-4)."""
+    tol = AT_BOUND_TOLERANCE * (upper - lower)  # for a bound at zero
+    return any(
+        math.isclose(value, b, rel_tol=AT_BOUND_TOLERANCE, abs_tol=tol if b == 0 else 0.0)
+        for b in (lower, upper)
+    )
+
+
 def _parameter_table(fit: FitResult) -> pd.DataFrame:
     rows = []
     for p, value, a, b, (low, high) in zip(
@@ -137,7 +149,7 @@ def _parameter_table(fit: FitResult) -> pd.DataFrame:
                 "lower": p.lower,
                 "upper": p.upper,
                 "fitted": value,
-                "at_bound": bool(math.isclose(value, p.lower) or math.isclose(value, p.upper)),
+                "at_bound": _at_bound(value, p.lower, p.upper),
                 "std_from_resolution [-]": a,
                 "std_from_residuals [-]": b,
                 "ci95_low": low,

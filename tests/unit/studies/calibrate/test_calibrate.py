@@ -19,7 +19,7 @@ from recipsim.cli.main import main
 from recipsim.errors import CaseError
 from recipsim.studies.calibrate.data import printed_resolution, read_points
 from recipsim.studies.calibrate.fit import CalibrationError, parse_parameter
-from recipsim.studies.calibrate.run import calibrate_case
+from recipsim.studies.calibrate.run import _at_bound, calibrate_case
 
 CATALOGUE = Path(__file__).parents[4] / "src/recipsim/data/catalogue/danfoss_tles5.7kk.3_r600a.csv"
 FS, FD = "valves.suction.flow_coefficient", "valves.discharge.flow_coefficient"
@@ -134,6 +134,34 @@ def test_two_parameters_recovered_with_their_confidence(tmp_path: Path) -> None:
     assert not left_out["used_in_fit"]
     assert abs(left_out["error cooling_capacity [-]"]) < 1e-3
     assert cal.calibrated.valves.suction.flow_coefficient == pytest.approx(0.62, rel=1e-3)
+
+
+def test_a_parameter_pushed_past_its_bound_is_flagged(tmp_path: Path) -> None:
+    """Fake linear model, truth (0.62, 0.71) with the first parameter allowed only up to
+    0.5: the fit ends on that bound (to its own xtol, not to machine precision) and says so;
+    the other parameter, free, is not flagged."""
+    case = load_case("r600a_lbp")
+    truth = case.with_({FS: 0.62, FD: 0.71})
+    rows = []
+    for te in (-30, -20):
+        row = _linear(truth.with_({"operating_point.evaporating_temperature": f"{te} degC"}))
+        rows.append((te, row["cooling_capacity [W]"], row["COP [-]"]))
+    data = _write(tmp_path / "d.csv", rows)
+    cal = calibrate_case(case, data, [f"{FS}=0.3:0.5", f"{FD}=0.3:1"], simulate=_linear)
+    table = cal.parameters.set_index("parameter")
+    assert table.loc[FS, "fitted"] == pytest.approx(0.5, rel=1e-4)
+    assert table.loc[FS, "at_bound"]
+    assert not table.loc[FD, "at_bound"]
+
+
+def test_at_bound_uses_the_fits_resolution() -> None:
+    """The trust-region fit stops within its xtol (1e-4) of a bound, not on it: the TLES
+    case's conductance ended at 9.99999 of its 0.05-10 W/K range and must be flagged; a
+    value 0.1 % inside is not; a bound at zero is judged on the range."""
+    assert _at_bound(9.999991674184745, 0.05, 10.0)
+    assert _at_bound(0.0500001, 0.05, 10.0)
+    assert not _at_bound(9.99, 0.05, 10.0)
+    assert _at_bound(1e-6, 0.0, 1.0) and not _at_bound(1e-3, 0.0, 1.0)
 
 
 def test_ill_posed_fits_are_refused(tmp_path: Path) -> None:
