@@ -22,7 +22,7 @@ import numpy as np
 from recipsim.case.load import Case
 from recipsim.case.lubrication import parse_oil
 from recipsim.model.scenes import MQ_BEARINGS, MQ_DRIVE, SCENE_CYLINDER
-from recipsim.physics.kinematics import piston_displacement
+from recipsim.physics.kinematics import piston_displacement_array, piston_velocity_array
 from recipsim.physics.mean_friction import (
     journal_petroff_power,
     rod_swing_rate,
@@ -102,16 +102,18 @@ def constant_speed_mean_friction(case: Case, samples: int = 360) -> float:
     geo = case.geometry
     theta = np.linspace(0.0, 2.0 * math.pi, samples, endpoint=False)
     omega = case.operating_point.shaft_speed
-    x, dx = np.empty(samples), np.empty(samples)
-    for i, t in enumerate(theta):
-        x[i], dx[i], _ = piston_displacement(t, geo.crank_radius, geo.connecting_rod_length)
+    x = piston_displacement_array(theta, geo.crank_radius, geo.connecting_rod_length)
+    dx = piston_velocity_array(theta, geo.crank_radius, geo.connecting_rod_length)
     speed = np.full(samples, omega)
     return mean_friction_powers(case, theta, speed, x, dx * omega)["friction_power [W]"]
 
 
-def motor_point(case: Case, shaft_power: float, mean_speed: float) -> MotorOperatingPoint | None:
+def motor_point(
+    case: Case, shaft_power: float, mean_speed: float, slip_guess: float | None = None
+) -> MotorOperatingPoint | None:
     """The equivalent circuit at the load torque ``shaft_power / mean_speed`` (None for a
-    lossless motor).
+    lossless motor); ``slip_guess``: a slip near the answer (the last one), see
+    :func:`~recipsim.physics.motor_circuit.motor_operating_point_at_torque`.
 
     Raises
     ------
@@ -121,7 +123,7 @@ def motor_point(case: Case, shaft_power: float, mean_speed: float) -> MotorOpera
     circuit = case.motor_circuit
     if case.options.motor == "lossless" or circuit is None:
         return None
-    return motor_operating_point_at_torque(circuit, shaft_power / mean_speed)
+    return motor_operating_point_at_torque(circuit, shaft_power / mean_speed, slip_guess)
 
 
 def revolution_shaft_power(
@@ -143,13 +145,7 @@ def revolution_shaft_power(
     return drive / duration, films
 
 
-def network_loss_sources(
-    model: Any,
-    y_end: np.ndarray | None,
-    duration: float,
-    drive_power: float | None = None,
-    mean_friction: float = 0.0,
-) -> tuple[float, float]:
+class NetworkLossSources:
     """``(motor loss, friction) [W]`` of a revolution for the thermal network
     (:attr:`recipsim.model.thermal.ThermalCoupling.loss_sources`).
 
@@ -157,18 +153,39 @@ def network_loss_sources(
     revolution's quadratures, ``duration`` [s]), or before any revolution (``y_end``
     None) from an estimated ``drive_power`` [W] plus the ``mean`` friction; the motor loss
     is the circuit's at that load (0 for a lossless motor or past breakdown, where the
-    summary reports NaN and a warning).
+    summary reports NaN and a warning). Each revolution's motor point starts from the
+    last one's slip (the load changes little between revolutions).
+
+    Parameters
+    ----------
+    mean_friction : float
+        The ``mean`` friction at the case's constant speed [W]
+        (:func:`constant_speed_mean_friction`; 0 without it).
     """
-    case: Case = model.case
-    if y_end is not None:
-        shaft, friction = revolution_shaft_power(model, y_end, duration, mean_friction)
-    else:
-        assert drive_power is not None
-        friction = mean_friction if case.options.friction == "mean" else 0.0
-        shaft = drive_power + friction
-    try:
-        point = motor_point(case, shaft, 2.0 * math.pi / duration)
-    except ValueError:
-        return 0.0, friction
-    motor = 0.0 if point is None else point.electrical_power - point.shaft_power
-    return motor, friction
+
+    def __init__(self, mean_friction: float = 0.0) -> None:
+        self.mean_friction = mean_friction
+        self._slip: float | None = None
+
+    def __call__(
+        self,
+        model: Any,
+        y_end: np.ndarray | None,
+        duration: float,
+        drive_power: float | None = None,
+    ) -> tuple[float, float]:
+        case: Case = model.case
+        if y_end is not None:
+            shaft, friction = revolution_shaft_power(model, y_end, duration, self.mean_friction)
+        else:
+            assert drive_power is not None
+            friction = self.mean_friction if case.options.friction == "mean" else 0.0
+            shaft = drive_power + friction
+        try:
+            point = motor_point(case, shaft, 2.0 * math.pi / duration, self._slip)
+        except ValueError:
+            return 0.0, friction
+        if point is None:
+            return 0.0, friction
+        self._slip = point.slip if point.slip > 0.0 else None
+        return point.electrical_power - point.shaft_power, friction

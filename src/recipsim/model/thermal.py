@@ -15,14 +15,17 @@ they are solved exactly after every revolution, from that revolution's mean flow
 The revolution iteration (:func:`recipsim.solve.periodic.solve_revolutions`) and the
 plain revolutions of shooting call :meth:`ThermalCoupling.update` and count its relative
 change in the cycle residual, so the gas cycle and the network converge together (the
-thermal update costs well under a revolution). Before the first revolution a predictor
+thermal update costs well under a revolution). Revolution iteration also moves the
+cylinder's start state with the suction plenum
+(:meth:`recipsim.model.build.Model.update_thermal`), so each revolution discharges gas
+drawn at the plenum it runs with. Before the first revolution a predictor
 solves the network with the clearance-volume estimate of the mass flow and an
 isentropic discharge, so the first revolution already starts near the heated suction
 state.
 
 Motor and friction losses are the ``[thermal]`` table's ``motor_loss_power`` and
 ``friction_power`` when set, else ``loss_sources(model, y_end, duration)`` when a model
-provides it, else 0.
+provides it, else 0 (``loss_sources(model, y_end, duration, drive_power)``).
 """
 
 from __future__ import annotations
@@ -35,6 +38,7 @@ from typing import Any, Protocol
 import numpy as np
 
 from recipsim.case.load import Case
+from recipsim.model.plenum import PlenumState, isentropic_state
 from recipsim.physics.thermo import cylinder as cyl
 from recipsim.physics.thermo.shell_network import (
     CW,
@@ -51,15 +55,6 @@ from recipsim.physics.thermo.shell_network import (
 _DEW_MARGIN = 0.5  # K
 
 
-class _Plenum(Protocol):
-    pressure: float
-    temperature: float
-    density: float
-    enthalpy: float
-    entropy: float
-    kappa: float
-
-
 class CoupledModel(Protocol):
     """What the coupling needs of :class:`recipsim.model.build.Model`."""
 
@@ -68,9 +63,9 @@ class CoupledModel(Protocol):
     par: np.ndarray
 
     @property
-    def suction(self) -> _Plenum: ...
+    def suction(self) -> PlenumState: ...
     @property
-    def discharge(self) -> _Plenum: ...
+    def discharge(self) -> PlenumState: ...
 
     def set_suction_state(self, pressure: float, temperature: float) -> None: ...
     def set_discharge_state(self, pressure: float, enthalpy: float) -> None: ...
@@ -118,7 +113,7 @@ class ThermalCoupling:
         self.last_loads: NetworkLoads | None = None
         #: suction plenum of the revolution before the last one (whose gas the last
         #: revolution discharged)
-        self._earlier_plenum: _Plenum | None = None
+        self._earlier_plenum: PlenumState | None = None
         self._dew: dict[float, float] = {}  # dew point + margin at each pressure [K]
         self.loss_sources: (
             Callable[[Any, np.ndarray | None, float, float | None], tuple[float, float]] | None
@@ -251,7 +246,9 @@ class ThermalCoupling:
         self.applied = AppliedNetwork(solution, solution.loads, pressures)
         return change
 
-    def update(self, model: CoupledModel, y_end: np.ndarray, duration: float) -> float:
+    def update(
+        self, model: CoupledModel, y_end: np.ndarray, duration: float, follows: bool = False
+    ) -> float:
         """Solve the network with the revolution that just ended and apply it.
 
         Parameters
@@ -261,6 +258,12 @@ class ThermalCoupling:
             The revolution's end state (its quadratures) [SI].
         duration : float
             Its duration [s].
+        follows : bool
+            The gas the cylinder holds at the start angle follows the new suction plenum
+            (:meth:`recipsim.model.build.Model.update_thermal`), so the next revolution
+            discharges gas drawn at the new plenum: the discharge stream is paired with
+            the plenum of this revolution. Otherwise (shooting's revolutions, which start
+            where the last one ended) with the plenum of the revolution before.
 
         Returns
         -------
@@ -274,7 +277,7 @@ class ThermalCoupling:
         loads = self.loads(model, y_end, duration)
         self.last_loads = loads
         drawn = model.suction
-        earlier = drawn if self._earlier_plenum is None else self._earlier_plenum
+        earlier = drawn if self._earlier_plenum is None or follows else self._earlier_plenum
         self._earlier_plenum = drawn
         if loads.delivered_mass_flow <= 0.0:
             return 0.0
@@ -302,7 +305,7 @@ class ThermalCoupling:
         ratio = model.discharge.pressure / s.pressure
         eta = max(0.2, 1.0 - clearance * (ratio ** (1.0 / s.kappa) - 1.0))
         m = eta * s.density * geo.swept_volume * freq
-        h_dis = model.fluid.state_ps(model.discharge.pressure, s.entropy)["h"]
+        h_dis = isentropic_state(model.fluid, s, model.discharge.pressure)["h"]
         # the motor's heat from the isentropic power: the largest source in the shell
         motor, friction = self._losses(model, None, 1.0 / freq, m * (h_dis - s.enthalpy))
         loads = NetworkLoads(m, 0.0, 0.0, 0.0, m * h_dis, 0.0, 0.0, motor, friction)
@@ -324,9 +327,10 @@ class CycleResponse:
     """A revolution's flows and how they would move with the suction plenum temperature.
 
     Within a revolution (270 deg to 270 deg) the gas discharged was drawn in the
-    revolution before: the discharge stream is paired with that plenum (``earlier``),
-    the suction mass, its back-flow and the leakage with the plenum of this revolution
-    (``drawn``). Moved to a plenum at T: the mass flows scale with the plenum density
+    revolution before: the discharge stream is paired with that plenum (``earlier``;
+    the same as ``drawn`` when the start state follows the plenum, as in revolution
+    iteration), the suction mass, its back-flow and the leakage with the plenum of this
+    revolution (``drawn``). Moved to a plenum at T: the mass flows scale with the plenum density
     (same volumetric efficiency; the delivered flow is the suction net flow less the
     leakage, which it equals at the periodic state), and each stream's specific
     enthalpy rise over its plenum's enthalpy scales with T over that plenum's temperature
@@ -347,8 +351,8 @@ class CycleResponse:
 
     loads: NetworkLoads
     suction_mass_flow: float
-    drawn: _Plenum
-    earlier: _Plenum
+    drawn: PlenumState
+    earlier: PlenumState
 
     def at(self, temperature: float, state: tuple[float, ...]) -> NetworkLoads:
         """The loads at a suction plenum at ``temperature`` [K], ``state`` = its
@@ -357,7 +361,7 @@ class CycleResponse:
         loads = self.loads
         scale = rho_new / self.drawn.density
 
-        def moved(mass: float, enthalpy_flow: float, plenum: _Plenum) -> tuple[float, float]:
+        def moved(mass: float, enthalpy_flow: float, plenum: PlenumState) -> tuple[float, float]:
             if mass == 0.0:
                 return 0.0, enthalpy_flow * scale
             rise = enthalpy_flow / mass - plenum.enthalpy

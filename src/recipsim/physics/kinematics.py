@@ -128,3 +128,11 @@ def piston_displacement_array(theta: np.ndarray, r: float, L: float) -> np.ndarr
     lam = r / L
     s = np.sin(theta)
     return r * (1.0 - np.cos(theta)) + L * (1.0 - np.sqrt(1.0 - lam * lam * s * s))
+
+
+def piston_velocity_array(theta: np.ndarray, r: float, L: float) -> np.ndarray:
+    """Vectorised first derivative of :func:`piston_displacement`, dx/dtheta [m/rad]."""
+    lam = r / L
+    s = np.sin(theta)
+    c = np.cos(theta)
+    return r * s * (1.0 + lam * c / np.sqrt(1.0 - lam * lam * s * s))

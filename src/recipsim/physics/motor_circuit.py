@@ -42,6 +42,7 @@ and the one ``MotorCircuit``; split apart, each half would import the other's pr
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
 
 VARIANTS = ("RSIR", "PSC")
@@ -219,6 +220,26 @@ def _winding_currents(circuit: MotorCircuit, slip: float) -> tuple[complex, ...]
     return v * (a22 + coupling) / det, v * (z_main - coupling) / det, z_f, z_b
 
 
+def _air_gap(
+    circuit: MotorCircuit, slip: float
+) -> tuple[complex, complex, complex, complex, float, float, float]:
+    """Main, auxiliary, forward and backward currents [A], forward and backward air-gap
+    powers [W] and the shaft torque [N m] at ``slip`` [-]: the part of the operating
+    point that the torque needs (the torque inverse calls only this)."""
+    i_m, i_a, z_f, z_b = _winding_currents(circuit, slip)
+    a = circuit.aux_turns_ratio
+    i_f = 0.5 * (i_m - 1j * a * i_a)
+    i_b = 0.5 * (i_m + 1j * a * i_a)
+    p_f = 4.0 * z_f.real * abs(i_f) ** 2
+    p_b = 4.0 * z_b.real * abs(i_b) ** 2
+    w_s = circuit.synchronous_speed
+    windage_torque = circuit.friction_windage_loss * (1.0 - slip) * w_s / (w_s * w_s)
+    k = circuit.stray_loss_fraction
+    net = (p_f - p_b) / w_s - windage_torque
+    t_shaft = net / (1.0 + k) if net >= 0.0 else net / (1.0 - k)
+    return i_m, i_a, i_f, i_b, p_f, p_b, t_shaft
+
+
 def motor_operating_point_at_slip(circuit: MotorCircuit, slip: float) -> MotorOperatingPoint:
     """Operating point at forward slip ``slip`` [-], ``-1 < slip <= 1``.
 
@@ -228,12 +249,7 @@ def motor_operating_point_at_slip(circuit: MotorCircuit, slip: float) -> MotorOp
         Currents, powers, losses and torques (see :class:`MotorOperatingPoint`).
     """
     _require(-1.0 < slip <= 1.0, f"motor slip {slip}: must lie in (-1, 1] (0 <= speed < 2 w_s)")
-    i_m, i_a, z_f, z_b = _winding_currents(circuit, slip)
-    a = circuit.aux_turns_ratio
-    i_f = 0.5 * (i_m - 1j * a * i_a)
-    i_b = 0.5 * (i_m + 1j * a * i_a)
-    p_f = 4.0 * z_f.real * abs(i_f) ** 2
-    p_b = 4.0 * z_b.real * abs(i_b) ** 2
+    i_m, i_a, i_f, i_b, p_f, p_b, t_shaft = _air_gap(circuit, slip)
     v = circuit.voltage
     i_line = i_m + i_a + circuit.core_conductance * v
     w_s = circuit.synchronous_speed
@@ -241,8 +257,6 @@ def motor_operating_point_at_slip(circuit: MotorCircuit, slip: float) -> MotorOp
     t_em = (p_f - p_b) / w_s
     windage_torque = circuit.friction_windage_loss * speed / (w_s * w_s)
     k = circuit.stray_loss_fraction
-    net = t_em - windage_torque
-    t_shaft = net / (1.0 + k) if net >= 0.0 else net / (1.0 - k)
     cu_main = circuit.main_resistance * abs(i_m) ** 2
     cu_aux = circuit.aux_resistance * abs(i_a) ** 2
     p_in = v * i_line.real
@@ -292,7 +306,7 @@ def motor_operating_point(circuit: MotorCircuit, speed: float) -> MotorOperating
 
 
 def _shaft_torque(circuit: MotorCircuit, slip: float) -> float:
-    return motor_operating_point_at_slip(circuit, slip).shaft_torque  # [N m]
+    return _air_gap(circuit, slip)[6]  # [N m]
 
 
 def _refine_peak(circuit: MotorCircuit, low: float, high: float) -> tuple[float, float]:
@@ -324,8 +338,33 @@ def motor_breakdown(circuit: MotorCircuit) -> tuple[float, float]:
     return _refine_peak(circuit, slips[max(top - 1, 0)], slips[top + 1])
 
 
+def _slip_near(excess: Callable[[float], float], guess: float) -> float | None:
+    """Root of ``excess`` by the secant method from a slip ``guess`` on the stable branch
+    (0 < s < breakdown), or None where it does not settle there: the slope at the guess
+    is not positive, the iterate leaves ``(guess / 4, 4 guess)``, or 12 steps pass."""
+    if not 0.0 < guess < 1.0:
+        return None
+    s0, s1 = guess, guess * (1.0 + 1e-4)
+    f0, f1 = excess(s0), excess(s1)
+    if f1 <= f0:  # the torque falls with slip here: past breakdown
+        return None
+    for _ in range(12):
+        if f1 == f0:
+            break
+        s2 = s1 - f1 * (s1 - s0) / (f1 - f0)
+        if not 0.25 * guess < s2 < min(4.0 * guess, 1.0):
+            return None
+        s0, f0, s1 = s1, f1, s2
+        if abs(s1 - s0) <= 1e-15 * s1:
+            return s1
+        f1 = excess(s1)
+        if f1 == 0.0:
+            return s1
+    return None
+
+
 def motor_operating_point_at_torque(
-    circuit: MotorCircuit, load_torque: float
+    circuit: MotorCircuit, load_torque: float, slip_guess: float | None = None
 ) -> MotorOperatingPoint:
     """Operating point on the stable branch where the shaft torque equals ``load_torque``.
 
@@ -335,6 +374,11 @@ def motor_operating_point_at_torque(
         The motor.
     load_torque : float
         Mean torque the load needs at the shaft [N m].
+    slip_guess : float, optional
+        A slip near the answer on the stable branch (the last answer of a load that
+        changes little, e.g. from one revolution to the next): the secant method from
+        there, about 6 circuit evaluations instead of about 13; the bracketing march
+        where it does not settle.
 
     Returns
     -------
@@ -352,6 +396,10 @@ def motor_operating_point_at_torque(
     def excess(s: float) -> float:
         return _shaft_torque(circuit, s) - load_torque
 
+    if slip_guess is not None:
+        near = _slip_near(excess, slip_guess)
+        if near is not None:
+            return motor_operating_point_at_slip(circuit, near)
     low, high = 0.0, _FIRST_SLIP
     if excess(0.0) > 0.0:
         high, low = 0.0, -_FIRST_SLIP

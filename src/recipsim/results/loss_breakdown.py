@@ -39,6 +39,8 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 import pandas as pd
 
+from recipsim.model.plenum import isentropic_state
+
 if TYPE_CHECKING:  # the figure processes read LOSS_COLUMNS without importing the solver
     from recipsim.solve.periodic import PeriodicSolution
 
@@ -97,7 +99,7 @@ def loss_breakdown(
     p_d = row.get("discharge_plenum_pressure [Pa]", op.discharge_pressure)
     suction_area, discharge_area = _valve_areas(cycle, p_s, p_d)
     mdot = row["discharge_mass_flow [kg/s]"]
-    h_2s = fluid.state_ps(op.discharge_pressure, inlet.entropy)["h"]
+    h_2s = isentropic_state(fluid, inlet, op.discharge_pressure)["h"]
     dh_s_line = h_2s - inlet.enthalpy
     t_in = row.get("cylinder_inlet_temperature [K]", inlet.temperature)
     if abs(t_in - inlet.temperature) > 1e-9:

@@ -87,12 +87,20 @@ def state_or_explain(fluid: Any, pair: str, a: float, b: float, what: str) -> di
     try:
         return fluid.state_ph(a, b) if pair == "ph" else fluid.state_ps(a, b)
     except (ValueError, ArithmeticError, RuntimeError) as exc:
-        second = f"h = {b:.4g} J/kg" if pair == "ph" else f"s = {b:.4g} J/(kg K)"
-        reason = str(exc).strip().splitlines()[0] if str(exc).strip() else type(exc).__name__
-        raise PropertyEvaluationError(
-            f"CoolProp: no state at p = {a / 1e6:.4g} MPa, {second} while computing {what} "
-            f"({reason[:160]})"
-        ) from None
+        raise property_error(exc, pair, a, b, what) from None
+
+
+def property_error(
+    exc: Exception, pair: str, a: float, b: float, what: str
+) -> PropertyEvaluationError:
+    """The :class:`PropertyEvaluationError` of a failed ``pair`` evaluation at ``a, b``
+    (see :func:`state_or_explain`)."""
+    second = f"h = {b:.4g} J/kg" if pair == "ph" else f"s = {b:.4g} J/(kg K)"
+    reason = str(exc).strip().splitlines()[0] if str(exc).strip() else type(exc).__name__
+    return PropertyEvaluationError(
+        f"CoolProp: no state at p = {a / 1e6:.4g} MPa, {second} while computing {what} "
+        f"({reason[:160]})"
+    )
 
 
 @contextmanager

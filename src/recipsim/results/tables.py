@@ -31,6 +31,7 @@ import pandas as pd
 
 from recipsim.case.load import Case
 from recipsim.model.build import case_mechanism_parameters, scenes
+from recipsim.model.plenum import isentropic_state
 from recipsim.physics.kinematics import piston_displacement
 from recipsim.physics.mechanics import layout as mlay
 from recipsim.physics.mechanics.tabulated import tabulated_pressure
@@ -43,7 +44,11 @@ from recipsim.results.bearings import (
 )
 from recipsim.results.electrical import loss_columns, rating_enthalpies
 from recipsim.results.loss_breakdown import loss_breakdown
-from recipsim.results.outcome import discharge_valve_never_opens, state_or_explain
+from recipsim.results.outcome import (
+    discharge_valve_never_opens,
+    property_error,
+    state_or_explain,
+)
 from recipsim.results.thermal import thermal_columns
 from recipsim.results.valve_metrics import valve_summary
 from recipsim.solve.periodic import PeriodicSolution, sample_outputs
@@ -282,9 +287,11 @@ def _gas_metrics(
     fluid = model.fluid
     suction = model.compressor_inlet
     h_gas, h_liquid = rating_enthalpies(fluid, op)
-    h_2s = state_or_explain(
-        fluid, "ps", op.discharge_pressure, suction.entropy, "the isentropic discharge enthalpy"
-    )["h"]
+    try:
+        h_2s = isentropic_state(fluid, suction, op.discharge_pressure)["h"]
+    except (ValueError, ArithmeticError, RuntimeError) as exc:
+        what = "the isentropic discharge enthalpy"
+        raise property_error(exc, "ps", op.discharge_pressure, suction.entropy, what) from None
     mdot_dis = m_dis * freq
     capacity = mdot_dis * (h_gas - h_liquid)
     p_ind = work * freq

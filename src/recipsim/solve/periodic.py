@@ -230,12 +230,13 @@ def solve_revolutions(
         if enthalpy is not None:
             model.set_discharge_enthalpy(enthalpy)
         # the shell's thermal network (if any) follows the revolution like the discharge
-        # plenum; its change counts in the residual
+        # plenum, and the next start follows the network's suction plenum
+        y = rev.y_end.copy()
         residual = max(
-            cycle_residual(model, rev, previous), model.update_thermal(rev.y_end, rev.duration)
+            cycle_residual(model, rev, previous),
+            model.update_thermal(rev.y_end, rev.duration, y_next=y),
         )
         history.append(residual)
-        y = rev.y_end.copy()
         mode = rev.mode_end.copy()
         previous = rev
         recent = [*recent[-2 * SUBHARMONIC_PERIODS[-1] :], rev]

@@ -9,6 +9,7 @@ from recipsim.physics.kinematics import (
     inertia_torque,
     piston_displacement,
     piston_displacement_array,
+    piston_velocity_array,
     rod_angle,
     rod_centre_of_mass,
 )
@@ -56,6 +57,8 @@ def test_vectorised_matches_scalar():
     theta = np.linspace(0, 2 * np.pi, 37)
     xs = np.array([piston_displacement(t, R, L)[0] for t in theta])
     np.testing.assert_allclose(piston_displacement_array(theta, R, L), xs, rtol=1e-14, atol=1e-18)
+    dxs = np.array([piston_displacement(t, R, L)[1] for t in theta])
+    np.testing.assert_allclose(piston_velocity_array(theta, R, L), dxs, rtol=1e-14, atol=1e-18)
 
 
 def test_inertia_torque_is_rate_of_kinetic_energy():

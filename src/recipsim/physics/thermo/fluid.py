@@ -40,8 +40,11 @@ class Fluid:
         self.state.update(self._cp.PQ_INPUTS, pressure, quality)
         return self.state.T()
 
-    def state_pt(self, pressure: float, temperature: float) -> dict[str, float]:
-        """Single-phase state from pressure [Pa] and temperature [K]."""
+    def state_pt(
+        self, pressure: float, temperature: float, entropy: bool = True
+    ) -> dict[str, float]:
+        """Single-phase state from pressure [Pa] and temperature [K] (``entropy``: the
+        table fluid's option; HEOS has it at no cost)."""
         self.state.update(self._cp.PT_INPUTS, pressure, temperature)
         return self._snapshot()
 
@@ -52,18 +55,27 @@ class Fluid:
         s = self.state
         return float(s.hmass()), float(s.cpmass()), float(s.rhomass())
 
-    def state_ph(self, pressure: float, enthalpy: float) -> dict[str, float]:
-        """State from pressure [Pa] and specific enthalpy [J/kg]."""
+    def state_ph(
+        self, pressure: float, enthalpy: float, guess: float | None = None, entropy: bool = True
+    ) -> dict[str, float]:
+        """State from pressure [Pa] and specific enthalpy [J/kg] (``guess`` and ``entropy``:
+        the table fluid's options)."""
         self.state.update(self._cp.HmassP_INPUTS, enthalpy, pressure)
         return self._snapshot()
 
-    def state_ps(self, pressure: float, entropy: float) -> dict[str, float]:
-        """State from pressure [Pa] and specific entropy [J/(kg K)]."""
+    def state_ps(
+        self, pressure: float, entropy: float, guess: float | None = None
+    ) -> dict[str, float]:
+        """State from pressure [Pa] and specific entropy [J/(kg K)] (``guess``: the table
+        fluid's option)."""
         self.state.update(self._cp.PSmass_INPUTS, pressure, entropy)
         return self._snapshot()
 
-    def state_rhos(self, density: float, entropy: float) -> dict[str, float]:
-        """State from density [kg/m3] and specific entropy [J/(kg K)]."""
+    def state_rhos(
+        self, density: float, entropy: float, guess: float | None = None
+    ) -> dict[str, float]:
+        """State from density [kg/m3] and specific entropy [J/(kg K)] (``guess``: the
+        table fluid's option)."""
         self.state.update(self._cp.DmassSmass_INPUTS, density, entropy)
         return self._snapshot()
 

@@ -202,6 +202,26 @@ def ideal_gas_ratio(temperature, buf) -> float:
     return _line(buf, r0, r0 + 2, h00, h10, h01, h11)
 
 
+@njit(cache=True)
+def table_vapour_pt(pressure, temperature, gas_constant, buf) -> tuple[float, float, float]:
+    """Vapour ``(h [J/kg], c_p [J/(kg K)], rho [kg/m3])`` at (p [Pa], T [K]): Newton on
+    ln rho from the ideal gas (steps limited to 0.2), to a relative pressure residual of
+    1e-12; all NaN where the table has no single-phase answer. ``buf`` is left holding
+    the table's outputs at the answer."""
+    x = math.log(pressure / (gas_constant * temperature))
+    for _ in range(_NEWTON_ITERATIONS):
+        rho = math.exp(x)
+        if table_props(temperature, rho, buf) != STATUS_OK or buf[PROP_QUALITY] >= 0.0:
+            break
+        f = buf[PROP_PRESSURE] / pressure - 1.0
+        if abs(f) < _NEWTON_TOL:
+            dpdt = buf[PROP_DPDT]
+            cp = buf[PROP_CV] + temperature * dpdt * dpdt / (rho * rho * buf[PROP_DPDRHO])
+            return buf[PROP_ENTHALPY], cp, rho
+        x -= max(-0.2, min(0.2, f * pressure / (rho * buf[PROP_DPDRHO])))
+    return math.nan, math.nan, math.nan
+
+
 class TableFluid:
     """Point states of one fluid from its property table, HEOS where it has no answer.
 
@@ -263,7 +283,12 @@ class TableFluid:
             raise TableMiss
         return s
 
-    def _snapshot(self, temperature: float, density: float) -> dict[str, float]:
+    def _snapshot(
+        self, temperature: float, density: float, entropy: bool = True
+    ) -> dict[str, float]:
+        """Every property at (T, rho); the entropy (about 40 us, an integral) NaN unless
+        ``entropy``."""
+        s = self._entropy(temperature, density) if entropy else math.nan
         buf = self._props(temperature, density)
         p, h, cv = float(buf[PROP_PRESSURE]), float(buf[PROP_ENTHALPY]), float(buf[PROP_CV])
         dpdt, dpdrho, kappa = float(buf[PROP_DPDT]), float(buf[PROP_DPDRHO]), float(buf[PROP_KAPPA])
@@ -274,7 +299,7 @@ class TableFluid:
             "T": temperature,
             "rho": density,
             "h": h,
-            "s": self._entropy(temperature, density),
+            "s": s,
             "u": h - p / density,
             "quality": -1.0,
             "cp": cp,
@@ -309,16 +334,11 @@ class TableFluid:
         raise TableMiss
 
     def _density_pt(self, pressure: float, temperature: float) -> float:
-        """Vapour density at (p, T) [kg/m3]: Newton on ln rho from the ideal gas."""
-        x = math.log(pressure / (self.gas_constant * temperature))
-        for _ in range(_NEWTON_ITERATIONS):
-            rho = math.exp(x)
-            buf = self._props(temperature, rho)
-            f = buf[PROP_PRESSURE] / pressure - 1.0
-            if abs(f) < _NEWTON_TOL:
-                return rho
-            x -= max(-0.2, min(0.2, f * pressure / (rho * buf[PROP_DPDRHO])))
-        raise TableMiss
+        """Vapour density at (p, T) [kg/m3] (:func:`table_vapour_pt`)."""
+        rho = table_vapour_pt(pressure, temperature, self.gas_constant, self._buf)[2]
+        if not math.isfinite(rho):
+            raise TableMiss
+        return float(rho)
 
     # ---- the Fluid interface --------------------------------------------------------------
     def state_trho(self, temperature: float, density: float) -> dict[str, float]:
@@ -328,39 +348,39 @@ class TableFluid:
         except TableMiss:
             return self.heos().state_trho(temperature, density)
 
-    def state_pt(self, pressure: float, temperature: float) -> dict[str, float]:
-        """Single-phase (vapour or supercritical) state from pressure [Pa] and T [K]."""
+    def state_pt(
+        self, pressure: float, temperature: float, entropy: bool = True
+    ) -> dict[str, float]:
+        """Single-phase (vapour or supercritical) state from pressure [Pa] and T [K]
+        (entropy NaN unless ``entropy``)."""
         try:
-            return self._snapshot(temperature, self._density_pt(pressure, temperature))
+            density = self._density_pt(pressure, temperature)
+            return self._snapshot(temperature, density, entropy)
         except TableMiss:
             return self.heos().state_pt(pressure, temperature)
 
     def enthalpy_pt(self, pressure: float, temperature: float) -> tuple[float, float, float]:
         """Vapour enthalpy [J/kg], c_p [J/(kg K)] and density [kg/m3] at (p [Pa], T [K]),
-        from the table without the entropy (about 5 us); HEOS where it has no data."""
-        try:
-            density = self._density_pt(pressure, temperature)
-            buf = self._props(temperature, density)
-            cp = float(buf[PROP_CV]) + temperature * float(buf[PROP_DPDT]) ** 2 / (
-                density * density * float(buf[PROP_DPDRHO])
-            )
-            return float(buf[PROP_ENTHALPY]), cp, density
-        except TableMiss:
+        from the table without the entropy (about 1 us); HEOS where it has no data."""
+        h, cp, density = table_vapour_pt(pressure, temperature, self.gas_constant, self._buf)
+        if not math.isfinite(density):
             return self.heos().enthalpy_pt(pressure, temperature)
+        return float(h), float(cp), float(density)
 
     def _state_at_pressure(
-        self, pressure: float, residual: Any, guess: float | None
+        self, pressure: float, residual: Any, guess: float | None, entropy: bool = True
     ) -> dict[str, float]:
         """Newton on (T, ln rho) for ``residual`` from ``guess`` (T [K]; default: 20 K
         above the dew point) and the vapour density there."""
         t0 = guess if guess is not None else self._guess_temperature(pressure)
         t, rho = self._newton(residual, t0, self._density_pt(pressure, t0))
-        return self._snapshot(t, rho)
+        return self._snapshot(t, rho, entropy)
 
     def state_ph(
-        self, pressure: float, enthalpy: float, guess: float | None = None
+        self, pressure: float, enthalpy: float, guess: float | None = None, entropy: bool = True
     ) -> dict[str, float]:
-        """State from pressure [Pa] and specific enthalpy [J/kg] (``guess``: T [K])."""
+        """State from pressure [Pa] and specific enthalpy [J/kg] (``guess``: T [K];
+        entropy NaN unless ``entropy``)."""
         h_scale = max(abs(enthalpy), 1e5)
 
         def residual(t: float, rho: float) -> Any:
@@ -374,7 +394,7 @@ class TableFluid:
             return f, jac
 
         try:
-            return self._state_at_pressure(pressure, residual, guess)
+            return self._state_at_pressure(pressure, residual, guess, entropy)
         except TableMiss:
             return self.heos().state_ph(pressure, enthalpy)
 
@@ -407,9 +427,9 @@ class TableFluid:
         s_scale = max(abs(entropy), 1e3)
 
         def residual(t: float, rho: float) -> Any:
-            buf = self._props(t, rho)
-            f = (self._entropy(t, rho) - entropy) / s_scale
-            return (f,), ((buf[PROP_CV] / t / s_scale,),)
+            cv = float(self._props(t, rho)[PROP_CV])  # read before the entropy's quadrature
+            f = (self._entropy(t, rho) - entropy) / s_scale  # reuses the buffer
+            return (f,), ((cv / t / s_scale,),)
 
         try:
             t0 = guess if guess is not None else self.critical_temperature

@@ -12,8 +12,11 @@ them. Axes (see :func:`build_ladder`):
 - periodic solver: ``solver.periodic = "revolutions" | "shooting"``;
 - property backend: every rung names it; ``"heos"`` unless the rung is about
   ``options.properties = "table"`` (alone, with longer steps and with shooting);
-- fidelity: cheaper valve models (``options.valves``) and the rigid crank
-  (``options.mechanics = "pinned"`` for a flexible case); their errors are measured
+- fidelity: cheaper valve models (``options.valves``), the rigid crank
+  (``options.mechanics = "pinned"`` for a flexible case) and, for a case with any part
+  of the loss chain, the indicated machine (``thermal = "fixed_wall"``, ``motor =
+  "lossless"``, ``friction = "off"``, ``speed = "case"``: what the chain costs in time,
+  issue 16's 1.5x limit, and what leaving it out changes); their errors are measured
   against the reference of the case as given, i.e. they show what the simplification
   costs, and they never count as "the cheapest setting";
 - the baseline: the same model in pure Python (numba disabled) under ``solve_ivp``
@@ -139,12 +142,24 @@ def _table(
     return _rung(integrator, rtol, cycle, *extra, label=label, properties="table")
 
 
+#: The loss chain's options of the indicated machine (issue 16: lossless motor, no
+#: friction, adiabatic shell at the line state, the case's speed).
+INDICATED = {"thermal": "fixed_wall", "motor": "lossless", "friction": "off", "speed": "case"}
+
+
+def case_loss_chain(case: Case) -> dict[str, str]:
+    """The case's loss-chain options, keyed as :data:`INDICATED`."""
+    return {key: str(getattr(case.options, key)) for key in INDICATED}
+
+
 def lower_fidelity(case: Case) -> list[tuple[str, tuple[str, ...]]]:
     """``(label, overrides)`` that simplify the case's model, one simplification each."""
     out: list[tuple[str, tuple[str, ...]]] = []
     valves = case.options.valves
     for v in VALVE_ORDER[: VALVE_ORDER.index(valves)] if valves in VALVE_ORDER else ():
         out.append((f"valves={v}", (f"options.valves={v}",)))
+    if case_loss_chain(case) != INDICATED:
+        out.append(("indicated", tuple(f"options.{k}={v}" for k, v in INDICATED.items())))
     if case.options.mechanics == "flexible" and case.options.pressure == "cylinder":
         extra: tuple[str, ...] = ("options.mechanics=pinned",)
         if case.options.drive != "constant_speed":  # the rigid crank turns at constant speed
@@ -217,6 +232,11 @@ def build_ladder(case: Case, quick: bool = False, baseline: bool = True) -> list
         step = "solver.max_step=5deg"
         rungs.append(_table(rtol, cycle, step, label="table step=5deg", integrator=DOPRI5_STIFF))
     rungs += _fidelity_rungs(case, [(1e-6, 1e-3), (1e-6, 1e-4)])
+    # and at the shipped settings, to set beside the case's own rung there
+    rungs += [
+        _table(1e-6, 1e-4, *extra, label=f"table {label}", integrator=DOPRI5_STIFF)
+        for label, extra in lower_fidelity(case)
+    ]
     if baseline:
         for method in BASELINE_METHODS:
             for rtol, cycle in ((1e-5, 1e-3), (1e-6, 1e-3), (1e-6, 1e-4)):
@@ -263,6 +283,7 @@ def case_settings(case: Case, integrator: str) -> dict[str, Any]:
         "periodic": getattr(s, "periodic", "revolutions"),
         "valves": case.options.valves,
         "mechanics": case.options.mechanics,
+        **case_loss_chain(case),
     }
 
 
@@ -275,6 +296,7 @@ _KEYS = {
     ("options", "properties"): "properties",
     ("options", "valves"): "valves",
     ("options", "mechanics"): "mechanics",
+    **{("options", key): key for key in INDICATED},
 }
 
 
@@ -295,4 +317,5 @@ def fidelity(base: Case, settings: dict[str, Any]) -> str:
     same = settings["valves"] == base.options.valves and (
         settings["mechanics"] == base.options.mechanics
     )
+    same = same and all(settings.get(k) == v for k, v in case_loss_chain(base).items())
     return "case" if same else "lower"

@@ -109,7 +109,9 @@ def pressure_trace(cycle: Any) -> tuple[np.ndarray, np.ndarray]:
 
 
 def solve(model: Any, integrator: str) -> Any:
-    """Solve ``model`` to its periodic state with ``integrator`` (a PeriodicSolution)."""
+    """Solve ``model`` to its periodic state with ``integrator`` (a PeriodicSolution);
+    at the motor's slip speed (``options.speed = "motor_slip"``) the speed's fixed point,
+    every revolution of its solves counted."""
     if integrator in COMPILED:
         from recipsim.solve.periodic import solve_periodic
 
@@ -117,7 +119,16 @@ def solve(model: Any, integrator: str) -> Any:
         model.case = dataclasses.replace(
             model.case, solver=dataclasses.replace(model.case.solver, method=integrator)
         )
+        if model.case.options.speed == "motor_slip":  # as `recipsim run` solves it
+            from recipsim.solve.motor_speed import solve_at_motor_speed
+
+            at_speed = solve_at_motor_speed(model.case)  # builds a model per speed
+            return dataclasses.replace(at_speed.solution, revolutions=at_speed.revolutions)
         return solve_periodic(model)
+    if model.case.options.speed == "motor_slip":
+        raise CaseError(
+            model.case.path, "options.speed", "the solve_ivp driver solves at the case's speed"
+        )
     from recipsim.studies.bench.ivp import solve_periodic_ivp
 
     if getattr(model.case.solver, "periodic", "revolutions") == "shooting":
