@@ -32,6 +32,8 @@ import time
 from pathlib import Path
 from typing import Any
 
+from recipsim.errors import RecipsimError
+
 # runs in the child: the steps of `recipsim run`, timed one by one (the figures that
 # apply to the case each on its own)
 _CHILD = r"""
@@ -140,10 +142,25 @@ def _child_seconds() -> float:
     return usage.ru_utime + usage.ru_stime
 
 
-def _timed(command: list[str], env: dict[str, str] | None = None) -> tuple[float, float, str]:
-    """Wall and CPU time [s] of a command and its waited-for children; its stdout."""
+def _timed(
+    command: list[str], env: dict[str, str] | None = None, sweep: bool = False
+) -> tuple[float, float, str]:
+    """Wall and CPU time [s] of a command and its waited-for children; its stdout.
+
+    ``sweep``: the command is ``recipsim sweep``, whose exit status 1 without an error
+    message says that some points failed: they are rows of the map, timed like the rest.
+
+    Raises
+    ------
+    RecipsimError
+        If the command failed, with its exit status and the last line it printed.
+    """
     cpu0, start = _child_seconds(), time.perf_counter()
-    out = subprocess.run(command, capture_output=True, text=True, check=True, env=env)
+    out = subprocess.run(command, capture_output=True, text=True, env=env)
+    failed_points = sweep and out.returncode == 1 and "recipsim:" not in out.stderr
+    if out.returncode != 0 and not failed_points:
+        last = (out.stderr.strip() or out.stdout.strip() or "no output").splitlines()[-1]
+        raise RecipsimError(f"{' '.join(command[1:4])} ... exited with {out.returncode}: {last}")
     return time.perf_counter() - start, _child_seconds() - cpu0, out.stdout
 
 
@@ -229,9 +246,10 @@ def measure_map(
     with tempfile.TemporaryDirectory(prefix="recipsim-system-map-") as tmp:
         base = [sys.executable, "-m", "recipsim", "sweep", sweep, "--fresh", "--quiet"]
         base += ["--out", tmp] + ([] if plots else ["--no-plots"])
-        _timed(base + ["--jobs", "1"])  # fill the caches
+        _timed(base + ["--jobs", "1"], sweep=True)  # fill the caches
         for count in jobs:
-            timings = [_timed(base + ["--jobs", str(count)])[:2] for _ in range(repeats)]
+            command = base + ["--jobs", str(count)]
+            timings = [_timed(command, sweep=True)[:2] for _ in range(repeats)]
             runs[count] = {
                 "wall [s]": statistics.median(t[0] for t in timings),
                 "cpu [s]": statistics.median(t[1] for t in timings),

@@ -82,3 +82,26 @@ def test_both_overhead_ratios_are_printed() -> None:
     assert "overhead / solves (1 worker, end to end): 4.00" in text
     assert "after start-up, no_plots): 1.50 (1.50 s, solves 0.60 s)" in text
     assert "after start-up, with_plots): 2.50 (2.10 s, solves 0.60 s)" in text
+
+
+def test_system_timing_keeps_a_sweep_with_failed_points():
+    """``recipsim sweep`` exits 1 when points failed (they are rows of the map, timed like
+    the others); any other failure, or a sweep that stopped with an error message, is
+    reported with its status and last line instead of a bare CalledProcessError."""
+    import sys
+
+    from recipsim.errors import RecipsimError
+    from recipsim.studies.bench.system_time import _timed
+
+    failed_points = [sys.executable, "-c", "import sys; print('7 points: 1 failed'); sys.exit(1)"]
+    wall, cpu, out = _timed(failed_points, sweep=True)
+    assert wall > 0.0 and cpu >= 0.0 and "1 failed" in out
+    with pytest.raises(RecipsimError, match="exited with 1"):
+        _timed(failed_points)
+    lost = [
+        sys.executable,
+        "-c",
+        "import sys; sys.stderr.write('recipsim: worker lost\\n'); sys.exit(1)",
+    ]
+    with pytest.raises(RecipsimError, match="worker lost"):
+        _timed(lost, sweep=True)
