@@ -3,7 +3,7 @@ table logic (reed openings, judging, expectations file, CSV, exit status).
 
 The suite run (one module-scoped fixture, about 20 s on one core) is the CI run of the
 stability suite: each case must end as the hard cases' expectations.toml says, converged
-cases with finite results and closures within the tolerances of recipsim.studies.check
+cases with finite results and closures within the tolerances of recipsim.studies.check.metrics
 (mass 1e-3, energy 5e-3 of the swept mass and its isentropic work; drive 5e-3). The
 unit tests use synthetic rows and refused cases only (nothing is integrated).
 """
@@ -21,18 +21,11 @@ import pytest
 from helpers import CASES, REFERENCE
 from recipsim.cli.main import main
 from recipsim.errors import CaseError
-from recipsim.studies.check import (
-    ORBIT_METRIC,
-    CheckRow,
-    Expectation,
-    find_cases,
-    format_table,
-    judge,
-    load_expectations,
-    reed_openings,
-    run_check,
-    write_check_csv,
-)
+from recipsim.studies.check.expectations import Expectation, find_cases, load_expectations
+from recipsim.studies.check.judge import CheckRow, judge
+from recipsim.studies.check.metrics import ORBIT_METRIC, reed_openings
+from recipsim.studies.check.run import run_check
+from recipsim.studies.check.table import format_table, write_check_csv
 
 HARD = CASES / "hard"
 
@@ -328,7 +321,7 @@ def test_a_failing_case_is_a_row(monkeypatch: pytest.MonkeyPatch) -> None:
     # a solver failure and an internal error both become "failed" rows, never exceptions
     import recipsim.results.run
     from recipsim.errors import SolverError
-    from recipsim.studies.check import check_case
+    from recipsim.studies.check.judge import check_case
 
     def solver_failure(case: object) -> None:
         raise SolverError("integration failed at crank angle 12.000 deg: state ...")

@@ -86,7 +86,8 @@ def check_name(paths: list[Path]) -> str:
 def _check(args: argparse.Namespace) -> int:
     from recipsim.atomic import atomic_directory
     from recipsim.report.case_report import report_dir
-    from recipsim.studies.check import format_table, run_check, write_check_csv
+    from recipsim.studies.check.run import run_check
+    from recipsim.studies.check.table import format_table, write_check_csv
 
     target = report_dir(args.out, check_name(args.paths), args.overrides)  # before running
 

@@ -9,8 +9,8 @@ resumes an interrupted sweep without recomputing finished points and assembles
 
 Modules: :mod:`.spec` reads sweep files, :mod:`.plan` expands and validates the
 points, :mod:`.worker` solves one point, :mod:`.runner` distributes the points,
-:mod:`.store` keeps finished points and tables, :mod:`.plots` draws the maps,
-:mod:`.engine` ties them together and :mod:`.command` is the command line. Only
-:mod:`.command` is imported by ``recipsim.cli.main``; it imports nothing heavy at module
-level, so ``recipsim run`` does not pay for the sweep machinery (nor for Dask).
+:mod:`.store` keeps finished points, :mod:`.outputs` writes the summary table, map plots
+and provenance, :mod:`.plots` draws the maps and :mod:`.engine` ties them together. The
+command line is :mod:`recipsim.cli.sweep`: it imports nothing heavy at module level, so
+``recipsim run`` does not pay for the sweep machinery (nor for Dask).
 """

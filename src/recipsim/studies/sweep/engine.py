@@ -1,28 +1,32 @@
 """Run a sweep end to end: plan, resume, compute, record, tabulate, plot.
 
-:func:`run_sweep` is the Python entry point behind ``recipsim sweep``.
+:func:`run_sweep` is the Python entry point behind ``recipsim sweep``; it calls one
+function per step: :func:`_open_store` (claim the output directory), :func:`_resume`
+(reuse finished points, queue the others), :func:`_compute` (run the queued points,
+recording each as it finishes) and :mod:`.outputs` (tables, plots, provenance).
 """
 
 from __future__ import annotations
 
-import json
 import os
-import platform
 import sys
 import time
 import uuid
-from collections import Counter
-from collections.abc import Collection, Iterable, Sequence
+from collections.abc import Iterable
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-import pandas as pd
-
-from recipsim import __version__
-from recipsim.atomic import atomic_file, atomic_write, mark_output
+from recipsim.atomic import mark_output
 from recipsim.errors import RecipsimError
 from recipsim.report.case_report import report_dir
+from recipsim.studies.sweep.outputs import (
+    Plots,
+    SweepOutcome,
+    build_table,
+    write_outputs,
+    write_provenance,
+)
 from recipsim.studies.sweep.plan import PlannedPoint, plan_sweep
 from recipsim.studies.sweep.spec import SweepSpec, load_sweep
 from recipsim.studies.sweep.store import PointStore
@@ -34,69 +38,9 @@ if TYPE_CHECKING:
 TIMING_COLUMNS = ("wall_time [s]",)
 """Summary columns that differ from run to run (everything else is deterministic)."""
 
-ID_COLUMNS = ("point", "status", "message", "point_id")
-
-#: Map plots to draw: all (True), none (False) or those named (``plots.MAP_NAMES``).
-Plots = bool | Collection[str]
-
 
 class SweepInterrupted(RecipsimError):
     """The sweep was interrupted (Ctrl-C); the finished points are on disk."""
-
-
-@dataclass
-class SweepOutcome:
-    """What a sweep run produced.
-
-    Attributes
-    ----------
-    spec : SweepSpec
-        The sweep file as read.
-    directory : Path
-        Output directory ``<out>/<name>`` (``<out>/<name>+<digest>`` with overrides).
-    table : DataFrame
-        The summary table (one row per point, in sweep order).
-    axes : list of str
-        Axis columns of the table.
-    computed : list of str
-        Point ids computed (or found invalid) by this run.
-    reused : list of str
-        Point ids taken from an earlier run.
-    wall_time : float
-        Duration of the whole run [s].
-    files : list of Path
-        Tables and plots written.
-    jobs : int
-        Local worker processes used (0 on a Dask cluster or when nothing was run).
-    scheduler : str or None
-        Address of the Dask scheduler used.
-    """
-
-    spec: SweepSpec
-    directory: Path
-    table: pd.DataFrame
-    axes: list[str]
-    computed: list[str]
-    reused: list[str]
-    wall_time: float
-    files: list[Path] = field(default_factory=list)
-    jobs: int = 1
-    scheduler: str | None = None
-
-    @property
-    def counts(self) -> dict[str, int]:
-        """Number of points per status."""
-        return dict(Counter(self.table["status"]))
-
-    @property
-    def n_ok(self) -> int:
-        """Points that converged."""
-        return int((self.table["status"] == OK).sum())
-
-    @property
-    def n_failed(self) -> int:
-        """Points that did not (``not_converged``, ``invalid``, ``failed``, ``error``)."""
-        return len(self.table) - self.n_ok
 
 
 def default_jobs() -> int:
@@ -125,40 +69,6 @@ def _record(task: PointTask, result: dict[str, Any], run_id: str) -> dict[str, A
         "run": run_id,
         "finished": time.strftime("%Y-%m-%dT%H:%M:%S%z"),
     }
-
-
-def build_table(
-    planned: Sequence[PlannedPoint], records: dict[str, dict[str, Any]]
-) -> pd.DataFrame:
-    """Assemble the summary table: one row per point, in sweep order.
-
-    Columns: ``point``, the axis columns, ``status``, ``message``, the summary columns
-    of :func:`recipsim.results.tables.summary` (those not already given by an axis) and
-    ``point_id``.
-    """
-    axes: list[str] = list(dict.fromkeys(c for p in planned for c in p.columns))
-    summary_columns: list[str] = []
-    seen: set[str] = set(axes) | set(ID_COLUMNS)
-    in_order = [records[p.point_id] for p in planned]
-    ordered = sorted(in_order, key=lambda r: r["status"] != OK)  # ok rows first, stable
-    for record in ordered:
-        for column in record["summary"]:
-            if column not in seen:
-                seen.add(column)
-                summary_columns.append(column)
-    rows = []
-    for point in planned:
-        record = records[point.point_id]
-        row: dict[str, Any] = {"point": point.index}
-        row.update({c: point.columns.get(c) for c in axes})
-        row["status"] = record["status"]
-        row["message"] = record["message"]
-        summary = record["summary"]
-        row.update({c: summary.get(c) for c in summary_columns})
-        row["point_id"] = point.point_id
-        rows.append(row)
-    columns = ["point", *axes, "status", "message", *summary_columns, "point_id"]
-    return pd.DataFrame(rows, columns=columns)
 
 
 def run_sweep(
@@ -256,40 +166,109 @@ def run_sweep(
     # share (or resume into) one directory; a new, empty or earlier sweep directory
     root = report_dir(Path(out), spec.name, overrides)
     planned = plan_sweep(spec, overrides, max_points, allow_external_paths)
+    store = _open_store(root, overrides, fresh)
+    work = _resume(spec, planned, store, retry_failed, reports, bool(plots), allow_external_paths)
+    tasks = work.tasks
+    used_jobs = 0 if scheduler or not tasks else max(1, min(jobs or default_jobs(), len(tasks)))
+    if tasks:
+        _compute(work, store, planned, spec.name, scheduler, used_jobs, progress, scheduler_timeout)
+
+    table = build_table(planned, work.records)
+    axes = [c for c in table.columns if c in {c for p in planned for c in p.columns}]
+    files = write_outputs(spec, root, table, axes, plots, parquet, figures)
+    wall = time.perf_counter() - start
+    outcome = SweepOutcome(
+        spec=spec,
+        directory=root,
+        table=table,
+        axes=axes,
+        computed=work.computed,
+        reused=work.reused,
+        wall_time=wall,
+        files=files,
+        jobs=used_jobs,
+        scheduler=scheduler if tasks else None,
+    )
+    write_provenance(outcome, scheduler, argv)
+    return outcome
+
+
+@dataclass
+class _Work:
+    """The points of one run: those taken from disk and those still to compute."""
+
+    records: dict[str, dict[str, Any]] = field(default_factory=dict)
+    reused: list[str] = field(default_factory=list)
+    computed: list[str] = field(default_factory=list)
+    tasks: list[PointTask] = field(default_factory=list)
+
+
+def _open_store(root: Path, overrides: list[str], fresh: bool) -> PointStore:
+    """Claim the sweep's output directory for ``overrides`` (emptied with ``fresh``)."""
     mark_output(root)
     store = PointStore(root)
     store.claim(overrides, fresh)
     store.clean_temporaries()
     if fresh:
         store.clear()
-    run_id = uuid.uuid4().hex
-    records: dict[str, dict[str, Any]] = {}
-    reused: list[str] = []
-    computed: list[str] = []
-    tasks: list[PointTask] = []
+    return store
+
+
+def _resume(
+    spec: SweepSpec,
+    planned: list[PlannedPoint],
+    store: PointStore,
+    retry_failed: bool,
+    reports: bool,
+    plots: bool,
+    allow_external_paths: bool,
+) -> _Work:
+    """Take each finished point from ``store`` and queue the others, each point id once."""
+    work = _Work()
     queued: set[str] = set()
     for point in planned:
         pid = point.point_id
-        if pid in records or pid in queued:
+        if pid in work.records or pid in queued:
             continue  # the same case twice in the sweep: computed once
         record = store.load(pid, point.overrides)
         if record is not None and _keep(record, retry_failed, reports, store, pid):
-            records[pid] = record
-            reused.append(pid)
+            work.records[pid] = record
+            work.reused.append(pid)
         else:
             queued.add(pid)
-            tasks.append(
+            work.tasks.append(
                 PointTask(
                     index=point.index,
                     point_id=pid,
                     case=str(spec.base),
                     overrides=point.overrides,
                     report_dir=str(store.report_dir(pid).resolve()) if reports else None,
-                    plots=bool(plots),
+                    plots=plots,
                     allow_external_paths=allow_external_paths,
                 )
             )
+    return work
 
+
+def _compute(
+    work: _Work,
+    store: PointStore,
+    planned: list[PlannedPoint],
+    name: str,
+    scheduler: str | None,
+    jobs: int,
+    progress: bool,
+    scheduler_timeout: float,
+) -> None:
+    """Run ``work.tasks``, saving each point as it finishes, with an optional progress bar.
+
+    Raises
+    ------
+    SweepInterrupted
+        On Ctrl-C, saying how many points are finished and where they are kept.
+    """
+    run_id = uuid.uuid4().hex
+    tasks = work.tasks
     bar: Any = None
     not_ok = 0
 
@@ -300,28 +279,24 @@ def run_sweep(
                 from tqdm import tqdm
             except ImportError:  # no progress bar, nothing else lost
                 return
-            bar = tqdm(
-                total=len(tasks), desc=spec.name, unit="pt", file=sys.stderr, dynamic_ncols=True
-            )
+            bar = tqdm(total=len(tasks), desc=name, unit="pt", file=sys.stderr, dynamic_ncols=True)
 
     def on_result(task: PointTask, result: dict[str, Any]) -> None:
         nonlocal not_ok
         record = _record(task, result, run_id)
         store.save(task.point_id, record)
-        records[task.point_id] = record
-        computed.append(task.point_id)
+        work.records[task.point_id] = record
+        work.computed.append(task.point_id)
         if bar is not None:
             if record["status"] != OK:
                 not_ok += 1
                 bar.set_postfix(failed=not_ok, refresh=False)
             bar.update(1)
 
-    used_jobs = 0 if scheduler or not tasks else max(1, min(jobs or default_jobs(), len(tasks)))
     try:
-        if tasks:
-            _execute(tasks, scheduler, used_jobs, on_result, on_start, scheduler_timeout)
+        _execute(tasks, scheduler, jobs, on_result, on_start, scheduler_timeout)
     except KeyboardInterrupt:
-        done = len(records)
+        done = len(work.records)
         raise SweepInterrupted(
             f"interrupted: {done} of {len(set(p.point_id for p in planned))} points are "
             f"finished and kept in {store.points}"
@@ -329,25 +304,6 @@ def run_sweep(
     finally:
         if bar is not None:
             bar.close()
-
-    table = build_table(planned, records)
-    axes = [c for c in table.columns if c in {c for p in planned for c in p.columns}]
-    files = _write_outputs(spec, root, table, axes, plots, parquet, figures)
-    wall = time.perf_counter() - start
-    outcome = SweepOutcome(
-        spec=spec,
-        directory=root,
-        table=table,
-        axes=axes,
-        computed=computed,
-        reused=reused,
-        wall_time=wall,
-        files=files,
-        jobs=used_jobs,
-        scheduler=scheduler if tasks else None,
-    )
-    _write_provenance(outcome, scheduler, argv)
-    return outcome
 
 
 def _keep(
@@ -383,68 +339,3 @@ def _execute(
         runner.run_pool(tasks, jobs, on_result, on_start)
     else:
         runner.run_inline(tasks, on_result, on_start)
-
-
-def _write_outputs(
-    spec: SweepSpec,
-    root: Path,
-    table: pd.DataFrame,
-    axes: list[str],
-    plots: Plots,
-    parquet: bool,
-    figures: FigureProcesses | None = None,
-) -> list[Path]:
-    if plots and figures is not None:
-        from recipsim.studies.sweep.plots import submit_map_plots
-
-        submit_map_plots(figures, table, axes, root, None if plots is True else plots)
-    files = []
-    csv = root / "summary.csv"
-    atomic_write(csv, lambda p: table.to_csv(p, index=False))
-    files.append(csv)
-    if parquet:
-        pq = root / "summary.parquet"
-        atomic_write(pq, lambda p: table.to_parquet(p, index=False))
-        files.append(pq)
-    with atomic_file(root / "sweep.toml") as handle:
-        handle.write(spec.text)
-    if plots and figures is not None:
-        from recipsim.studies.sweep.plots import MAP_NAMES
-
-        drawn = {path.name: path for written in figures.wait() for path in written}
-        files.extend(drawn[f"map_{n}.png"] for n in MAP_NAMES if f"map_{n}.png" in drawn)
-    elif plots:
-        from recipsim.studies.sweep.plots import save_map_plots
-
-        files.extend(save_map_plots(table, axes, root, None if plots is True else plots))
-    return files
-
-
-def _write_provenance(outcome: SweepOutcome, scheduler: str | None, argv: list[str] | None) -> None:
-    from recipsim.results.provenance import git_commit
-
-    versions = {}
-    for module in ("CoolProp", "numpy", "scipy", "numba", "pandas", "dask", "distributed"):
-        mod = sys.modules.get(module)
-        if mod is not None:
-            versions[module] = getattr(mod, "__version__", "")
-    meta = {
-        "recipsim": __version__,
-        "git_commit": git_commit(),
-        "python": sys.version.split()[0],
-        "platform": platform.platform(),
-        **versions,
-        "sweep": str(outcome.spec.path),
-        "base": str(outcome.spec.base),
-        "scheduler": scheduler,
-        "jobs": outcome.jobs,
-        "points": len(outcome.table),
-        "computed": len(outcome.computed),
-        "reused": len(outcome.reused),
-        "status_counts": outcome.counts,
-        "wall_time_s": outcome.wall_time,
-        "created": time.strftime("%Y-%m-%dT%H:%M:%S%z"),
-        "command": argv or sys.argv,
-    }
-    with atomic_file(outcome.directory / "provenance.json") as handle:
-        json.dump(meta, handle, indent=2, default=str)
