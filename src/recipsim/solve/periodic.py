@@ -7,7 +7,9 @@ error-controlled states over the revolution (T and rho relative, reed lift and
 velocity relative to their scales, mechanism states relative to their largest value
 over the revolution) and the relative change of the revolution's suction mass,
 indicated work, mass-weighted discharge enthalpy and drive work from the
-previous revolution. Undamped flexible bearings never settle this way (their free
+previous revolution, and the revolution's mass and energy closures over 10
+(:mod:`recipsim.solve.residual`: near zero delivery the cylinder keeps many times the
+gas it passes, and a state change within tolerance can leave a closure of 2e-3). Undamped flexible bearings never settle this way (their free
 vibration does not decay) and lightly damped ones settle slowly: ``"auto"`` hands
 such runs over to shooting (see :func:`solve_periodic`), as it does any run whose
 residual stalls (:func:`stalled`: no halving over ``STALL_WINDOW`` revolutions), e.g. the
