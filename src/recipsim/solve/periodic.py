@@ -9,7 +9,8 @@ over the revolution) and the relative change of the revolution's suction mass,
 indicated work, mass-weighted discharge enthalpy and drive work from the
 previous revolution, and the revolution's mass and energy closures over 10
 (:mod:`recipsim.solve.residual`: near zero delivery the cylinder keeps many times the
-gas it passes, and a state change within tolerance can leave a closure of 2e-3). Undamped flexible bearings never settle this way (their free
+gas it passes, and a state change within tolerance can leave a closure of 2e-3).
+Undamped flexible bearings never settle this way (their free
 vibration does not decay) and lightly damped ones settle slowly: ``"auto"`` hands
 such runs over to shooting (see :func:`solve_periodic`), as it does any run whose
 residual stalls (:func:`stalled`: no halving over ``STALL_WINDOW`` revolutions), e.g. the
@@ -29,9 +30,6 @@ from __future__ import annotations
 
 import math
 import time
-from collections.abc import Callable
-
-import numpy as np
 
 from recipsim.model.build import Model
 from recipsim.solve.revolution import (
@@ -50,11 +48,14 @@ from recipsim.solve.revolution import (
     state_change,
 )
 from recipsim.solve.shooting import shooting_cost, solve_shooting
-
-#: ``integrate(model, y, mode, h, samples) -> (revolution, next first step [s])``
-RevolutionIntegrator = Callable[
-    [Model, np.ndarray, np.ndarray, float, int], tuple[Revolution, float]
-]
+from recipsim.solve.subharmonic import (
+    SUBHARMONIC_PERIODS,
+    RevolutionIntegrator,
+    candidate_period,
+    period_average,
+    solve_subharmonic,
+    subharmonic_period,
+)
 
 #: The revolution machinery is defined in :mod:`.revolution`; the names are re-exported
 #: here, where callers look for a periodic solution.
@@ -74,6 +75,7 @@ __all__ = [
     "predicted_revolutions",
     "stalled",
     "subharmonic_period",
+    "SUBHARMONIC_PERIODS",
     "solve_periodic",
     "solve_revolutions",
 ]
@@ -85,8 +87,6 @@ _AUTO_MIN_REVOLUTIONS = 4
 #: no better than ``STALL_GAIN`` times its best before them.
 STALL_WINDOW = 8
 STALL_GAIN = 0.5
-#: Periods (in revolutions) looked for when the iteration stalls.
-SUBHARMONIC_PERIODS = (2, 3, 4)
 
 
 def stalled(history: list[float]) -> bool:
@@ -94,58 +94,6 @@ def stalled(history: list[float]) -> bool:
     if len(history) <= STALL_WINDOW:
         return False
     return min(history[-STALL_WINDOW:]) >= STALL_GAIN * min(history[:-STALL_WINDOW])
-
-
-def subharmonic_period(ends: list[np.ndarray], reference: np.ndarray, tolerance: float) -> int:
-    """Smallest n in :data:`SUBHARMONIC_PERIODS` with which the end states repeat.
-
-    Parameters
-    ----------
-    ends : list of ndarray
-        Error-controlled states at the end of each revolution, oldest first.
-    reference : ndarray
-        Size against which a change is judged (0 for states not judged).
-    tolerance : float
-        Largest relative change of a repeating state [-].
-
-    Returns
-    -------
-    int
-        n if the states after n revolutions repeat within ``tolerance`` (checked over
-        the last two periods) while one revolution changes them by more; 1 otherwise.
-    """
-    judged = reference > 0.0
-
-    def change(a: np.ndarray, b: np.ndarray) -> float:
-        return float(np.max(np.abs(a[judged] - b[judged]) / reference[judged]))
-
-    if len(ends) < 2 or change(ends[-1], ends[-2]) < tolerance:
-        return 1
-    for n in SUBHARMONIC_PERIODS:
-        if len(ends) < 2 * n + 1:
-            break
-        if all(change(ends[-1 - k], ends[-1 - k - n]) < tolerance for k in range(n + 1)):
-            return n
-    return 1
-
-
-def _period_average(revs: list[Revolution], n_err: int) -> Revolution:
-    """The last revolution with its quadratures averaged over ``revs`` (one period)."""
-    last = revs[-1]
-    y_end = last.y_end.copy()
-    y_end[n_err:] = np.mean([r.y_end[n_err:] for r in revs], axis=0)
-    rev = Revolution(
-        last.y_start,
-        y_end,
-        last.mode_start,
-        last.mode_end,
-        last.times,
-        last.samples,
-        last.sample_modes,
-        last.stats,
-    )
-    rev.duration = float(np.mean([r.duration for r in revs]))
-    return rev
 
 
 def predicted_revolutions(history: list[float], tolerance: float) -> float:
@@ -250,14 +198,14 @@ def solve_revolutions(
             ends = [r.y_end[: model.n_err] for r in recent]
             period = subharmonic_period(ends, ref, s.cycle_tolerance)
             if period > 1:  # a period of n revolutions: report its average
-                rev = _period_average(recent[-period:], model.n_err)
+                rev = period_average(recent[-period:], model.n_err)
                 converged = True
                 break
         if hand_over and count >= _AUTO_MIN_REVOLUTIONS:
             cost = shooting_cost(model, mode)
             slow = predicted_revolutions(history, s.cycle_tolerance) > cost or stalled(history)
             if cost < s.max_revolutions - count and slow:
-                return solve_shooting(model, start=(rev, h), history=history, tally=tally, t0=start)
+                return _hand_over(model, recent, (rev, h), history, tally, start, integrate)
     assert rev is not None
     return PeriodicSolution(
         period_revolutions=period,
@@ -273,3 +221,24 @@ def solve_revolutions(
         events=tally.events,
         wall_time=time.perf_counter() - start,
     )
+
+
+def _hand_over(
+    model: Model,
+    recent: list[Revolution],
+    start: tuple[Revolution, float],
+    history: list[float],
+    tally: _Tally,
+    t0: float,
+    integrate: RevolutionIntegrator,
+) -> PeriodicSolution:
+    """Shooting from the revolution iteration's state: on the n-revolution map when the
+    end states approach a period of n revolutions (:mod:`.subharmonic`), else (or if
+    that finds no period-n orbit) on the one-revolution map."""
+    ref = residual_reference(model, start[0]) * (model.scale[: model.n_err] > 0.0)
+    n = candidate_period([r.y_end[: model.n_err] for r in recent], ref)
+    if n > 1:
+        solution = solve_subharmonic(model, n, start, history, tally, t0, integrate)
+        if solution is not None:
+            return solution
+    return solve_shooting(model, start=start, history=history, tally=tally, t0=t0)

@@ -26,7 +26,7 @@ on the ideal compressor's work on it.
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
+from typing import Protocol
 
 import numpy as np
 
@@ -34,8 +34,16 @@ from recipsim.model.build import Model, scenes
 from recipsim.physics.mechanics import layout as mlay
 from recipsim.physics.thermo import cylinder as cyl
 
-if TYPE_CHECKING:
-    from recipsim.solve.revolution import Revolution
+
+class Revolution(Protocol):
+    """What is read of a revolution (:class:`recipsim.solve.revolution.Revolution`)."""
+
+    y_start: np.ndarray
+    y_end: np.ndarray
+    mode_start: np.ndarray
+    mode_end: np.ndarray
+    samples: np.ndarray
+
 
 #: A revolution is converged when its closures are below this many cycle tolerances.
 CLOSURE_ALLOWANCE = 10.0
@@ -111,14 +119,14 @@ def cycle_residual(model: Model, rev: Revolution, previous: Revolution | None) -
     res = state_change(model, rev)
     if previous is None:
         return max(res, 1.0)
-    for q in _revolution_totals(model):
+    for q in revolution_totals(model):
         a, b = rev.y_end[q], previous.y_end[q]
         res = max(res, abs(a - b) / max(abs(a), abs(b), 1e-300))
     mass, energy = closures(model, rev.y_end)
     return max(res, abs(mass) / CLOSURE_ALLOWANCE, abs(energy) / CLOSURE_ALLOWANCE)
 
 
-def _revolution_totals(model: Model) -> list[int]:
+def revolution_totals(model: Model) -> list[int]:
     """Quadratures whose change between revolutions the cycle residual checks."""
     checks = [cyl.Q_MSUC_IN, cyl.Q_WORK, cyl.Q_HDIS_OUT] if model.has_gas else []
     if model.scene != scenes.SCENE_CYLINDER:

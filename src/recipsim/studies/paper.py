@@ -20,7 +20,7 @@ procedure) and its speed is free.
 Undamped flexible runs never settle by running revolutions (nothing dissipates the
 free vibration, Floquet multipliers of modulus 1). With the default
 ``undamped_start="periodic"`` they are the periodic forced response, found by shooting
-(:func:`recipsim.solve.shooting.newton_fixed_point` on the one-revolution map,
+(:func:`recipsim.solve.newton.newton_fixed_point` on the one-revolution map,
 integrated with ``method`` at a tenth of ``rtol``: undamped revolutions are noisier
 in the step sequence) at constant crank speed: under the angle-only
 torque profile an undamped crank has no periodic state to find (its speed drifts by

@@ -2,7 +2,7 @@
 
 Undamped flexible bearings never settle by running revolutions (Floquet multipliers of
 modulus 1); their periodic forced response is found by Newton
-(:func:`recipsim.solve.shooting.newton_fixed_point`) on the one-revolution map of the
+(:func:`recipsim.solve.newton.newton_fixed_point`) on the one-revolution map of the
 ``solve_ivp`` driver :mod:`recipsim.solve.mechanism_ivp`, started at TDC (used by
 :func:`recipsim.studies.paper.run_paper_study`).
 """
@@ -22,7 +22,7 @@ from recipsim.physics.mechanics.flexible import flexible_rhs_tabulated
 from recipsim.physics.mechanics.flexible_setup import initial_state, state_scales
 from recipsim.physics.mechanics.tabulated import tabulated_pressure
 from recipsim.solve.mechanism_ivp import MechanismResult, simulate_mechanism
-from recipsim.solve.shooting import newton_fixed_point
+from recipsim.solve.newton import newton_fixed_point
 
 #: Finite-difference step of the undamped shooting, relative to each state's size.
 _FD_STEP = 0.2
@@ -78,7 +78,7 @@ def undamped_periodic(
 ) -> tuple[MechanismResult, tuple[np.ndarray, np.ndarray] | None]:
     """Periodic response of the flexible mechanism at constant speed, by shooting.
 
-    Newton (:func:`recipsim.solve.shooting.newton_fixed_point`) on the map from the
+    Newton (:func:`recipsim.solve.newton.newton_fixed_point`) on the map from the
     state at TDC to the state one revolution later (``solve_ivp`` with ``method`` at
     ``rtol``, absolute tolerances ``rtol`` times :func:`state_scales`), over every state
     but the crank angle and speed (prescribed), from the quasi-static pose; finite
