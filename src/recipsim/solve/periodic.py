@@ -15,7 +15,10 @@ vibration does not decay) and lightly damped ones settle slowly: ``"auto"`` hand
 such runs over to shooting (see :func:`solve_periodic`), as it does any run whose
 residual stalls (:func:`stalled`: no halving over ``STALL_WINDOW`` revolutions), e.g. the
 slow settling near zero delivery; ``"revolutions"`` ends them at ``max_revolutions``
-unconverged. A stalled run whose end states repeat after n = 2..4 revolutions
+unconverged. A period-1 orbit that one-revolution shooting finds on the cylinder scene
+is rejected when it repels (a real Floquet multiplier below -1.05: past a period
+doubling, :func:`repels`), and revolution iteration goes on from where it handed over.
+A stalled run whose end states repeat after n = 2..4 revolutions
 (:func:`subharmonic_period`: valve dynamics locked on a subharmonic) ends there, converged
 with ``period_revolutions = n`` and the quadratures averaged over the period.
 Back-flow through the discharge valve comes from a plenum at
@@ -31,7 +34,10 @@ from __future__ import annotations
 import math
 import time
 
+import numpy as np
+
 from recipsim.model.build import Model
+from recipsim.model.scenes import SCENE_CYLINDER
 from recipsim.solve.revolution import (
     INTEGRATOR_METHODS,
     PeriodicSolution,
@@ -173,7 +179,10 @@ def solve_revolutions(
     residual = math.inf
     converged = False
     period = 1
+    tried: set[int] = set()  # hand-overs tried: 1 (one-revolution shooting) or n
     for count in range(1, s.max_revolutions + 1):
+        if tally.revolutions >= s.max_revolutions:
+            break  # spent, shooting's revolutions included
         rev, h = integrate(model, y, mode, h, s.samples_per_revolution)
         tally.add(rev)
         enthalpy = discharge_enthalpy(model, rev)
@@ -202,25 +211,24 @@ def solve_revolutions(
                 converged = True
                 break
         if hand_over and count >= _AUTO_MIN_REVOLUTIONS:
-            cost = shooting_cost(model, mode)
-            slow = predicted_revolutions(history, s.cycle_tolerance) > cost or stalled(history)
-            if cost < s.max_revolutions - count and slow:
-                return _hand_over(model, recent, (rev, h), history, tally, start, integrate)
+            handed = _hand_over(model, recent, (rev, h), history, tally, start, integrate, tried)
+            if handed is not None:
+                return handed
     assert rev is not None
-    return PeriodicSolution(
-        period_revolutions=period,
-        model=model,
-        final=rev,
-        revolutions=tally.revolutions,
-        residual=residual,
-        converged=converged,
-        residual_history=history,
-        nfev=tally.nfev,
-        steps=tally.steps,
-        rejected=tally.rejected,
-        events=tally.events,
-        wall_time=time.perf_counter() - start,
-    )
+    method = "revolutions, shooting's period-1 orbit repels" if 1 in tried else "revolutions"
+    solution = PeriodicSolution(model, rev, tally.revolutions, residual, converged, history)
+    return _tallied(solution, tally, start, method, period)
+
+
+def _tallied(
+    solution: PeriodicSolution, tally: _Tally, t0: float, method: str, period: int
+) -> PeriodicSolution:
+    """``solution`` with the counters of ``tally``, its wall time, method and period."""
+    solution.nfev, solution.steps = tally.nfev, tally.steps
+    solution.rejected, solution.events = tally.rejected, tally.events
+    solution.wall_time = time.perf_counter() - t0
+    solution.method, solution.period_revolutions = method, period
+    return solution
 
 
 def _hand_over(
@@ -231,14 +239,53 @@ def _hand_over(
     tally: _Tally,
     t0: float,
     integrate: RevolutionIntegrator,
-) -> PeriodicSolution:
-    """Shooting from the revolution iteration's state: on the n-revolution map when the
-    end states approach a period of n revolutions (:mod:`.subharmonic`), else (or if
-    that finds no period-n orbit) on the one-revolution map."""
-    ref = residual_reference(model, start[0]) * (model.scale[: model.n_err] > 0.0)
+    tried: set[int],
+) -> PeriodicSolution | None:
+    """Shooting from the revolution iteration's state, if it converges slowly: on the
+    n-revolution map when the end states approach a period of n revolutions
+    (:mod:`.subharmonic`), else (or if that finds no period-n orbit) on the one-revolution
+    map. None (revolution iteration goes on) if it is not slow, if each kind of shooting
+    was tried, or if the one-revolution orbit found repels (:func:`repels`)."""
+    s = model.case.solver
+    rev, _ = start
+    cost = shooting_cost(model, rev.mode_end)
+    slow = predicted_revolutions(history, s.cycle_tolerance) > cost or stalled(history)
+    if not (slow and cost < s.max_revolutions - tally.revolutions):
+        return None
+    ref = residual_reference(model, rev) * (model.scale[: model.n_err] > 0.0)
     n = candidate_period([r.y_end[: model.n_err] for r in recent], ref)
-    if n > 1:
+    if n > 1 and n not in tried:
+        tried.add(n)
         solution = solve_subharmonic(model, n, start, history, tally, t0, integrate)
         if solution is not None:
             return solution
-    return solve_shooting(model, start=start, history=history, tally=tally, t0=t0)
+    if 1 in tried:
+        return None
+    tried.add(1)
+    solution = solve_shooting(model, start=start, history=history, tally=tally, t0=t0)
+    if not repels(model, solution):
+        return solution
+    enthalpy = discharge_enthalpy(model, rev)  # back to the iteration's plenum
+    if enthalpy is not None:
+        model.set_discharge_enthalpy(enthalpy)
+    return None
+
+
+#: A real Floquet multiplier below ``-REPEL`` makes a period-1 orbit repel (period
+#: doubling): the response settles elsewhere, e.g. on a period of two revolutions.
+REPEL = 1.05
+
+
+def repels(model: Model, solution: PeriodicSolution) -> bool:
+    """Whether the converged one-revolution orbit of ``solution`` repels: a real
+    multiplier (:attr:`PeriodicSolution.multipliers`) below ``-REPEL``. Judged on the
+    cylinder scene with a fixed wall only (the multipliers of a mechanism's vibration lie
+    on or near the unit circle and their estimate is noisy; the shell's network is held
+    fixed over a Newton solve)."""
+    mu = solution.multipliers
+    if not solution.converged or mu is None or model.scene != SCENE_CYLINDER:
+        return False
+    if model.thermal is not None:
+        return False
+    real = np.abs(mu.imag) <= 1e-3 * np.abs(mu)
+    return bool(np.any(real & (mu.real < -REPEL)))

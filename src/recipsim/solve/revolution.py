@@ -109,6 +109,9 @@ class PeriodicSolution:
     #: revolutions per period: > 1 for a subharmonic response (``final`` then holds the
     #: quadratures averaged over the period, :mod:`recipsim.solve.periodic`)
     period_revolutions: int = 1
+    #: shooting only: eigenvalues of the one-revolution map's Jacobian at the solution
+    #: (Floquet multipliers; from the last finite-difference or Broyden Jacobian)
+    multipliers: np.ndarray | None = None
 
 
 def sample_times(model: Model, n: int) -> tuple[np.ndarray, np.ndarray]:

@@ -168,6 +168,7 @@ class _Shooting:
         self.newton = 0
         self.jacobians = 0
         self.jacobian_revolutions = 0
+        self.jacobian: np.ndarray | None = None  # the last scaled dG/dz - I
         self.method = "shooting"
 
     def _plain(self, y: np.ndarray, mode: np.ndarray) -> Revolution:
@@ -226,6 +227,9 @@ class _Shooting:
             newton_iterations=self.newton,
             jacobians=self.jacobians,
             jacobian_revolutions=self.jacobian_revolutions,
+            multipliers=None
+            if self.jacobian is None
+            else np.linalg.eigvals(self.jacobian + np.eye(len(self.jacobian))),
         )
 
     def run(self) -> PeriodicSolution:
@@ -285,7 +289,7 @@ class _Shooting:
             self.newton += result.iterations
             self.jacobians += result.jacobians
             self.jacobian_revolutions += result.jacobian_evaluations
-            jacobian = result.jacobian
+            jacobian = self.jacobian = result.jacobian
             if result.stalled:
                 self.method = "shooting, fell back to revolutions"
                 newton_failed = True

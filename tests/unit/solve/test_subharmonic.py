@@ -1,11 +1,12 @@
-"""Shooting on the n-revolution map (solve/subharmonic.py), on a synthetic revolution map
-with a known period-2 attractor.
+"""Shooting on the n-revolution map (solve/subharmonic.py): on a synthetic revolution map
+with a known period-2 attractor, and on a physical period-2 response (a bouncing
+discharge reed that is still open at the 270 deg section, at the end of this file).
 
-No shipped case settles on a period-n orbit (docs/sweeps.md, "Statuses"): the reed
-states are pinned on their seats at the section (270 deg), so a revolution carries over
-only the gas state and the discharge plenum's enthalpy, whose multipliers are 0.41 and
-below. The solver is therefore driven here by a revolution integrator of the real
-reference model whose gas temperature at the section follows the cubic map
+No shipped case settles on a period-n orbit (docs/sweeps.md, "Statuses"): their reeds
+are on their seats at the section, so a revolution carries over only the gas state and
+the discharge plenum's enthalpy, whose multipliers are 0.41 and below. The synthetic
+tests drive the solver with a revolution integrator of the real reference model whose
+gas temperature at the section follows the cubic map
 
     x -> -lam x + c x^3,  x = (T / T_ref - 1) / 0.01,  lam = 1.95, c = 0.95
 
@@ -22,7 +23,7 @@ import math
 import numpy as np
 import pytest
 
-from recipsim.api import load_case
+from recipsim.api import load_case, simulate
 from recipsim.model.build import build_model
 from recipsim.physics.thermo import cylinder as cyl
 from recipsim.solve.periodic import solve_revolutions
@@ -130,3 +131,72 @@ def test_a_candidate_period_is_the_one_the_end_states_approach():
     assert candidate_period(ends, ref) == 2
     settled = [np.array([1.0 + 1e-3 * 0.5**k, 2.0]) for k in range(6)]
     assert candidate_period(settled, ref) == 1  # decaying monotonically: period 1
+
+
+#: A physical period-2 response (found by a sweep of speeds and reed restitution): the
+#: AC compressor (r32_ac) at a low pressure ratio (15 C / 30 C, 1.6), where the discharge
+#: reed opens at 256 deg, before the 270 deg section, so its motion carries over from
+#: one revolution to the next; both reeds lightly damped (0.001) and the discharge reed
+#: bouncing (restitution 0.9) at 5000 rpm. (At 4000 and 6000 rpm, or with restitution
+#: 0.3, it converges on period 1.)
+PERIOD_TWO = {
+    "operating_point.evaporating_temperature": "15 degC",
+    "operating_point.condensing_temperature": "30 degC",
+    "operating_point.suction_temperature": "18.3 degC",
+    "operating_point.liquid_temperature": "20 degC",
+    "operating_point.shaft_speed": "5000 rpm",
+    "valves.discharge.damping_ratio": 0.001,
+    "valves.suction.damping_ratio": 0.001,
+    "valves.discharge.restitution": 0.9,
+    "solver.envelope": "ignore",
+}
+
+
+def _two_revolutions(model, y, mode):
+    revs, h = [], model.period * 1e-4
+    for _ in range(2):
+        rev, h = integrate_revolution(model, y, mode, h, model.case.solver.samples_per_revolution)
+        revs.append(rev)
+        y, mode = rev.y_end.copy(), rev.mode_end.copy()
+    return revs
+
+
+def test_a_bouncing_discharge_reed_settles_on_period_two():
+    """End to end (``solver.periodic = "auto"``): one-revolution shooting finds the
+    period-1 orbit, but it repels (a Floquet multiplier of -1.23, below -1.05), so the
+    iteration goes on and settles on period 2. From the reported state two revolutions
+    close within the cycle tolerance, one does not (1.2e-3, 12 tolerances)."""
+    result = simulate(load_case("r32_ac", PERIOD_TWO))
+    s, sol = result.summary, result.solution
+    assert s["status"] == "subharmonic" and "every 2 revolutions" in s["status_message"]
+    assert sol.period_revolutions == 2
+    model, tol = sol.model, sol.model.case.solver.cycle_tolerance
+    revs = _two_revolutions(model, sol.final.y_end.copy(), sol.final.mode_end.copy())
+    assert period_change(model, revs) < tol
+    assert state_change(model, revs[0]) > 5 * tol
+    assert abs(s["mass_balance_residual [-]"]) < 1e-3
+    assert abs(s["energy_balance_residual [-]"]) < 1e-3
+
+
+def test_shooting_on_the_two_revolution_map_finds_the_physical_orbit():
+    """solve_subharmonic from the state after 6 revolutions of iteration (before it has
+    settled): the orbit it returns closes over two revolutions within the tolerance and
+    not over one."""
+    import time
+
+    from recipsim.solve.revolution import _Tally, discharge_enthalpy
+    from recipsim.solve.subharmonic import solve_subharmonic
+
+    model = build_model(load_case("r32_ac", PERIOD_TWO))
+    y, mode, h = model.y0.copy(), model.mode0.copy(), model.period * 1e-4
+    for _ in range(6):
+        rev, h = integrate_revolution(model, y, mode, h, model.case.solver.samples_per_revolution)
+        model.set_discharge_enthalpy(discharge_enthalpy(model, rev))
+        y, mode = rev.y_end.copy(), rev.mode_end.copy()
+    sol = solve_subharmonic(model, 2, (rev, h), [], _Tally(), time.perf_counter())
+    assert sol is not None and sol.converged and sol.period_revolutions == 2
+    assert sol.method == "shooting on the 2-revolution map"
+    tol = model.case.solver.cycle_tolerance
+    revs = _two_revolutions(model, sol.final.y_end.copy(), sol.final.mode_end.copy())
+    assert period_change(model, revs) < tol
+    assert state_change(model, revs[0]) > 5 * tol
