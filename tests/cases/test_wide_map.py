@@ -2,7 +2,7 @@
 subharmonic or outside_envelope, with consistent values.
 
 The full maps (``cases/sweeps/wide_map_*.toml``, 4599 points: 2620 inside the envelopes,
-all ok, and 1979 refused) are run by hand with ``recipsim sweep`` (about 4 minutes with 2
+all ok, and 1979 refused) are run by hand with ``recipsim sweep`` (2.3 minutes with 2
 jobs on the shared 2-core machine); this test takes every 140th point of each (spread over all axes:
 35 points, about 15 s on one core with a warm cache) through the sweep worker, as a sweep
 runs them.
