@@ -30,7 +30,7 @@ from recipsim.studies.sweep.outputs import (
 from recipsim.studies.sweep.plan import PlannedPoint, plan_sweep
 from recipsim.studies.sweep.spec import SweepSpec, load_sweep
 from recipsim.studies.sweep.store import PointStore
-from recipsim.studies.sweep.worker import OK, SOLVED, PointTask
+from recipsim.studies.sweep.worker import OK, SOLVED, PointTask, SolveAndSave, point_record
 
 if TYPE_CHECKING:
     from recipsim.report.figure_process import FigureProcesses
@@ -58,17 +58,6 @@ def _check_parquet() -> None:
         raise RecipsimError(
             "--parquet needs pyarrow: pip install pyarrow (or pip install 'recipsim[parquet]')"
         ) from None
-
-
-def _record(task: PointTask, result: dict[str, Any], run_id: str) -> dict[str, Any]:
-    return {
-        "status": result["status"],
-        "message": result["message"],
-        "summary": result["summary"],
-        "overrides": list(task.overrides),
-        "run": run_id,
-        "finished": time.strftime("%Y-%m-%dT%H:%M:%S%z"),
-    }
 
 
 def run_sweep(
@@ -174,7 +163,8 @@ def run_sweep(
         _compute(work, store, planned, spec.name, scheduler, used_jobs, progress, scheduler_timeout)
 
     table = build_table(planned, work.records)
-    axes = [c for c in table.columns if c in {c for p in planned for c in p.columns}]
+    axis_columns = {c for p in planned for c in p.columns}
+    axes = [c for c in table.columns if c in axis_columns]
     files = write_outputs(spec, root, table, axes, plots, parquet, figures)
     wall = time.perf_counter() - start
     outcome = SweepOutcome(
@@ -281,10 +271,8 @@ def _compute(
                 return
             bar = tqdm(total=len(tasks), desc=name, unit="pt", file=sys.stderr, dynamic_ncols=True)
 
-    def on_result(task: PointTask, result: dict[str, Any]) -> None:
+    def on_record(task: PointTask, record: dict[str, Any]) -> None:
         nonlocal not_ok
-        record = _record(task, result, run_id)
-        store.save(task.point_id, record)
         work.records[task.point_id] = record
         work.computed.append(task.point_id)
         if bar is not None:
@@ -293,8 +281,20 @@ def _compute(
                 bar.set_postfix(failed=not_ok, refresh=False)
             bar.update(1)
 
+    def on_result(task: PointTask, result: dict[str, Any]) -> None:
+        record = point_record(task, result, run_id)
+        store.save(task.point_id, record)
+        on_record(task, record)
+
     try:
-        _execute(tasks, scheduler, jobs, on_result, on_start, scheduler_timeout)
+        if scheduler:
+            runner().run_dask(tasks, scheduler, on_result, on_start, scheduler_timeout)
+        elif jobs > 1:  # local workers share this file system: each saves its points
+            _prepare_fork()
+            save = SolveAndSave(str(store.root), run_id)
+            runner().run_pool(tasks, jobs, on_record, on_start, solve=save)
+        else:
+            runner().run_inline(tasks, on_result, on_start)
     except KeyboardInterrupt:
         done = len(work.records)
         raise SweepInterrupted(
@@ -317,25 +317,15 @@ def _keep(
     return True
 
 
-def _execute(
-    tasks: list[PointTask],
-    scheduler: str | None,
-    jobs: int,
-    on_result: Any,
-    on_start: Any,
-    scheduler_timeout: float,
-) -> None:
+def runner() -> Any:
+    """The runner module, imported where a sweep computes points (not to plan one)."""
     from recipsim.studies.sweep import runner
 
-    if scheduler:
-        runner.run_dask(tasks, scheduler, on_result, on_start, scheduler_timeout)
-        return
-    if jobs > 1:
-        # import the solver here, before the workers are forked: they start warm
-        import recipsim.model.build  # noqa: F401
-        import recipsim.results.tables  # noqa: F401
-        import recipsim.solve.periodic  # noqa: F401
+    return runner
 
-        runner.run_pool(tasks, jobs, on_result, on_start)
-    else:
-        runner.run_inline(tasks, on_result, on_start)
+
+def _prepare_fork() -> None:
+    """Import the solver before the workers are forked: they start warm."""
+    import recipsim.model.build  # noqa: F401
+    import recipsim.results.tables  # noqa: F401
+    import recipsim.solve.periodic  # noqa: F401

@@ -41,6 +41,8 @@ from recipsim.studies.sweep.worker import (
 )
 
 ResultCallback = Callable[[PointTask, dict[str, Any]], None]
+#: solves one point where it runs (picklable): run_point, or SolveAndSave
+Solve = Callable[[PointTask], dict[str, Any]]
 StartCallback = Callable[[], None]
 
 
@@ -90,13 +92,17 @@ class _DeferredInterrupt:
 
 
 def run_inline(
-    tasks: Sequence[PointTask], on_result: ResultCallback, on_start: StartCallback = _nothing
+    tasks: Sequence[PointTask],
+    on_result: ResultCallback,
+    on_start: StartCallback = _nothing,
+    solve: Solve = run_point,
 ) -> None:
-    """Run the points one after the other in this process (``--jobs 1``)."""
+    """Run the points one after the other in this process (``--jobs 1``) with ``solve``
+    (default :func:`~recipsim.studies.sweep.worker.run_point`)."""
     on_start()
     with _DeferredInterrupt() as interrupt:
         for task in tasks:
-            result = run_point(task)
+            result = solve(task)
             on_result(task, result)
             if interrupt.requested:
                 raise KeyboardInterrupt
@@ -143,8 +149,12 @@ def run_pool(
     jobs: int,
     on_result: ResultCallback,
     on_start: StartCallback = _nothing,
+    solve: Solve = run_point,
 ) -> None:
-    """Run the points on ``jobs`` persistent local worker processes.
+    """Run the points on ``jobs`` persistent local worker processes, each point with
+    ``solve`` (default :func:`~recipsim.studies.sweep.worker.run_point`; a
+    :class:`~recipsim.studies.sweep.worker.SolveAndSave` writes each record where it was
+    solved).
 
     Where workers are forked (Linux) the first point is solved here first: the solver's
     compiled code, the base case and its property table are then loaded once, in this
@@ -161,7 +171,7 @@ def run_pool(
         started = True
         on_start()
         started_at = time.perf_counter()
-        run_inline([queue.pop()], on_result)
+        run_inline([queue.pop()], on_result, solve=solve)
         point_seconds = time.perf_counter() - started_at
     window = 2 * jobs
     running: dict[Future[list[dict[str, Any]]], list[PointTask]] = {}
@@ -172,7 +182,7 @@ def run_pool(
                 while queue and len(running) < window:
                     size = chunk_size(point_seconds, len(queue), jobs) if point_seconds else 1
                     batch = [queue.pop() for _ in range(min(size, len(queue)))]
-                    running[executor.submit(run_points, batch)] = batch
+                    running[executor.submit(run_points, batch, solve)] = batch
                 if not started:  # the workers exist once the first point was submitted
                     started = True
                     on_start()
