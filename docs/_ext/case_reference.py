@@ -82,7 +82,7 @@ def described_rows(table: str, spec: Any, keys: tuple[str, ...] | None = None) -
 
 def tables() -> list[tuple[str, str, list[list[str]]]]:
     """(heading, note, rows) of every table of a case file and of a refrigerant file."""
-    from recipsim.case import load, mechanism_schema
+    from recipsim.case import case_schema, mechanism_schema
     from recipsim.case.lubrication import OIL_SPEC
     from recipsim.case.mechanism import PISTON_BEARING_KEYS
     from recipsim.case.motor import MOTOR_SPEC
@@ -95,26 +95,26 @@ def tables() -> list[tuple[str, str, list[list[str]]]]:
         "checked in code, their words are these)."
     )
     declared = [
-        ("[options]", "", load.OPTION_SPEC),
-        ("[operating_point]", _OP_NOTE, load.OPERATING_POINT_SPEC),
+        ("[options]", "", case_schema.OPTION_SPEC),
+        ("[operating_point]", _OP_NOTE, case_schema.OPERATING_POINT_SPEC),
         (
             "[geometry]",
             "Give exactly one of ``clearance_ratio`` and ``clearance_volume``.",
-            load.GEOMETRY_SPEC,
+            case_schema.GEOMETRY_SPEC,
         ),
-        ("[valves]", "", load.VALVES_TOP_SPEC),
+        ("[valves]", "", case_schema.VALVES_TOP_SPEC),
         (
             "[valves.suction], [valves.discharge]",
             'Required unless ``options.valves = "ideal"``.',
-            load.VALVE_SPEC,
+            case_schema.VALVE_SPEC,
         ),
-        ("[leakage]", "", load.LEAKAGE_SPEC),
+        ("[leakage]", "", case_schema.LEAKAGE_SPEC),
         (
             "[heat_transfer]",
             '``wall_temperature`` is required unless ``options.heat_transfer = "adiabatic"``.',
-            load.HEAT_TRANSFER_SPEC,
+            case_schema.HEAT_TRANSFER_SPEC,
         ),
-        ("[solver]", "", load.SOLVER_SPEC),
+        ("[solver]", "", case_schema.SOLVER_SPEC),
         ("[motor]", 'Required with ``options.drive = "induction_motor"``.', MOTOR_SPEC),
         (
             "[thermal]",
@@ -125,7 +125,7 @@ def tables() -> list[tuple[str, str, list[list[str]]]]:
         (
             "[pressure_curve]",
             '``file`` is required with ``options.pressure = "tabulated"``.',
-            load.PRESSURE_CURVE_SPEC,
+            case_schema.PRESSURE_CURVE_SPEC,
         ),
     ]
     out = [("Top level", _TOP_NOTE, top_rows())]
@@ -186,7 +186,7 @@ def tables() -> list[tuple[str, str, list[list[str]]]]:
     # what the sections above describe: the top level's keys and every table's first part
     known = {row[0].strip("`") for row in top_rows()}
     known |= {head.strip("[").split("]")[0].split(".")[0] for head, _, _ in out}
-    for extra in sorted(load.TOP_KEYS - known):  # a table added later, not documented here yet
+    for extra in sorted(case_schema.TOP_KEYS - known):  # a table added later, not documented here yet
         out.append((f"[{extra}]", "Accepted by the loader; not described here yet.", []))
     return out
 
@@ -228,7 +228,7 @@ def _max_name() -> int:
 
 
 _TOP_NOTE = (
-    "Validated by hand in :func:`recipsim.case.load.case_from_dict`. Quantities may "
+    "Validated by hand in :func:`recipsim.case.build.case_sections`. Quantities may "
     'carry units (``"3500 rpm"``, ``"-23.3 degC"``, ``"22 mm"``); bare numbers '
     "are in the SI unit of the key."
 )

@@ -18,7 +18,7 @@ The slider-crank geometry shared with the cylinder (bore, crank radius, rod leng
 is not read here: it is passed separately as a :class:`CrankGeometry`.
 
 :class:`CrankGeometry` and :class:`MechanismSpec` live in :mod:`.mechanism_spec`; they
-are imported from here by :mod:`recipsim.case.load` and :mod:`recipsim.model.build`.
+are imported from here by :mod:`recipsim.case.build` and :mod:`recipsim.model.build`.
 """
 
 from __future__ import annotations

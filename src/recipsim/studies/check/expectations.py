@@ -150,7 +150,7 @@ def load_expectations(path: Path) -> tuple[Expectation, dict[str, Expectation]]:
         Naming the file and key of anything invalid, including a ``[cases.<name>]``
         with no ``<name>.toml`` beside the file.
     """
-    from recipsim.case.load import read_toml
+    from recipsim.case.files import read_toml
     from recipsim.case.schema import check_keys
 
     raw, _ = read_toml(path, "expectations")
