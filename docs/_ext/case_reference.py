@@ -35,7 +35,7 @@ def _default(field: Any, required: object) -> str:
         return "not set"
     if isinstance(default, bool):
         return f"``{str(default).lower()}``"
-    if default == "":
+    if default == "" or default == ():
         return "empty"
     if isinstance(default, float):
         return f"{default:g}"
@@ -48,7 +48,7 @@ def _cell(text: str) -> str:
 
 def declared_rows(table: str, spec: Any) -> list[list[str]]:
     """Rows (key, unit, default, allowed, required, meaning) of one declared table."""
-    from recipsim.case.schema import REQUIRED, Choice, Field, Flag
+    from recipsim.case.schema import REQUIRED, Choice, Field, Flag, TextList
 
     rows = []
     for key, field in spec.items():
@@ -61,6 +61,8 @@ def declared_rows(table: str, spec: Any) -> list[list[str]]:
             unit = "-"
         elif isinstance(field, Flag):
             allowed, unit = "``true``, ``false``", "-"
+        elif isinstance(field, TextList):
+            allowed, unit = "a list of strings", "-"
         else:
             allowed, unit = "a string", "-"
         required = "yes" if field.default is REQUIRED else "no"
@@ -88,6 +90,7 @@ def tables() -> list[tuple[str, str, list[list[str]]]]:
     from recipsim.case.motor import MOTOR_SPEC
     from recipsim.case.refrigerant import LIMITS_SPEC, RATING_POINT_SPEC
     from recipsim.case.thermal import THERMAL_SPEC
+    from recipsim.studies.check.expectations import EXPECTATION_SPEC, MINIMUM_SPEC
 
     coded = (
         "Validated in :mod:`recipsim.case.mechanism` against the declarations of "
@@ -182,11 +185,25 @@ def tables() -> list[tuple[str, str, list[list[str]]]]:
             "Named by ``operating_point.rating_point``.",
             declared_rows("rating_points", RATING_POINT_SPEC),
         ),
+        (
+            "Check expectations: [defaults], [cases.<name>]",
+            "In ``expectations.toml`` beside the cases of ``recipsim check`` (the hard cases': "
+            "``data/cases/hard/expectations.toml``); a ``[cases.<name>]`` table names a case "
+            "file beside it and keeps what it leaves out from ``[defaults]``.",
+            declared_rows("expectations", EXPECTATION_SPEC),
+        ),
+        (
+            "Check expectations: minimum",
+            "A sub-table of ``[defaults]`` or ``[cases.<name>]``: lower bounds on the metrics "
+            "of a converged run.",
+            declared_rows("minimum", MINIMUM_SPEC),
+        ),
     ]
     # what the sections above describe: the top level's keys and every table's first part
     known = {row[0].strip("`") for row in top_rows()}
     known |= {head.strip("[").split("]")[0].split(".")[0] for head, _, _ in out}
-    for extra in sorted(case_schema.TOP_KEYS - known):  # a table added later, not documented here yet
+    # a table added later, not documented here yet
+    for extra in sorted(case_schema.TOP_KEYS - known):
         out.append((f"[{extra}]", "Accepted by the loader; not described here yet.", []))
     return out
 

@@ -92,6 +92,14 @@ class Text:
 
 
 @dataclass(frozen=True)
+class TextList:
+    """A list of strings (TOML ``["a", "b"]``), read as a tuple."""
+
+    default: Any = REQUIRED
+    doc: str = ""
+
+
+@dataclass(frozen=True)
 class Described:
     """A key of a table validated in code, where a rule may involve other keys (the
     piston pin within the piston length, a clearance relative to the diameter).
@@ -126,7 +134,7 @@ class Described:
         return self.required or ("no" if self.default else "yes")
 
 
-Spec = Mapping[str, Field | Choice | Flag | Text]
+Spec = Mapping[str, Field | Choice | Flag | Text | TextList]
 #: Keys of a table validated in code, in the order of the table.
 DescribedSpec = Mapping[str, Described]
 
@@ -183,6 +191,10 @@ def read_table(raw: Mapping[str, Any] | None, spec: Spec, file: str, prefix: str
             if not isinstance(value, bool):
                 raise CaseError(file, dotted, f"expected true or false, got {value!r}")
             out[key] = value
+        elif isinstance(field, TextList):
+            if not isinstance(value, list) or not all(isinstance(v, str) for v in value):
+                raise CaseError(file, dotted, f"expected a list of strings, got {value!r}")
+            out[key] = tuple(value)
         else:
             if not isinstance(value, str):
                 raise CaseError(file, dotted, f"expected a string, got {value!r}")
@@ -190,13 +202,15 @@ def read_table(raw: Mapping[str, Any] | None, spec: Spec, file: str, prefix: str
     return out
 
 
-def _describe(field: Field | Choice | Flag | Text) -> str:
+def _describe(field: Field | Choice | Flag | Text | TextList) -> str:
     if isinstance(field, Field):
         return f"allowed {field.allowed()}" + (f"; {field.doc}" if field.doc else "")
     if isinstance(field, Choice):
         return f"one of {list(field.choices)}"
     if isinstance(field, Flag):
         return "true or false"
+    if isinstance(field, TextList):
+        return "a list of strings"
     return "a string"
 
 
