@@ -134,12 +134,17 @@ class Described:
         return self.required or ("no" if self.default else "yes")
 
 
-Spec = Mapping[str, Field | Choice | Flag | Text | TextList]
+Spec = Mapping[str, Field | Choice | Flag | Text]
+#: A table of any input file: a :data:`Spec`, or one with lists of strings too (a list is
+#: not a case value: ``--set`` and sweeps assign scalars).
+FileSpec = Mapping[str, Field | Choice | Flag | Text | TextList]
 #: Keys of a table validated in code, in the order of the table.
 DescribedSpec = Mapping[str, Described]
 
 
-def check_keys(raw: Mapping[str, Any], allowed: set[str] | Spec, file: str, prefix: str) -> None:
+def check_keys(
+    raw: Mapping[str, Any], allowed: set[str] | FileSpec, file: str, prefix: str
+) -> None:
     """Refuse keys that are not in ``allowed``, suggesting the closest one."""
     for key in raw:
         if key not in allowed:
@@ -149,7 +154,9 @@ def check_keys(raw: Mapping[str, Any], allowed: set[str] | Spec, file: str, pref
             raise CaseError(file, _join(prefix, key), f"unknown key{hint} (allowed: {names})")
 
 
-def read_table(raw: Mapping[str, Any] | None, spec: Spec, file: str, prefix: str) -> dict[str, Any]:
+def read_table(
+    raw: Mapping[str, Any] | None, spec: FileSpec, file: str, prefix: str
+) -> dict[str, Any]:
     """Validate one table and return its values in SI.
 
     Parameters
