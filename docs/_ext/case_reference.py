@@ -88,7 +88,8 @@ def tables() -> list[tuple[str, str, list[list[str]]]]:
     from recipsim.case.lubrication import OIL_SPEC
     from recipsim.case.mechanism import PISTON_BEARING_KEYS
     from recipsim.case.motor import MOTOR_SPEC
-    from recipsim.case.refrigerant import LIMITS_SPEC, RATING_POINT_SPEC
+    from recipsim.case.envelope_table import ENVELOPE_SPEC
+    from recipsim.case.refrigerant import LIMITS_SPEC, RATING_POINT_SPEC, REFRIGERANT_SPEC
     from recipsim.case.thermal import THERMAL_SPEC
     from recipsim.studies.check.expectations import EXPECTATION_SPEC, MINIMUM_SPEC
 
@@ -176,6 +177,11 @@ def tables() -> list[tuple[str, str, list[list[str]]]]:
             described_rows("oil", OIL_SPEC),
         ),
         (
+            "Refrigerant file: top level",
+            "``refrigerants/<name>.toml``; its tables follow.",
+            declared_rows("refrigerant", REFRIGERANT_SPEC),
+        ),
+        (
             "Refrigerant file: [limits]",
             "In ``refrigerants/<name>.toml``; each limit narrows CoolProp's range.",
             declared_rows("limits", LIMITS_SPEC),
@@ -184,6 +190,12 @@ def tables() -> list[tuple[str, str, list[list[str]]]]:
             "Refrigerant file: [rating_points.<name>]",
             "Named by ``operating_point.rating_point``.",
             declared_rows("rating_points", RATING_POINT_SPEC),
+        ),
+        (
+            "Refrigerant file: [envelope]",
+            "Where the compressor is meant to run; a case outside it is refused unless "
+            "``solver.envelope = \"ignore\"``.",
+            declared_rows("envelope", ENVELOPE_SPEC),
         ),
         (
             "Check expectations: [defaults], [cases.<name>]",
