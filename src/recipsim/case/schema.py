@@ -105,7 +105,9 @@ class Described:
     piston pin within the piston length, a clearance relative to the diameter).
 
     The loader reads its unit and the words of its range from here (its messages say
-    them) and checks the rule in code; the case-file reference prints the same.
+    them); a range that involves no other key is declared here in numbers too
+    (``lo``/``hi``, as :class:`Field`'s) and checked from here, a rule that involves other
+    keys is checked in code. The case-file reference prints the same.
 
     Parameters
     ----------
@@ -128,6 +130,23 @@ class Described:
     default: str = ""
     required: str = ""
     doc: str = ""
+    #: The range in numbers, where it involves no other key (the words say the same);
+    #: a rule that involves other keys is checked in code and declares none.
+    lo: float = -math.inf
+    hi: float = math.inf
+    open_lo: bool = False
+    open_hi: bool = False
+
+    @property
+    def bounded(self) -> bool:
+        """Whether the declaration holds the range in numbers."""
+        return self.lo > -math.inf or self.hi < math.inf
+
+    def admits(self, value: float) -> bool:
+        """Whether ``value`` (in SI) lies in the declared range."""
+        above = value > self.lo if self.open_lo else value >= self.lo
+        below = value < self.hi if self.open_hi else value <= self.hi
+        return above and below
 
     def requirement(self) -> str:
         """Whether the key is required: ``"yes"``, ``"no"`` or a condition."""
