@@ -35,7 +35,7 @@ def _default(field: Any, required: object) -> str:
         return "not set"
     if isinstance(default, bool):
         return f"``{str(default).lower()}``"
-    if default == "":
+    if default == "" or default == ():
         return "empty"
     if isinstance(default, float):
         return f"{default:g}"
@@ -48,7 +48,7 @@ def _cell(text: str) -> str:
 
 def declared_rows(table: str, spec: Any) -> list[list[str]]:
     """Rows (key, unit, default, allowed, required, meaning) of one declared table."""
-    from recipsim.case.schema import REQUIRED, Choice, Field, Flag
+    from recipsim.case.schema import REQUIRED, Choice, Field, Flag, TextList
 
     rows = []
     for key, field in spec.items():
@@ -61,6 +61,8 @@ def declared_rows(table: str, spec: Any) -> list[list[str]]:
             unit = "-"
         elif isinstance(field, Flag):
             allowed, unit = "``true``, ``false``", "-"
+        elif isinstance(field, TextList):
+            allowed, unit = "a list of strings", "-"
         else:
             allowed, unit = "a string", "-"
         required = "yes" if field.default is REQUIRED else "no"
@@ -82,12 +84,14 @@ def described_rows(table: str, spec: Any, keys: tuple[str, ...] | None = None) -
 
 def tables() -> list[tuple[str, str, list[list[str]]]]:
     """(heading, note, rows) of every table of a case file and of a refrigerant file."""
-    from recipsim.case import load, mechanism_schema
+    from recipsim.case import case_schema, mechanism_schema
     from recipsim.case.lubrication import OIL_SPEC
     from recipsim.case.mechanism import PISTON_BEARING_KEYS
     from recipsim.case.motor import MOTOR_SPEC
-    from recipsim.case.refrigerant import LIMITS_SPEC, RATING_POINT_SPEC
+    from recipsim.case.envelope_table import ENVELOPE_SPEC
+    from recipsim.case.refrigerant import LIMITS_SPEC, RATING_POINT_SPEC, REFRIGERANT_SPEC
     from recipsim.case.thermal import THERMAL_SPEC
+    from recipsim.studies.check.expectations import EXPECTATION_SPEC, MINIMUM_SPEC
 
     coded = (
         "Validated in :mod:`recipsim.case.mechanism` against the declarations of "
@@ -95,26 +99,26 @@ def tables() -> list[tuple[str, str, list[list[str]]]]:
         "checked in code, their words are these)."
     )
     declared = [
-        ("[options]", "", load.OPTION_SPEC),
-        ("[operating_point]", _OP_NOTE, load.OPERATING_POINT_SPEC),
+        ("[options]", "", case_schema.OPTION_SPEC),
+        ("[operating_point]", _OP_NOTE, case_schema.OPERATING_POINT_SPEC),
         (
             "[geometry]",
             "Give exactly one of ``clearance_ratio`` and ``clearance_volume``.",
-            load.GEOMETRY_SPEC,
+            case_schema.GEOMETRY_SPEC,
         ),
-        ("[valves]", "", load.VALVES_TOP_SPEC),
+        ("[valves]", "", case_schema.VALVES_TOP_SPEC),
         (
             "[valves.suction], [valves.discharge]",
             'Required unless ``options.valves = "ideal"``.',
-            load.VALVE_SPEC,
+            case_schema.VALVE_SPEC,
         ),
-        ("[leakage]", "", load.LEAKAGE_SPEC),
+        ("[leakage]", "", case_schema.LEAKAGE_SPEC),
         (
             "[heat_transfer]",
             '``wall_temperature`` is required unless ``options.heat_transfer = "adiabatic"``.',
-            load.HEAT_TRANSFER_SPEC,
+            case_schema.HEAT_TRANSFER_SPEC,
         ),
-        ("[solver]", "", load.SOLVER_SPEC),
+        ("[solver]", "", case_schema.SOLVER_SPEC),
         ("[motor]", 'Required with ``options.drive = "induction_motor"``.', MOTOR_SPEC),
         (
             "[thermal]",
@@ -125,7 +129,7 @@ def tables() -> list[tuple[str, str, list[list[str]]]]:
         (
             "[pressure_curve]",
             '``file`` is required with ``options.pressure = "tabulated"``.',
-            load.PRESSURE_CURVE_SPEC,
+            case_schema.PRESSURE_CURVE_SPEC,
         ),
     ]
     out = [("Top level", _TOP_NOTE, top_rows())]
@@ -173,6 +177,11 @@ def tables() -> list[tuple[str, str, list[list[str]]]]:
             described_rows("oil", OIL_SPEC),
         ),
         (
+            "Refrigerant file: top level",
+            "``refrigerants/<name>.toml``; its tables follow.",
+            declared_rows("refrigerant", REFRIGERANT_SPEC),
+        ),
+        (
             "Refrigerant file: [limits]",
             "In ``refrigerants/<name>.toml``; each limit narrows CoolProp's range.",
             declared_rows("limits", LIMITS_SPEC),
@@ -182,11 +191,31 @@ def tables() -> list[tuple[str, str, list[list[str]]]]:
             "Named by ``operating_point.rating_point``.",
             declared_rows("rating_points", RATING_POINT_SPEC),
         ),
+        (
+            "Refrigerant file: [envelope]",
+            "Where the compressor is meant to run; a case outside it is refused unless "
+            "``solver.envelope = \"ignore\"``.",
+            declared_rows("envelope", ENVELOPE_SPEC),
+        ),
+        (
+            "Check expectations: [defaults], [cases.<name>]",
+            "In ``expectations.toml`` beside the cases of ``recipsim check`` (the hard cases': "
+            "``data/cases/hard/expectations.toml``); a ``[cases.<name>]`` table names a case "
+            "file beside it and keeps what it leaves out from ``[defaults]``.",
+            declared_rows("expectations", EXPECTATION_SPEC),
+        ),
+        (
+            "Check expectations: minimum",
+            "A sub-table of ``[defaults]`` or ``[cases.<name>]``: lower bounds on the metrics "
+            "of a converged run.",
+            declared_rows("minimum", MINIMUM_SPEC),
+        ),
     ]
     # what the sections above describe: the top level's keys and every table's first part
     known = {row[0].strip("`") for row in top_rows()}
     known |= {head.strip("[").split("]")[0].split(".")[0] for head, _, _ in out}
-    for extra in sorted(load.TOP_KEYS - known):  # a table added later, not documented here yet
+    # a table added later, not documented here yet
+    for extra in sorted(case_schema.TOP_KEYS - known):
         out.append((f"[{extra}]", "Accepted by the loader; not described here yet.", []))
     return out
 
@@ -228,7 +257,7 @@ def _max_name() -> int:
 
 
 _TOP_NOTE = (
-    "Validated by hand in :func:`recipsim.case.load.case_from_dict`. Quantities may "
+    "Validated by hand in :func:`recipsim.case.build.case_sections`. Quantities may "
     'carry units (``"3500 rpm"``, ``"-23.3 degC"``, ``"22 mm"``); bare numbers '
     "are in the SI unit of the key."
 )

@@ -41,20 +41,20 @@ def test_every_markdown_page_is_in_the_site(site):
 
 
 def test_case_reference_lists_every_declared_key(site):
-    from recipsim.case import load
+    from recipsim.case import case_schema
     from recipsim.case.motor import MOTOR_SPEC
     from recipsim.case.thermal import THERMAL_SPEC
 
     html = (site / "case-reference.html").read_text()
     specs = [
-        load.OPTION_SPEC,
-        load.OPERATING_POINT_SPEC,
-        load.GEOMETRY_SPEC,
-        load.VALVES_TOP_SPEC,
-        load.VALVE_SPEC,
-        load.LEAKAGE_SPEC,
-        load.HEAT_TRANSFER_SPEC,
-        load.SOLVER_SPEC,
+        case_schema.OPTION_SPEC,
+        case_schema.OPERATING_POINT_SPEC,
+        case_schema.GEOMETRY_SPEC,
+        case_schema.VALVES_TOP_SPEC,
+        case_schema.VALVE_SPEC,
+        case_schema.LEAKAGE_SPEC,
+        case_schema.HEAT_TRANSFER_SPEC,
+        case_schema.SOLVER_SPEC,
         MOTOR_SPEC,
         THERMAL_SPEC,
     ]

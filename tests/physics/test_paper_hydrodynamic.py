@@ -19,7 +19,8 @@ import numpy as np
 import pytest
 from matplotlib.patches import Circle
 
-from recipsim.case.load import Case, load_case
+from recipsim.case.case import Case
+from recipsim.case.load import load_case
 from recipsim.model.build import crank_geometry
 from recipsim.physics.mechanics.layout import BEARING_NAMES
 from recipsim.report.mechanics_plots import film_bearings, film_clearance, plot_orbits

@@ -29,8 +29,8 @@ from recipsim.studies.sweep.outputs import (
 )
 from recipsim.studies.sweep.plan import PlannedPoint, plan_sweep
 from recipsim.studies.sweep.spec import SweepSpec, load_sweep
-from recipsim.studies.sweep.store import PointStore
-from recipsim.studies.sweep.worker import OK, SOLVED, PointTask, SolveAndSave, point_record
+from recipsim.studies.sweep.store import PointStore, SolveAndSave, point_record
+from recipsim.studies.sweep.worker import OK, SOLVED, PointTask
 
 if TYPE_CHECKING:
     from recipsim.report.figure_process import FigureProcesses
@@ -288,7 +288,9 @@ def _compute(
 
     try:
         if scheduler:
-            runner().run_dask(tasks, scheduler, on_result, on_start, scheduler_timeout)
+            from recipsim.studies.sweep.dask_runner import run_dask
+
+            run_dask(tasks, scheduler, on_result, on_start, scheduler_timeout)
         elif jobs > 1:  # local workers share this file system: each saves its points
             _prepare_fork()
             save = SolveAndSave(str(store.root), run_id)
