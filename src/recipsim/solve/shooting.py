@@ -82,15 +82,13 @@ from recipsim.errors import SolverError
 from recipsim.model.build import Model
 from recipsim.physics.mechanics import layout as mlay
 from recipsim.physics.thermo import cylinder as cyl
+from recipsim.solve.residual import cycle_residual, residual_reference, state_change
 from recipsim.solve.revolution import (
     PeriodicSolution,
     Revolution,
     _Tally,
-    cycle_residual,
     discharge_enthalpy,
     integrate_revolution,
-    residual_reference,
-    state_change,
 )
 
 #: Plain revolutions before the first Jacobian when shooting starts from the initial
