@@ -102,6 +102,8 @@ class PeriodicSolution:
     newton_iterations: int = 0
     jacobians: int = 0
     jacobian_revolutions: int = 0
+    #: shooting only: the last Jacobian (scaled) and its scales, to seed another solve
+    jacobian: tuple[np.ndarray, np.ndarray] | None = None
     #: revolutions per period: > 1 for a subharmonic response (``final`` then holds the
     #: quadratures averaged over the period, :mod:`recipsim.solve.periodic`)
     period_revolutions: int = 1
