@@ -7,14 +7,15 @@ fixture), RMS loads [N] for primary / secondary / eccentric / pin / piston_top /
 piston_skirt:
 inertia pinned 97.3 / 37.4 / 59.9 / 32.1 / 2.84 / 2.84 (undamped flexible +0.1 to
 +0.8 %); gas pinned 261.2 / 100.5 / 160.7 / 170.9 / 7.45 / 7.45, undamped flexible
-+11.9 / +73.7 / +1.0 / +0.5 / +0.9 / +0.9 %, damped flexible +1.8 / +4.1 / +0.4 / +0.2 /
++11.9 / +73.5 / +1.0 / +0.5 / +0.9 / +0.9 %, damped flexible +1.8 / +4.1 / +0.4 / +0.2 /
 +0.2 / +0.2 %; largest orbits (primary, secondary) 3.1 / 1.5 um (inertia), 17.2 / 10.9 um
-(gas), 15.1 / 7.8 um (gas damped). About 4 s for the whole study, figures included.
+(gas), 15.1 / 7.8 um (gas damped). Every flexible run is the case solved by the
+compiled scene and the periodic solver: about 1 s for the runs (figures aside).
 
 The default undamped runs are the periodic response by shooting (``periodic_study``
-fixture, about 7 s): measured inertia +0.4 / +0.7 / +0.1 / +0.1 / +0.1 / +0.1 % over
+fixture, about 1 s): measured inertia +0.4 / +0.7 / +0.1 / +0.1 / +0.1 / +0.1 % over
 pinned (the forced response to the inertia load alone is nearly quasi-static), gas
-+24.4 / +165.6 / +0.6 / +0.3 / +0.6 / +0.6 %; 23 revolutions for the inertia run (one
++24.4 / +165.4 / +0.6 / +0.3 / +0.6 / +0.6 %; 24 revolutions for the inertia run (one
 Jacobian), 5 for the gas run (the same Jacobian).
 """
 
