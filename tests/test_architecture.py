@@ -102,12 +102,10 @@ ALLOWED_LONG_FUNCTIONS = {
     "model/build.py:build_model",  # 81
     "model/mechanism_parameters.py:mechanism_parameters",  # 96
     "results/tables.py:summary",  # 94
-    "solve/mechanism_ivp.py:simulate_mechanism",  # 187 (the solve_ivp driver, to be retired)
     "solve/periodic.py:solve_revolutions",  # 84
     "solve/shooting.py:newton_fixed_point",  # 102
     "studies/bench/ivp.py:integrate_revolution_ivp",  # 104
     "studies/paper.py:run_paper_study",  # 150
-    "studies/paper_undamped.py:undamped_periodic",  # 149
     "studies/sweep/engine.py:run_sweep",  # 120
 }
 

@@ -1,6 +1,7 @@
 """One revolution of any scene and what is measured on it: integration from 270 deg
-with the compiled integrator, the cycle residual against the previous revolution, the
-discharge-plenum enthalpy for the next one, statistics, and the outputs at the samples.
+with the compiled integrator, the discharge-plenum enthalpy for the next one,
+statistics, and the outputs at the samples (the cycle residual against the previous
+revolution is :mod:`.residual`).
 Shared by the revolution iteration (:mod:`.periodic`) and shooting (:mod:`.shooting`).
 """
 
@@ -101,6 +102,8 @@ class PeriodicSolution:
     newton_iterations: int = 0
     jacobians: int = 0
     jacobian_revolutions: int = 0
+    #: shooting only: the last Jacobian (scaled) and its scales, to seed another solve
+    jacobian: tuple[np.ndarray, np.ndarray] | None = None
     #: revolutions per period: > 1 for a subharmonic response (``final`` then holds the
     #: quadratures averaged over the period, :mod:`recipsim.solve.periodic`)
     period_revolutions: int = 1
@@ -273,61 +276,6 @@ def _raise_failure(model: Model, status: int, t: float, y: np.ndarray, mode: np.
     )
 
 
-def residual_reference(model: Model, rev: Revolution) -> np.ndarray:
-    """Size against which each error-controlled state's change over ``rev`` is judged.
-
-    T and rho: their values at the start; reed lift and velocity: their scales;
-    mechanism states: their largest magnitude over the revolution (at least their
-    scale). Shape ``(model.n_err,)``; entries of zero scale are quadratures.
-    """
-    ref = model.scale[: model.n_err].copy()
-    if model.has_gas:
-        ref[cyl.Y_T] = rev.y_start[cyl.Y_T]
-        ref[cyl.Y_RHO] = rev.y_start[cyl.Y_RHO]
-    if model.scene != scenes.SCENE_CYLINDER:
-        m0 = model.mechanism_offset
-        # mechanism states relative to their size over the revolution (at least their scale)
-        size = np.abs(rev.samples[:, m0 : m0 + mlay.N_STATE]).max(axis=0)
-        ref[m0 : m0 + mlay.N_STATE] = np.maximum(size, ref[m0 : m0 + mlay.N_STATE])
-    return ref
-
-
-def state_change(model: Model, rev: Revolution) -> float:
-    """Largest change of an error-controlled state over ``rev`` relative to
-    :func:`residual_reference`; at least 1 if the discrete modes differ at its ends."""
-    controlled = model.scale[: model.n_err] > 0.0
-    d = np.abs(rev.y_end[: model.n_err] - rev.y_start[: model.n_err])
-    ref = residual_reference(model, rev)
-    res = float(np.max(d[controlled] / ref[controlled]))
-    if not np.array_equal(rev.mode_start, rev.mode_end):
-        res = max(res, 1.0)
-    return res
-
-
-def cycle_residual(model: Model, rev: Revolution, previous: Revolution | None) -> float:
-    """Largest relative change over one revolution (see module docstring).
-
-    :func:`state_change` of ``rev`` and the relative change of its suction mass,
-    indicated work, discharge enthalpy and drive work from ``previous`` (at least 1
-    without a previous revolution).
-    """
-    res = state_change(model, rev)
-    if previous is None:
-        return max(res, 1.0)
-    for q in _revolution_totals(model):
-        a, b = rev.y_end[q], previous.y_end[q]
-        res = max(res, abs(a - b) / max(abs(a), abs(b), 1e-300))
-    return res
-
-
-def _revolution_totals(model: Model) -> list[int]:
-    """Quadratures whose change between revolutions the cycle residual checks."""
-    checks = [cyl.Q_MSUC_IN, cyl.Q_WORK, cyl.Q_HDIS_OUT] if model.has_gas else []
-    if model.scene != scenes.SCENE_CYLINDER:
-        checks.append(model.mechanism_offset + mlay.N_STATE + scenes.MQ_DRIVE)
-    return checks
-
-
 def discharge_enthalpy(model: Model, rev: Revolution) -> float | None:
     """Mass-weighted enthalpy of the gas discharged over ``rev`` [J/kg] (None without
     gas or discharge, and with the shell's thermal network, whose discharge chamber node
@@ -360,10 +308,6 @@ class _Tally:
             setattr(self, name, total + count if total >= 0 and count >= 0 else -1)
 
 
-#: ``solver.periodic = "auto"``: revolutions hand over to shooting when the residual's
-#: decay over the last ``_RATE_WINDOW`` revolutions predicts more revolutions to the
-#: tolerance than shooting needs (one per unknown for the Jacobian plus
-#: ``_SHOOTING_OVERHEAD``), and not before ``_AUTO_MIN_REVOLUTIONS`` revolutions.
 @njit(cache=True)
 def _evaluate_samples(times, samples, sample_modes, par, ipar, props, pbuf, out):
     n = samples.shape[1]

@@ -82,15 +82,13 @@ from recipsim.errors import SolverError
 from recipsim.model.build import Model
 from recipsim.physics.mechanics import layout as mlay
 from recipsim.physics.thermo import cylinder as cyl
+from recipsim.solve.residual import cycle_residual, residual_reference, state_change
 from recipsim.solve.revolution import (
     PeriodicSolution,
     Revolution,
     _Tally,
-    cycle_residual,
     discharge_enthalpy,
     integrate_revolution,
-    residual_reference,
-    state_change,
 )
 
 #: Plain revolutions before the first Jacobian when shooting starts from the initial
@@ -423,6 +421,7 @@ def solve_shooting(
     history: list[float] | None = None,
     tally: _Tally | None = None,
     t0: float | None = None,
+    jacobian: tuple[np.ndarray, np.ndarray] | None = None,
 ) -> PeriodicSolution:
     """Periodic steady state by Newton on the one-revolution map (module docstring).
 
@@ -435,6 +434,11 @@ def solve_shooting(
         one that revolution delivered. Default: start from ``model.y0``.
     history, tally, t0
         Residual history, counters and start time of the revolutions already run.
+    jacobian : (numpy.ndarray, numpy.ndarray), optional
+        A scaled Jacobian and its scales (``PeriodicSolution.jacobian`` of a solve of a
+        model with the same unknowns, e.g. the same crank train under another pressure
+        table at constant speed, whose map has the same linear part): the first Newton
+        solve starts from it instead of finite differences.
 
     Returns
     -------
@@ -448,7 +452,7 @@ def solve_shooting(
     SolverError
         If a plain revolution fails (with crank angle and state).
     """
-    return _Shooting(model, start, history, tally, t0).run()
+    return _Shooting(model, start, history, tally, t0, jacobian).run()
 
 
 class _StatesRepeat:
@@ -472,8 +476,11 @@ class _Shooting:
         history: list[float] | None,
         tally: _Tally | None,
         t0: float | None,
+        seed: tuple[np.ndarray, np.ndarray] | None = None,
     ) -> None:
         self.model = model
+        self.seed = seed
+        self.jacobian: tuple[np.ndarray, np.ndarray] | None = None
         self.s = model.case.solver
         self.t0 = time.perf_counter() if t0 is None else t0
         self.history = [] if history is None else history
@@ -542,6 +549,7 @@ class _Shooting:
             newton_iterations=self.newton,
             jacobians=self.jacobians,
             jacobian_revolutions=self.jacobian_revolutions,
+            jacobian=self.jacobian,
         )
 
     def run(self) -> PeriodicSolution:
@@ -574,6 +582,9 @@ class _Shooting:
             # the next base: a plain revolution from the end of the last one
             if fmap.set_base(rev.y_end, rev.mode_end):
                 jacobian = None
+                if self.seed is not None and self.seed[0].shape[0] == fmap.size:
+                    jacobian, ref = self.seed  # the first base only
+                self.seed = None
             z = fmap.pack(rev.y_end)
             rev = self._plain(rev.y_end.copy(), rev.mode_end.copy())
             g = fmap.pack(rev.y_end)
@@ -602,6 +613,8 @@ class _Shooting:
             self.jacobians += result.jacobians
             self.jacobian_revolutions += result.jacobian_evaluations
             jacobian = result.jacobian
+            if jacobian is not None:
+                self.jacobian = (jacobian, ref)
             if result.stalled:
                 self.method = "shooting, fell back to revolutions"
                 newton_failed = True
