@@ -160,7 +160,10 @@ def plot_map(
     else:
         fig = ax.figure
     xlabel = ""
-    for label, style, rows in _lines(table, x, groups):
+    # only the columns drawn: each line's rows are sorted by x, a copy per line (of all
+    # 130-odd summary columns it cost 3 ms a line, 5 of the 18 s of a 1000-point map)
+    narrow = table[list(dict.fromkeys([*groups, x, y]))]
+    for label, style, rows in _lines(narrow, x, groups):
         xs, xlabel = _display(x, rows[x].to_numpy(dtype=float))
         ax.plot(xs, rows[y].to_numpy(dtype=float), label=label or None, ms=4, lw=1.2, **style)
     ax.set_xlabel(xlabel)
