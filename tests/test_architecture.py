@@ -104,9 +104,6 @@ ALLOWED_LONG_FUNCTIONS = {
     "results/tables.py:summary",  # 94
     "solve/periodic.py:solve_revolutions",  # 84
     "solve/shooting.py:newton_fixed_point",  # 102
-    "studies/bench/ivp.py:integrate_revolution_ivp",  # 104
-    "studies/paper.py:run_paper_study",  # 150
-    "studies/sweep/engine.py:run_sweep",  # 120
 }
 
 

@@ -7,9 +7,11 @@ the declarations that validate the files: :mod:`recipsim.case.schema` ``Field``,
 ``Described`` (unit and range words that the loader's checks and messages use) for the
 tables validated in code: ``[mechanism.*]``, ``[bearings.<name>]``
 (:mod:`recipsim.case.mechanism_schema`) and ``[oil]`` (:mod:`recipsim.case.lubrication`).
-Only the top-level keys are listed by hand. A key added to a declaration appears here
-without editing the documentation; a top-level table without a declaration is listed
-with a note, and the docs test fails on it.
+Only the case file's top-level keys are listed by hand. The tables of a refrigerant file,
+of the check's ``expectations.toml`` and a sweep file's top level
+(:data:`recipsim.studies.sweep.spec.SWEEP_SPEC`) follow. A key added to a declaration
+appears here without editing the documentation; a top-level table without a declaration
+is listed with a note, and the docs test fails on it.
 """
 
 from __future__ import annotations
@@ -83,7 +85,8 @@ def described_rows(table: str, spec: Any, keys: tuple[str, ...] | None = None) -
 
 
 def tables() -> list[tuple[str, str, list[list[str]]]]:
-    """(heading, note, rows) of every table of a case file and of a refrigerant file."""
+    """(heading, note, rows) of every table of a case file, a refrigerant file, the check's
+    expectations and a sweep file."""
     from recipsim.case import case_schema, mechanism_schema
     from recipsim.case.lubrication import OIL_SPEC
     from recipsim.case.mechanism import PISTON_BEARING_KEYS
@@ -194,7 +197,7 @@ def tables() -> list[tuple[str, str, list[list[str]]]]:
         (
             "Refrigerant file: [envelope]",
             "Where the compressor is meant to run; a case outside it is refused unless "
-            "``solver.envelope = \"ignore\"``.",
+            '``solver.envelope = "ignore"``.',
             declared_rows("envelope", ENVELOPE_SPEC),
         ),
         (
@@ -210,6 +213,15 @@ def tables() -> list[tuple[str, str, list[list[str]]]]:
             "of a converged run.",
             declared_rows("minimum", MINIMUM_SPEC),
         ),
+        (
+            "Sweep file: top level",
+            "A ``recipsim sweep`` file (:doc:`sweeps`), read by "
+            ":func:`recipsim.studies.sweep.spec.load_sweep`. Its tables ``[set]`` (dotted "
+            "case key = value), ``[axes]`` (dotted case key = list of values) and "
+            "``[[points]]`` (tables of dotted case key = value) hold case keys, checked "
+            "against the tables above when the points are planned.",
+            sweep_rows(),
+        ),
     ]
     # what the sections above describe: the top level's keys and every table's first part
     known = {row[0].strip("`") for row in top_rows()}
@@ -224,6 +236,20 @@ def _bearing_names() -> tuple[str, ...]:
     from recipsim.physics.mechanics.layout import BEARING_NAMES
 
     return tuple(BEARING_NAMES)
+
+
+def sweep_rows() -> list[list[str]]:
+    """Rows of a sweep file's top level; its ``name`` follows the case's name rule."""
+    from recipsim.studies.sweep.spec import SWEEP_SPEC
+
+    rows = declared_rows("sweep", SWEEP_SPEC)
+    case_rows = {row[0]: row for row in top_rows()}
+    for row in rows:
+        if row[0] == "``name``":  # checked_name's rule, the file's stem by default
+            row[2], row[3] = case_rows["``name``"][2], case_rows["``name``"][3]
+        elif row[0] == "``base``":  # resolved as a case's extends
+            row[3] = case_rows["``extends``"][3]
+    return rows
 
 
 def top_rows() -> list[list[str]]:

@@ -44,6 +44,7 @@ def test_case_reference_lists_every_declared_key(site):
     from recipsim.case import case_schema
     from recipsim.case.motor import MOTOR_SPEC
     from recipsim.case.thermal import THERMAL_SPEC
+    from recipsim.studies.sweep.spec import SWEEP_SPEC
 
     html = (site / "case-reference.html").read_text()
     specs = [
@@ -57,6 +58,7 @@ def test_case_reference_lists_every_declared_key(site):
         case_schema.SOLVER_SPEC,
         MOTOR_SPEC,
         THERMAL_SPEC,
+        SWEEP_SPEC,
     ]
     for spec in specs:
         for key, field in spec.items():
@@ -65,6 +67,7 @@ def test_case_reference_lists_every_declared_key(site):
             if unit and unit != "dimensionless":
                 assert unit.replace("**", "^") in html, (key, unit)
     assert "rad/s" in html and "3.14159" in html  # shaft_speed's unit, max_step's range
+    assert "Sweep file: top level" in html and "[1, inf], whole number" in html  # max_points
 
 
 def test_case_reference_describes_the_mechanism_bearing_and_oil_keys(site):

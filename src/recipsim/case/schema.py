@@ -229,15 +229,18 @@ def read_table(
 
 
 def _describe(field: Field | Choice | Flag | Text | TextList) -> str:
+    """What a key allows, and what it is (its ``doc``), for a missing key's message."""
     if isinstance(field, Field):
-        return f"allowed {field.allowed()}" + (f"; {field.doc}" if field.doc else "")
-    if isinstance(field, Choice):
-        return f"one of {list(field.choices)}"
-    if isinstance(field, Flag):
-        return "true or false"
-    if isinstance(field, TextList):
-        return "a list of strings"
-    return "a string"
+        allowed = f"allowed {field.allowed()}"
+    elif isinstance(field, Choice):
+        allowed = f"one of {list(field.choices)}"
+    elif isinstance(field, Flag):
+        allowed = "true or false"
+    elif isinstance(field, TextList):
+        allowed = "a list of strings"
+    else:
+        allowed = "a string"
+    return allowed + (f"; {field.doc}" if field.doc else "")
 
 
 def _join(prefix: str, key: str) -> str:

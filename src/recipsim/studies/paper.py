@@ -114,7 +114,8 @@ def run_paper_study(
     hydrodynamic: bool = False,
     bearing_law: str = DEFAULT_LAW,
 ) -> PaperStudy:
-    """Run the paper's pinned-against-flexible study and write its report.
+    """Run the paper's pinned-against-flexible study and write its report; the
+    :class:`PaperStudy`.
 
     Parameters
     ----------
@@ -132,8 +133,9 @@ def run_paper_study(
     drive : {"torque_profile", "constant_speed"}
         Drive of the flexible runs; ``torque_profile`` applies the pinned driving torque
         of the same load (the paper's procedure).
-    rtol : float
-        Relative tolerance of the flexible runs (``solver.rtol``) [-].
+    rtol, periodic_tolerance : float
+        Relative tolerance of the flexible runs (``solver.rtol``) [-]; cycle tolerance of
+        the damped and the shooting runs (``solver.cycle_tolerance``).
     undamped_revolutions : int
         Revolutions of the undamped transients (``undamped_start`` other than
         ``"periodic"``); the last one is reported.
@@ -146,8 +148,6 @@ def run_paper_study(
         (``periodic``); or a transient of ``undamped_revolutions`` with the bearings
         deflected by the pinned loads (``quasi_static``, a case's initial state) or
         undeflected (``unloaded``), which starts a much larger free vibration.
-    periodic_tolerance : float
-        Cycle tolerance of the damped and the shooting runs (``solver.cycle_tolerance``).
     max_revolutions : int
         Revolution limit of the damped run; of a shooting run, twice this (its
         Jacobian costs one revolution per state).
@@ -157,35 +157,38 @@ def run_paper_study(
     bearing_law : {"finite_journal", "short_journal"}
         Film law of the hydrodynamic journals.
 
-    Returns
-    -------
-    PaperStudy
-
     Raises
     ------
     ValueError
-        For an unknown ``drive`` or ``undamped_start``, or fewer than 1 revolution or
-        4 samples.
+        An unknown ``drive`` or ``undamped_start``, fewer than 1 revolution or 4 samples.
     SolverError
         If an integration fails.
     CaseError
-        If a setting is outside a case key's range, or the journals lack film data
-        (``hydrodynamic``).
+        A setting outside a case key's range, or journals without film data (``hydrodynamic``).
     """
     _check_settings(drive, undamped_start, undamped_revolutions, samples_per_revolution)
     start = time.perf_counter()
-    op = case.operating_point
-    loads = {"inertia": constant_curve(op.shell_pressure), "gas": curve}
+    loads = {"inertia": constant_curve(case.operating_point.shell_pressure), "gas": curve}
     options: dict[str, Any] = {
-        "drive": drive,
-        "rtol": rtol,
-        "method": case.solver.method,
-        "undamped_revolutions": undamped_revolutions,
-        "undamped_start": undamped_start,
+        "drive": drive, "rtol": rtol, "method": case.solver.method,
+        "undamped_revolutions": undamped_revolutions, "undamped_start": undamped_start,
         "samples_per_revolution": samples_per_revolution,
-        "periodic_tolerance": periodic_tolerance,
-        "max_revolutions": max_revolutions,
-    }
+        "periodic_tolerance": periodic_tolerance, "max_revolutions": max_revolutions,
+    }  # fmt: skip
+    study = _run_study(case, curve, loads, options, hydrodynamic, bearing_law)
+    return _write_study(study, out_dir, plots, start)
+
+
+def _run_study(
+    case: Case,
+    curve: PressureCurve,
+    loads: dict[str, PressureCurve],
+    options: dict[str, Any],
+    hydrodynamic: bool,
+    bearing_law: str,
+) -> PaperStudy:
+    """Every run of the study (pinned, flexible, and the hydrodynamic column if asked),
+    its tables and settings; nothing written, no ``compute``/``write``/``total`` times."""
     cycles: dict[str, pd.DataFrame] = {}
     runs: dict[str, RunRecord] = {}
     pinned = pinned_runs(case, loads, options)
@@ -195,14 +198,14 @@ def run_paper_study(
     for name, (result_f, record) in flexible.items():
         cycles[name], runs[name] = flexible_table(result_f), record
     films: dict[str, LoadRun] = {}
+    op = case.operating_point
     settings = study_settings(
         case.mechanism, crank_geometry(case), curve, op.shell_pressure, op.shaft_speed,
         case=case.name, **options,
     )  # fmt: skip
     if hydrodynamic:
-        films = run_hydrodynamic(
-            case, loads, law=bearing_law, samples_per_revolution=samples_per_revolution
-        )
+        samples = options["samples_per_revolution"]
+        films = run_hydrodynamic(case, loads, law=bearing_law, samples_per_revolution=samples)
         for config, h in films.items():
             name = f"{config}_hydrodynamic"
             cycles[name] = h.cycle
@@ -212,18 +215,25 @@ def run_paper_study(
             )  # fmt: skip
         settings["hydrodynamic"] = hydrodynamic_settings(case, bearing_law)
     order = [*RUNS, *(HYDRODYNAMIC_RUNS if films else ())]
-    timings = {name: runs[name].wall_time for name in order}
     loads_p = {k: v[1] for k, v in pinned.items()}
-    study = PaperStudy(
+    return PaperStudy(
         table1=build_table1(loads_p, {k: v[0] for k, v in flexible.items()}, films),
         cycles={k: cycles[k] for k in order},
         runs={k: runs[k] for k in order},
-        timings=timings,
+        timings={name: runs[name].wall_time for name in order},
         settings=settings,
         flexible={k: v[0] for k, v in flexible.items()},
         pinned=loads_p,
         hydrodynamic=films,
     )
+
+
+def _write_study(
+    study: PaperStudy, out_dir: str | Path | None, plots: bool, start: float
+) -> PaperStudy:
+    """Write the report into ``out_dir`` (None: nothing); the study with its files and
+    the ``compute``, ``write`` and ``total`` times since ``start`` [s]."""
+    timings = study.timings
     files: tuple[Path, ...] = ()
     if out_dir is not None:
         t0 = time.perf_counter()
