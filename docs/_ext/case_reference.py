@@ -7,9 +7,11 @@ the declarations that validate the files: :mod:`recipsim.case.schema` ``Field``,
 ``Described`` (unit and range words that the loader's checks and messages use) for the
 tables validated in code: ``[mechanism.*]``, ``[bearings.<name>]``
 (:mod:`recipsim.case.mechanism_schema`) and ``[oil]`` (:mod:`recipsim.case.lubrication`).
-Only the top-level keys are listed by hand. A key added to a declaration appears here
-without editing the documentation; a top-level table without a declaration is listed
-with a note, and the docs test fails on it.
+Only the case file's top-level keys are listed by hand. The tables of a refrigerant file,
+of the check's ``expectations.toml`` and a sweep file's top level
+(:data:`recipsim.studies.sweep.spec.SWEEP_SPEC`) follow. A key added to a declaration
+appears here without editing the documentation; a top-level table without a declaration
+is listed with a note, and the docs test fails on it.
 """
 
 from __future__ import annotations
@@ -35,7 +37,7 @@ def _default(field: Any, required: object) -> str:
         return "not set"
     if isinstance(default, bool):
         return f"``{str(default).lower()}``"
-    if default == "":
+    if default == "" or default == ():
         return "empty"
     if isinstance(default, float):
         return f"{default:g}"
@@ -48,7 +50,7 @@ def _cell(text: str) -> str:
 
 def declared_rows(table: str, spec: Any) -> list[list[str]]:
     """Rows (key, unit, default, allowed, required, meaning) of one declared table."""
-    from recipsim.case.schema import REQUIRED, Choice, Field, Flag
+    from recipsim.case.schema import REQUIRED, Choice, Field, Flag, TextList
 
     rows = []
     for key, field in spec.items():
@@ -61,6 +63,8 @@ def declared_rows(table: str, spec: Any) -> list[list[str]]:
             unit = "-"
         elif isinstance(field, Flag):
             allowed, unit = "``true``, ``false``", "-"
+        elif isinstance(field, TextList):
+            allowed, unit = "a list of strings", "-"
         else:
             allowed, unit = "a string", "-"
         required = "yes" if field.default is REQUIRED else "no"
@@ -81,13 +85,16 @@ def described_rows(table: str, spec: Any, keys: tuple[str, ...] | None = None) -
 
 
 def tables() -> list[tuple[str, str, list[list[str]]]]:
-    """(heading, note, rows) of every table of a case file and of a refrigerant file."""
-    from recipsim.case import load, mechanism_schema
+    """(heading, note, rows) of every table of a case file, a refrigerant file, the check's
+    expectations and a sweep file."""
+    from recipsim.case import case_schema, mechanism_schema
     from recipsim.case.lubrication import OIL_SPEC
     from recipsim.case.mechanism import PISTON_BEARING_KEYS
     from recipsim.case.motor import MOTOR_SPEC
-    from recipsim.case.refrigerant import LIMITS_SPEC, RATING_POINT_SPEC
+    from recipsim.case.envelope_table import ENVELOPE_SPEC
+    from recipsim.case.refrigerant import LIMITS_SPEC, RATING_POINT_SPEC, REFRIGERANT_SPEC
     from recipsim.case.thermal import THERMAL_SPEC
+    from recipsim.studies.check.expectations import EXPECTATION_SPEC, MINIMUM_SPEC
 
     coded = (
         "Validated in :mod:`recipsim.case.mechanism` against the declarations of "
@@ -95,26 +102,26 @@ def tables() -> list[tuple[str, str, list[list[str]]]]:
         "checked in code, their words are these)."
     )
     declared = [
-        ("[options]", "", load.OPTION_SPEC),
-        ("[operating_point]", _OP_NOTE, load.OPERATING_POINT_SPEC),
+        ("[options]", "", case_schema.OPTION_SPEC),
+        ("[operating_point]", _OP_NOTE, case_schema.OPERATING_POINT_SPEC),
         (
             "[geometry]",
             "Give exactly one of ``clearance_ratio`` and ``clearance_volume``.",
-            load.GEOMETRY_SPEC,
+            case_schema.GEOMETRY_SPEC,
         ),
-        ("[valves]", "", load.VALVES_TOP_SPEC),
+        ("[valves]", "", case_schema.VALVES_TOP_SPEC),
         (
             "[valves.suction], [valves.discharge]",
             'Required unless ``options.valves = "ideal"``.',
-            load.VALVE_SPEC,
+            case_schema.VALVE_SPEC,
         ),
-        ("[leakage]", "", load.LEAKAGE_SPEC),
+        ("[leakage]", "", case_schema.LEAKAGE_SPEC),
         (
             "[heat_transfer]",
             '``wall_temperature`` is required unless ``options.heat_transfer = "adiabatic"``.',
-            load.HEAT_TRANSFER_SPEC,
+            case_schema.HEAT_TRANSFER_SPEC,
         ),
-        ("[solver]", "", load.SOLVER_SPEC),
+        ("[solver]", "", case_schema.SOLVER_SPEC),
         ("[motor]", 'Required with ``options.drive = "induction_motor"``.', MOTOR_SPEC),
         (
             "[thermal]",
@@ -125,7 +132,7 @@ def tables() -> list[tuple[str, str, list[list[str]]]]:
         (
             "[pressure_curve]",
             '``file`` is required with ``options.pressure = "tabulated"``.',
-            load.PRESSURE_CURVE_SPEC,
+            case_schema.PRESSURE_CURVE_SPEC,
         ),
     ]
     out = [("Top level", _TOP_NOTE, top_rows())]
@@ -173,6 +180,11 @@ def tables() -> list[tuple[str, str, list[list[str]]]]:
             described_rows("oil", OIL_SPEC),
         ),
         (
+            "Refrigerant file: top level",
+            "``refrigerants/<name>.toml``; its tables follow.",
+            declared_rows("refrigerant", REFRIGERANT_SPEC),
+        ),
+        (
             "Refrigerant file: [limits]",
             "In ``refrigerants/<name>.toml``; each limit narrows CoolProp's range.",
             declared_rows("limits", LIMITS_SPEC),
@@ -182,11 +194,40 @@ def tables() -> list[tuple[str, str, list[list[str]]]]:
             "Named by ``operating_point.rating_point``.",
             declared_rows("rating_points", RATING_POINT_SPEC),
         ),
+        (
+            "Refrigerant file: [envelope]",
+            "Where the compressor is meant to run; a case outside it is refused unless "
+            '``solver.envelope = "ignore"``.',
+            declared_rows("envelope", ENVELOPE_SPEC),
+        ),
+        (
+            "Check expectations: [defaults], [cases.<name>]",
+            "In ``expectations.toml`` beside the cases of ``recipsim check`` (the hard cases': "
+            "``data/cases/hard/expectations.toml``); a ``[cases.<name>]`` table names a case "
+            "file beside it and keeps what it leaves out from ``[defaults]``.",
+            declared_rows("expectations", EXPECTATION_SPEC),
+        ),
+        (
+            "Check expectations: minimum",
+            "A sub-table of ``[defaults]`` or ``[cases.<name>]``: lower bounds on the metrics "
+            "of a converged run.",
+            declared_rows("minimum", MINIMUM_SPEC),
+        ),
+        (
+            "Sweep file: top level",
+            "A ``recipsim sweep`` file (:doc:`sweeps`), read by "
+            ":func:`recipsim.studies.sweep.spec.load_sweep`. Its tables ``[set]`` (dotted "
+            "case key = value), ``[axes]`` (dotted case key = list of values) and "
+            "``[[points]]`` (tables of dotted case key = value) hold case keys, checked "
+            "against the tables above when the points are planned.",
+            sweep_rows(),
+        ),
     ]
     # what the sections above describe: the top level's keys and every table's first part
     known = {row[0].strip("`") for row in top_rows()}
     known |= {head.strip("[").split("]")[0].split(".")[0] for head, _, _ in out}
-    for extra in sorted(load.TOP_KEYS - known):  # a table added later, not documented here yet
+    # a table added later, not documented here yet
+    for extra in sorted(case_schema.TOP_KEYS - known):
         out.append((f"[{extra}]", "Accepted by the loader; not described here yet.", []))
     return out
 
@@ -195,6 +236,20 @@ def _bearing_names() -> tuple[str, ...]:
     from recipsim.physics.mechanics.layout import BEARING_NAMES
 
     return tuple(BEARING_NAMES)
+
+
+def sweep_rows() -> list[list[str]]:
+    """Rows of a sweep file's top level; its ``name`` follows the case's name rule."""
+    from recipsim.studies.sweep.spec import SWEEP_SPEC
+
+    rows = declared_rows("sweep", SWEEP_SPEC)
+    case_rows = {row[0]: row for row in top_rows()}
+    for row in rows:
+        if row[0] == "``name``":  # checked_name's rule, the file's stem by default
+            row[2], row[3] = case_rows["``name``"][2], case_rows["``name``"][3]
+        elif row[0] == "``base``":  # resolved as a case's extends
+            row[3] = case_rows["``extends``"][3]
+    return rows
 
 
 def top_rows() -> list[list[str]]:
@@ -228,7 +283,7 @@ def _max_name() -> int:
 
 
 _TOP_NOTE = (
-    "Validated by hand in :func:`recipsim.case.load.case_from_dict`. Quantities may "
+    "Validated by hand in :func:`recipsim.case.build.case_sections`. Quantities may "
     'carry units (``"3500 rpm"``, ``"-23.3 degC"``, ``"22 mm"``); bare numbers '
     "are in the SI unit of the key."
 )

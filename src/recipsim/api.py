@@ -21,7 +21,9 @@ from typing import TYPE_CHECKING, Any
 
 import pandas as pd
 
-from recipsim.case.load import Case, load_case, parse_override, toml_literal
+from recipsim.case.case import Case
+from recipsim.case.load import load_case
+from recipsim.case.overrides import parse_override, toml_literal
 from recipsim.results.run import CaseRun, simulate_case
 
 if TYPE_CHECKING:

@@ -41,22 +41,24 @@ def test_every_markdown_page_is_in_the_site(site):
 
 
 def test_case_reference_lists_every_declared_key(site):
-    from recipsim.case import load
+    from recipsim.case import case_schema
     from recipsim.case.motor import MOTOR_SPEC
     from recipsim.case.thermal import THERMAL_SPEC
+    from recipsim.studies.sweep.spec import SWEEP_SPEC
 
     html = (site / "case-reference.html").read_text()
     specs = [
-        load.OPTION_SPEC,
-        load.OPERATING_POINT_SPEC,
-        load.GEOMETRY_SPEC,
-        load.VALVES_TOP_SPEC,
-        load.VALVE_SPEC,
-        load.LEAKAGE_SPEC,
-        load.HEAT_TRANSFER_SPEC,
-        load.SOLVER_SPEC,
+        case_schema.OPTION_SPEC,
+        case_schema.OPERATING_POINT_SPEC,
+        case_schema.GEOMETRY_SPEC,
+        case_schema.VALVES_TOP_SPEC,
+        case_schema.VALVE_SPEC,
+        case_schema.LEAKAGE_SPEC,
+        case_schema.HEAT_TRANSFER_SPEC,
+        case_schema.SOLVER_SPEC,
         MOTOR_SPEC,
         THERMAL_SPEC,
+        SWEEP_SPEC,
     ]
     for spec in specs:
         for key, field in spec.items():
@@ -65,6 +67,7 @@ def test_case_reference_lists_every_declared_key(site):
             if unit and unit != "dimensionless":
                 assert unit.replace("**", "^") in html, (key, unit)
     assert "rad/s" in html and "3.14159" in html  # shaft_speed's unit, max_step's range
+    assert "Sweep file: top level" in html and "[1, inf], whole number" in html  # max_points
 
 
 def test_case_reference_describes_the_mechanism_bearing_and_oil_keys(site):

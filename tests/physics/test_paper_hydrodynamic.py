@@ -19,8 +19,8 @@ import numpy as np
 import pytest
 from matplotlib.patches import Circle
 
-from recipsim.case.load import Case, load_case
-from recipsim.model.build import crank_geometry
+from recipsim.case.case import Case
+from recipsim.case.load import load_case
 from recipsim.physics.mechanics.layout import BEARING_NAMES
 from recipsim.report.mechanics_plots import film_bearings, film_clearance, plot_orbits
 from recipsim.studies.paper import run_paper_study
@@ -39,19 +39,15 @@ def case() -> Case:
 
 @pytest.fixture(scope="module")
 def study(case: Case, tmp_path_factory: pytest.TempPathFactory) -> PaperStudy:
-    op = case.operating_point
     assert case.pressure_curve is not None
     return run_paper_study(
-        case.mechanism,
-        crank_geometry(case),
+        case,
         case.pressure_curve,
-        op.shell_pressure,
-        op.shaft_speed,
         tmp_path_factory.mktemp("paper") / "study",
         undamped_start="quasi_static",
         undamped_revolutions=2,
         samples_per_revolution=SAMPLES,
-        hydrodynamic=case,
+        hydrodynamic=True,
     )
 
 

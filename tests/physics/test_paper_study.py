@@ -7,14 +7,15 @@ fixture), RMS loads [N] for primary / secondary / eccentric / pin / piston_top /
 piston_skirt:
 inertia pinned 97.3 / 37.4 / 59.9 / 32.1 / 2.84 / 2.84 (undamped flexible +0.1 to
 +0.8 %); gas pinned 261.2 / 100.5 / 160.7 / 170.9 / 7.45 / 7.45, undamped flexible
-+11.9 / +73.7 / +1.0 / +0.5 / +0.9 / +0.9 %, damped flexible +1.8 / +4.1 / +0.4 / +0.2 /
++11.9 / +73.5 / +1.0 / +0.5 / +0.9 / +0.9 %, damped flexible +1.8 / +4.1 / +0.4 / +0.2 /
 +0.2 / +0.2 %; largest orbits (primary, secondary) 3.1 / 1.5 um (inertia), 17.2 / 10.9 um
-(gas), 15.1 / 7.8 um (gas damped). About 4 s for the whole study, figures included.
+(gas), 15.1 / 7.8 um (gas damped). Every flexible run is the case solved by the
+compiled scene and the periodic solver: about 1 s for the runs (figures aside).
 
 The default undamped runs are the periodic response by shooting (``periodic_study``
-fixture, about 7 s): measured inertia +0.4 / +0.7 / +0.1 / +0.1 / +0.1 / +0.1 % over
+fixture, about 1 s): measured inertia +0.4 / +0.7 / +0.1 / +0.1 / +0.1 / +0.1 % over
 pinned (the forced response to the inertia load alone is nearly quasi-static), gas
-+24.4 / +165.6 / +0.6 / +0.3 / +0.6 / +0.6 %; 23 revolutions for the inertia run (one
++24.4 / +165.4 / +0.6 / +0.3 / +0.6 / +0.6 %; 24 revolutions for the inertia run (one
 Jacobian), 5 for the gas run (the same Jacobian).
 """
 
@@ -22,6 +23,7 @@ from __future__ import annotations
 
 import json
 import math
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -30,7 +32,9 @@ import pytest
 from matplotlib.figure import Figure
 
 from recipsim.atomic import MARKER
+from recipsim.case.load import Case, load_case
 from recipsim.case.mechanism_spec import CrankGeometry, MechanismSpec
+from recipsim.model.build import crank_geometry
 from recipsim.model.pinned import pinned_loads
 from recipsim.physics.mechanics.layout import BEARING_NAMES
 from recipsim.physics.mechanics.tabulated import PressureCurve
@@ -64,20 +68,24 @@ def out_dir(tmp_path_factory: pytest.TempPathFactory) -> Path:
 
 
 @pytest.fixture(scope="module")
-def study(
-    spec: MechanismSpec,
-    geometry: CrankGeometry,
-    curve: PressureCurve,
-    shell_pressure: float,
-    omega: float,
-    out_dir: Path,
-) -> PaperStudy:
+def case(spec: MechanismSpec, geometry: CrankGeometry, shell_pressure: float, omega: float) -> Case:
+    """The shipped paper case at the fixtures' shell pressure: its crank train is the
+    reference mechanism (checked) and its speed the reference speed."""
+    case = load_case("paper_tabulated", {"operating_point.shell_pressure": shell_pressure})
+    assert repr(case.mechanism) == repr(spec)
+    g = crank_geometry(case)
+    assert (g.bore, g.crank_radius, g.rod_length) == pytest.approx(
+        (geometry.bore, geometry.crank_radius, geometry.rod_length), rel=1e-15
+    )
+    assert case.operating_point.shaft_speed == pytest.approx(omega, rel=1e-15)
+    return case
+
+
+@pytest.fixture(scope="module")
+def study(case: Case, curve: PressureCurve, out_dir: Path) -> PaperStudy:
     return run_paper_study(
-        spec,
-        geometry,
+        case,
         curve,
-        shell_pressure,
-        omega,
         out_dir,
         undamped_revolutions=UNDAMPED_REVOLUTIONS,
         samples_per_revolution=SAMPLES,
@@ -86,17 +94,9 @@ def study(
 
 
 @pytest.fixture(scope="module")
-def periodic_study(
-    spec: MechanismSpec,
-    geometry: CrankGeometry,
-    curve: PressureCurve,
-    shell_pressure: float,
-    omega: float,
-) -> PaperStudy:
+def periodic_study(case: Case, curve: PressureCurve) -> PaperStudy:
     """The defaults: undamped runs are the periodic response, by shooting."""
-    return run_paper_study(
-        spec, geometry, curve, shell_pressure, omega, None, samples_per_revolution=90
-    )
+    return run_paper_study(case, curve, None, samples_per_revolution=90)
 
 
 def column(study: PaperStudy, name: str) -> np.ndarray:
@@ -260,7 +260,7 @@ def test_study_json_and_readme(study: PaperStudy, out_dir: Path) -> None:
     info = json.loads((out_dir / "study.json").read_text())
     settings = info["settings"]
     assert settings["undamped_revolutions"] == UNDAMPED_REVOLUTIONS
-    assert settings["drive"] == "torque_profile" and settings["method"] == "LSODA"
+    assert settings["drive"] == "torque_profile" and settings["method"] == "dopri5"
     assert "quasi-static pose" in settings["undamped_runs"]
     runs = {r["name"]: r for r in info["runs"]}
     assert list(runs) == list(RUNS)
@@ -312,22 +312,15 @@ def test_failed_write_keeps_the_previous_directory(
 
 
 def test_unloaded_start_reproduces_the_papers_large_excess(
-    spec: MechanismSpec,
-    geometry: CrankGeometry,
-    curve: PressureCurve,
-    shell_pressure: float,
-    omega: float,
+    case: Case, curve: PressureCurve
 ) -> None:
     """Started from undeflected bearings, the undamped runs carry a much larger free
     vibration: every RMS load at least 10 % above pinned for both loads (measured
     +31 % to +167 % inertia, +53 % to +417 % gas; the paper +21 % to +111 %), while
     the damped run does not depend on it. Nothing is written without ``out_dir``."""
     result = run_paper_study(
-        spec,
-        geometry,
+        case,
         curve,
-        shell_pressure,
-        omega,
         None,
         undamped_revolutions=3,
         samples_per_revolution=90,
@@ -366,45 +359,32 @@ def test_undamped_periodic_response_by_shooting(periodic_study: PaperStudy) -> N
     )
 
 
-def test_undamped_periodic_response_is_a_fixed_point(
-    periodic_study: PaperStudy,
-    spec: MechanismSpec,
-    geometry: CrankGeometry,
-    curve: PressureCurve,
-    shell_pressure: float,
-    omega: float,
-) -> None:
-    """Independent check: revolutions run on from the periodic state by the plain
-    driver stay periodic (each revolution's change below the tolerance), and their
-    RMS loads are those of the study (within 1e-3: the periodicity tolerance)."""
-    from recipsim.case.mechanism_spec import with_damping
-    from recipsim.solve.mechanism_ivp import simulate_mechanism
+def test_undamped_periodic_response_is_a_fixed_point(periodic_study: PaperStudy) -> None:
+    """Independent check: revolutions run on from the periodic state by scipy's LSODA
+    (the benchmark's ``solve_ivp`` driver in the shared revolution loop) stay periodic
+    (the state change over the last revolution below the tolerance), and their RMS
+    loads are those of the study (within 1e-3: the periodicity tolerance)."""
+    from recipsim.model.build import build_model
+    from recipsim.results.tables import cycle_table, summary
+    from recipsim.solve.residual import state_change
+    from recipsim.studies.bench.ivp import solve_periodic_ivp
 
     periodic = periodic_study.flexible["gas_flexible"]
-    result = simulate_mechanism(
-        with_damping(spec, 0.0),
-        geometry,
-        curve.crank_angle,
-        curve.pressure,
-        shell_pressure,
-        omega,
-        revolutions=2,
-        rtol=1e-7,
-        samples_per_revolution=90,
-        y0=periodic.states[0],
-    )
-    assert result.cycle_change < 1e-3
-    np.testing.assert_allclose(result.force_rms, periodic.force_rms, rtol=1e-3)
+    assert periodic.start is not None
+    two = {"solver.min_revolutions": 2, "solver.max_revolutions": 2}
+    run_on = replace(periodic.case.with_(two), pressure_curve=periodic.case.pressure_curve)
+    model = build_model(run_on)
+    model.y0 = periodic.start.copy()
+    result = solve_periodic_ivp(model, "LSODA")
+    assert result.revolutions == 2
+    assert state_change(model, result.final) < 1e-3
+    rms = summary(result, cycle_table(result), run_on)
+    loads = np.array([rms[f"bearing_rms_{b} [N]"] for b in BEARING_NAMES])
+    np.testing.assert_allclose(loads, periodic.force_rms, rtol=1e-3)
 
 
-def test_invalid_settings_are_rejected(
-    spec: MechanismSpec,
-    geometry: CrankGeometry,
-    curve: PressureCurve,
-    shell_pressure: float,
-    omega: float,
-) -> None:
-    args = (spec, geometry, curve, shell_pressure, omega, None)
+def test_invalid_settings_are_rejected(case: Case, curve: PressureCurve) -> None:
+    args = (case, curve, None)
     with pytest.raises(ValueError, match="undamped_start"):
         run_paper_study(*args, undamped_start="rest")
     with pytest.raises(ValueError, match="drive"):

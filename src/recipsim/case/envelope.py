@@ -32,7 +32,7 @@ from recipsim.case.envelope_table import ENVELOPE_QUANTITIES
 from recipsim.errors import CaseError
 
 if TYPE_CHECKING:
-    from recipsim.case.load import Case
+    from recipsim.case.case import Case
 
 
 class OutsideEnvelopeError(CaseError):

@@ -10,15 +10,35 @@ from recipsim.case.schema import Field, Spec, read_table
 from recipsim.errors import CaseError
 
 ENVELOPE_SPEC: Spec = {
-    "evaporating_temperature_min": Field("K", None, lo=100.0, hi=700.0),
-    "evaporating_temperature_max": Field("K", None, lo=100.0, hi=700.0),
-    "condensing_temperature_min": Field("K", None, lo=100.0, hi=700.0),
-    "condensing_temperature_max": Field("K", None, lo=100.0, hi=700.0),
-    "discharge_pressure_min": Field("Pa", None, lo=0.0, open_lo=True),
-    "discharge_pressure_max": Field("Pa", None, lo=0.0, open_lo=True),
-    "pressure_ratio_max": Field("dimensionless", None, lo=1.0, open_lo=True),
-    "shaft_speed_min": Field("rad/s", None, lo=0.0, open_lo=True),
-    "shaft_speed_max": Field("rad/s", None, lo=0.0, open_lo=True),
+    "evaporating_temperature_min": Field(
+        "K",
+        None,
+        lo=100.0,
+        hi=700.0,
+        doc="lowest evaporating temperature",
+    ),
+    "evaporating_temperature_max": Field(
+        "K", None, lo=100.0, hi=700.0, doc="highest evaporating temperature"
+    ),
+    "condensing_temperature_min": Field(
+        "K", None, lo=100.0, hi=700.0, doc="lowest condensing temperature"
+    ),
+    "condensing_temperature_max": Field(
+        "K", None, lo=100.0, hi=700.0, doc="highest condensing temperature"
+    ),
+    "discharge_pressure_min": Field(
+        "Pa", None, lo=0.0, open_lo=True, doc="lowest discharge pressure"
+    ),
+    "discharge_pressure_max": Field(
+        "Pa", None, lo=0.0, open_lo=True, doc="highest discharge pressure"
+    ),
+    "pressure_ratio_max": Field(
+        "dimensionless", None, lo=1.0, open_lo=True, doc="highest discharge over suction pressure"
+    ),
+    "shaft_speed_min": Field(
+        "rad/s", None, lo=0.0, open_lo=True, doc="lowest shaft speed, e.g. '1500 rpm'"
+    ),
+    "shaft_speed_max": Field("rad/s", None, lo=0.0, open_lo=True, doc="highest shaft speed"),
 }
 
 #: quantity -> (envelope key stem, how the value and bound are written)

@@ -39,8 +39,9 @@ _OWN = "with law"
 #: :mod:`recipsim.physics.mechanics.journal`'s).
 FILM_SPEC: DescribedSpec = {
     "diameter": Described(
-        "m", "1 mm ... 1 m", required=f"journals {_FILM}",
+        "m", "1 mm < value < 1 m", required=f"journals {_FILM}",
         doc="journal diameter (the piston film: the bore)",
+        lo=1e-3, hi=1.0, open_lo=True, open_hi=True,
     ),
     "length": Described(
         "m", "0.1 ... 3 diameters", required=f"journals {_FILM}",
@@ -51,18 +52,21 @@ FILM_SPEC: DescribedSpec = {
         doc="radial clearance, sleeve radius minus journal radius",
     ),
     "film_temperature": Described(
-        "K", "200 ... 500 K", "oil.film_temperature",
+        "K", "200 K < value < 500 K", "oil.film_temperature",
         doc="film temperature at which the oil's viscosity is taken",
+        lo=200.0, hi=500.0, open_lo=True, open_hi=True,
     ),
     "contact_film": Described(
         "m", "0 ... the radial clearance", "1 um",
         doc="film below which the asperity contact law acts",
     ),
     "contact_stiffness": Described(
-        "N/m", "> 0", "1e10 N/m", doc="stiffness of the asperity contact (penalty) law"
+        "N/m", "> 0", "1e10 N/m", doc="stiffness of the asperity contact (penalty) law",
+        lo=0.0, open_lo=True,
     ),
     "contact_friction": Described(
-        "dimensionless", "0 ... 1", "0.1", doc="friction coefficient of the asperity contact"
+        "dimensionless", "0 ... 1", "0.1", doc="friction coefficient of the asperity contact",
+        lo=0.0, hi=1.0,
     ),
 }  # fmt: skip
 #: ``[oil]``: read by :func:`parse_oil`.
@@ -88,11 +92,13 @@ OIL_SPEC: DescribedSpec = {
         doc="kinematic viscosity at the temperatures (with density)",
     ),
     "density": Described(
-        "kg/m**3", "500 ... 2000", required=_OWN, doc="oil density"
+        "kg/m**3", "500 < value < 2000", required=_OWN, doc="oil density",
+        lo=500.0, hi=2000.0, open_lo=True, open_hi=True,
     ),
     "film_temperature": Described(
-        "K", "200 ... 500 K", "60 degC",
+        "K", "200 K < value < 500 K", "60 degC",
         doc="film temperature of every lubricated bearing that gives none",
+        lo=200.0, hi=500.0, open_lo=True, open_hi=True,
     ),
 }  # fmt: skip
 _OIL_KEYS = tuple(OIL_SPEC)
@@ -172,9 +178,7 @@ def parse_oil(data: Any, file: str) -> OilSpec:
     """Read the ``[oil]`` table (``None``: the default oil at the default temperature)."""
     t = TableReader({} if data is None else data, file, "oil")
     t.check_keys(_OIL_KEYS)
-    temperature = t.described(
-        OIL_SPEC, "film_temperature", lambda v: 200.0 < v < 500.0, DEFAULT_FILM_TEMPERATURE
-    )
+    temperature = t.described(OIL_SPEC, "film_temperature", default=DEFAULT_FILM_TEMPERATURE)
     if "law" not in t.data:
         name = t.choice("name", _OIL_NAMES, "iso_vg10")
         extra = set(t.data) - {"name", "film_temperature"}
@@ -185,7 +189,7 @@ def parse_oil(data: Any, file: str) -> OilSpec:
 
     law = t.choice("law", ("vogel", "walther"))
     label = str(t.data.get("name", "oil of the case"))
-    density = t.described(OIL_SPEC, "density", lambda v: 500.0 < v < 2000.0)
+    density = t.described(OIL_SPEC, "density")
     temps = _points(t, "temperatures", "K")
     kinematic = "kinematic_viscosities" in t.data
     key = "kinematic_viscosities" if kinematic else "viscosities"
@@ -224,22 +228,18 @@ def parse_film(
 
     spec = FILM_SPEC
     if diameter is None:
-        diameter = t.described(spec, "diameter", lambda v: 1e-3 < v < 1.0)
+        diameter = t.described(spec, "diameter")
     if length is None:
         length = t.described(spec, "length", lambda v: 0.1 * diameter <= v <= 3.0 * diameter,
                              None, f"diameter {diameter:g} m")  # fmt: skip
     clearance = t.described(
         spec, "radial_clearance", lambda v: 1e-4 * diameter <= v <= 1e-2 * diameter
     )
-    temperature = t.described(
-        spec, "film_temperature", lambda v: 200.0 < v < 500.0, oil.film_temperature
-    )
+    temperature = t.described(spec, "film_temperature", default=oil.film_temperature)
     contact_film = t.described(spec, "contact_film", lambda v: 0.0 <= v < clearance,
                                DEFAULT_CONTACT_FILM, f"{clearance:g} m")  # fmt: skip
-    stiffness = t.described(spec, "contact_stiffness", lambda v: v > 0.0,
-                            DEFAULT_CONTACT_STIFFNESS)  # fmt: skip
-    friction = t.described(spec, "contact_friction", lambda v: 0.0 <= v <= 1.0,
-                           DEFAULT_FRICTION_COEFFICIENT)  # fmt: skip
+    stiffness = t.described(spec, "contact_stiffness", default=DEFAULT_CONTACT_STIFFNESS)
+    friction = t.described(spec, "contact_friction", default=DEFAULT_FRICTION_COEFFICIENT)
     return FilmSpec(
         diameter, length, clearance, temperature, oil.viscosity(temperature),
         contact_film, stiffness, friction,

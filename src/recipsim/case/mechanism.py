@@ -18,7 +18,7 @@ The slider-crank geometry shared with the cylinder (bore, crank radius, rod leng
 is not read here: it is passed separately as a :class:`CrankGeometry`.
 
 :class:`CrankGeometry` and :class:`MechanismSpec` live in :mod:`.mechanism_spec`; they
-are imported from here by :mod:`recipsim.case.load` and :mod:`recipsim.model.build`.
+are imported from here by :mod:`recipsim.case.build` and :mod:`recipsim.model.build`.
 """
 
 from __future__ import annotations
@@ -47,18 +47,6 @@ __all__ = ["PISTON_BEARING_KEYS", "CrankGeometry", "MechanismSpec", "mechanism_f
 _INERTIA = "kg*m**2"
 
 
-def _positive(v: float) -> bool:
-    return v > 0.0
-
-
-def _non_negative(v: float) -> bool:
-    return v >= 0.0
-
-
-def _any(v: float) -> bool:
-    return True
-
-
 _PISTON_KEYS = tuple(PISTON_SPEC)
 _ROD_KEYS = tuple(ROD_SPEC)
 _COUNTERWEIGHT_KEYS = (
@@ -78,15 +66,15 @@ PISTON_BEARING_KEYS = ("law", "stiffness", "damping", "position_from_crown",
 def _parse_piston(t: _Table, bore: float | None) -> PistonSpec:
     t.check_keys(_PISTON_KEYS)
     spec = PISTON_SPEC
-    mass = t.described(spec, "mass", _positive)
-    length = t.described(spec, "length", _positive)
+    mass = t.described(spec, "mass")
+    length = t.described(spec, "length")
     within = f"{length:g} m"
     pin = t.described(spec, "pin_offset_from_crown", lambda v: 0.0 <= v <= length, None, within)
     com = t.described(
         spec, "centre_of_mass_from_crown", lambda v: 0.0 <= v <= length, 0.5 * length, within
     )
     if "transverse_inertia" in t.data:
-        inertia = t.described(spec, "transverse_inertia", _positive)
+        inertia = t.described(spec, "transverse_inertia")
     elif bore is None:
         raise CaseError(
             t.file,
@@ -101,30 +89,30 @@ def _parse_piston(t: _Table, bore: float | None) -> PistonSpec:
 
 def _parse_rod(t: _Table) -> ConnectingRodSpec:
     t.check_keys(_ROD_KEYS)
-    mass = t.described(ROD_SPEC, "mass", _positive)
-    frac = t.described(ROD_SPEC, "centre_of_mass_fraction", lambda v: 0.0 < v < 1.0)
-    inertia = t.described(ROD_SPEC, "inertia", _positive)
+    mass = t.described(ROD_SPEC, "mass")
+    frac = t.described(ROD_SPEC, "centre_of_mass_fraction")
+    inertia = t.described(ROD_SPEC, "inertia")
     return ConnectingRodSpec(mass, frac, inertia)
 
 
 def _parse_rotor(t: _Table) -> RotorSpec:
     t.check_keys(_ROTOR_KEYS)
     spec = ROTOR_SPEC
-    mass = t.described(spec, "mass", _positive)
-    ip = t.described(spec, "polar_inertia", _positive)
-    it = t.described(spec, "transverse_inertia", _positive)
-    zg = t.described(spec, "centre_of_mass_z", _any)
-    z1 = t.described(spec, "primary_z", _any)
+    mass = t.described(spec, "mass")
+    ip = t.described(spec, "polar_inertia")
+    it = t.described(spec, "transverse_inertia")
+    zg = t.described(spec, "centre_of_mass_z")
+    z1 = t.described(spec, "primary_z")
     z2 = t.described(spec, "secondary_z", lambda v: v != z1, None, f"primary_z = {z1:g} m")
     extra = [k for k in _COUNTERWEIGHT_KEYS[1:] if k in t.data]
     if extra and "counterweight_mass" not in t.data:
         raise CaseError(t.file, t.key(extra[0]), "needs counterweight_mass")
-    m_u = t.described(spec, "counterweight_mass", _non_negative, 0.0)
+    m_u = t.described(spec, "counterweight_mass", default=0.0)
     if not extra and m_u == 0.0:
         return RotorSpec(mass, ip, it, zg, z1, z2)
-    r_u = t.described(spec, "counterweight_radius", _positive)
-    ang = t.described(spec, "counterweight_angle", _any, math.pi)
-    z_u = t.described(spec, "counterweight_z", _any, 0.0)
+    r_u = t.described(spec, "counterweight_radius")
+    ang = t.described(spec, "counterweight_angle", default=math.pi)
+    z_u = t.described(spec, "counterweight_z", default=0.0)
     if m_u == 0.0:  # a sweep's zero point: the other keys are checked, nothing is added
         return RotorSpec(mass, ip, it, zg, z1, z2)
     return RotorSpec(mass, ip, it, zg, z1, z2, m_u, r_u, ang, z_u)
@@ -157,8 +145,8 @@ def _parse_bearing(
     law = t.choice("law", allowed, None if is_piston or name == "pin" else fallback)
     needs_spring = law == "linear"
     spec = BEARING_SPEC
-    k = t.described(spec, "stiffness", _positive, None if needs_spring else 0.0)
-    c = t.described(spec, "damping", _non_negative, None if needs_spring else 0.0)
+    k = t.described(spec, "stiffness", default=None if needs_spring else 0.0)
+    c = t.described(spec, "damping", default=None if needs_spring else 0.0)
     position = None
     if is_piston:
         position = t.described(

@@ -15,31 +15,44 @@ _INERTIA = "kg*m**2"
 _D = Described
 #: ``[mechanism.piston]``: read by :func:`_parse_piston` (units and range words from here).
 PISTON_SPEC: DescribedSpec = {
-    "mass": _D("kg", "> 0", doc="piston with its pin"),
-    "length": _D("m", "> 0", doc="crown to skirt end"),
+    "mass": _D("kg", "> 0", doc="piston with its pin", lo=0.0, open_lo=True),
+    "length": _D("m", "> 0", doc="crown to skirt end", lo=0.0, open_lo=True),
     "pin_offset_from_crown": _D("m", "0 ... length", doc="pin axis below the crown"),
     "centre_of_mass_from_crown": _D(
         "m", "0 ... length", "length / 2", doc="centre of mass below the crown"
     ),
     "transverse_inertia": _D(
         _INERTIA, "> 0", "solid cylinder of the bore and the length",
-        doc="about the pin axis through the centre of mass",
+        doc="about the pin axis through the centre of mass", lo=0.0, open_lo=True,
     ),
 }  # fmt: skip
 #: ``[mechanism.connecting_rod]``.
 ROD_SPEC: DescribedSpec = {
-    "mass": _D("kg", "> 0", doc="connecting rod"),
+    "mass": _D("kg", "> 0", doc="connecting rod", lo=0.0, open_lo=True),
     "centre_of_mass_fraction": _D(
-        "dimensionless", "0 < value < 1", doc="centre of mass from the big end, over the length"
+        "dimensionless",
+        "0 < value < 1",
+        doc="centre of mass from the big end, over the length",
+        lo=0.0,
+        hi=1.0,
+        open_lo=True,
+        open_hi=True,
     ),
-    "inertia": _D(_INERTIA, "> 0", doc="about the rotor-parallel axis through the centre of mass"),
+    "inertia": _D(
+        _INERTIA,
+        "> 0",
+        doc="about the rotor-parallel axis through the centre of mass",
+        lo=0.0,
+        open_lo=True,
+    ),
 }
 _COUNTERWEIGHT = "with counterweight_mass"
 #: ``[mechanism.rotor]``.
 ROTOR_SPEC: DescribedSpec = {
-    "mass": _D("kg", "> 0", doc="motor rotor plus crankshaft"),
-    "polar_inertia": _D(_INERTIA, "> 0", doc="about the spin axis"),
-    "transverse_inertia": _D(_INERTIA, "> 0", doc="about a diameter through the centre of mass"),
+    "mass": _D("kg", "> 0", doc="motor rotor plus crankshaft", lo=0.0, open_lo=True),
+    "polar_inertia": _D(_INERTIA, "> 0", doc="about the spin axis", lo=0.0, open_lo=True),
+    "transverse_inertia": _D(_INERTIA, "> 0", doc="about a diameter through the centre of mass",
+                              lo=0.0, open_lo=True),
     "centre_of_mass_z": _D("m", "any finite value", doc="axial position, eccentric plane at z = 0"),
     "primary_z": _D("m", "any finite value", doc="axial position of the primary bearing"),
     "secondary_z": _D(
@@ -48,9 +61,11 @@ ROTOR_SPEC: DescribedSpec = {
     "counterweight_mass": _D(
         "kg", ">= 0", "0 (none)",
         doc="rotating unbalance on the crank web (0: none, placement keys still checked)",
+        lo=0.0,
     ),
     "counterweight_radius": _D(
-        "m", "> 0", required=_COUNTERWEIGHT, doc="radius of the counterweight's centre of mass"
+        "m", "> 0", required=_COUNTERWEIGHT, doc="radius of the counterweight's centre of mass",
+        lo=0.0, open_lo=True,
     ),
     "counterweight_angle": _D(
         "rad", "any angle", "pi (opposite the crank pin)",
@@ -69,8 +84,10 @@ BEARING_SPEC: DescribedSpec = {
         "journals: options.bearing_law; others: required", required="pin, piston bearings",
         doc="bearing force law",
     ),
-    "stiffness": _D("N/m", "> 0", required=_LINEAR, doc="isotropic, normal to the bearing axis"),
-    "damping": _D("N*s/m", ">= 0", required=_LINEAR, doc="viscous, normal to the bearing axis"),
+    "stiffness": _D("N/m", "> 0", required=_LINEAR, doc="isotropic, normal to the bearing axis",
+                    lo=0.0, open_lo=True),
+    "damping": _D("N*s/m", ">= 0", required=_LINEAR, doc="viscous, normal to the bearing axis",
+                  lo=0.0),
     "position_from_crown": _D(
         "m", "0 ... piston length", required="piston_top, piston_skirt",
         doc="piston bearings: marker below the crown",

@@ -30,6 +30,16 @@ from recipsim.physics.thermo.fluid import Fluid
 if TYPE_CHECKING:
     from recipsim.physics.thermo.table_states import TableFluid
 
+#: The top of a refrigerant file; its tables are ``[limits]`` (:data:`LIMITS_SPEC`),
+#: ``[rating_points.<name>]`` (:data:`RATING_POINT_SPEC`) and ``[envelope]``
+#: (:data:`recipsim.case.envelope_table.ENVELOPE_SPEC`).
+REFRIGERANT_SPEC: Spec = {
+    "name": Text(doc="the name case files give as ``refrigerant``"),
+    "coolprop_name": Text(doc="CoolProp's name of the fluid"),
+    "description": Text("", "one line for people"),
+}
+REFRIGERANT_TABLES = ("limits", "rating_points", "envelope")
+
 RATING_POINT_SPEC: Spec = {
     "evaporating_temperature": Field("K", lo=100.0, hi=600.0),
     "condensing_temperature": Field("K", None, lo=100.0, hi=600.0),
@@ -146,17 +156,9 @@ def read_refrigerant_file(path: Path) -> RefrigerantSpec:
     """Read and validate one refrigerant file."""
     file = str(path)
     raw, _ = read_toml(path, "refrigerant")
-    check_keys(
-        raw,
-        {"name", "coolprop_name", "description", "limits", "rating_points", "envelope"},
-        file,
-        "",
-    )
+    check_keys(raw, {*REFRIGERANT_SPEC, *REFRIGERANT_TABLES}, file, "")
     top = read_table(
-        {k: v for k, v in raw.items() if k in ("name", "coolprop_name", "description")},
-        {"name": Text(), "coolprop_name": Text(), "description": Text("")},
-        file,
-        "",
+        {k: v for k, v in raw.items() if k in REFRIGERANT_SPEC}, REFRIGERANT_SPEC, file, ""
     )
     try:
         constants = fluid_constants(top["coolprop_name"])

@@ -92,12 +92,22 @@ class Text:
 
 
 @dataclass(frozen=True)
+class TextList:
+    """A list of strings (TOML ``["a", "b"]``), read as a tuple."""
+
+    default: Any = REQUIRED
+    doc: str = ""
+
+
+@dataclass(frozen=True)
 class Described:
     """A key of a table validated in code, where a rule may involve other keys (the
     piston pin within the piston length, a clearance relative to the diameter).
 
     The loader reads its unit and the words of its range from here (its messages say
-    them) and checks the rule in code; the case-file reference prints the same.
+    them); a range that involves no other key is declared here in numbers too
+    (``lo``/``hi``, as :class:`Field`'s) and checked from here, a rule that involves other
+    keys is checked in code. The case-file reference prints the same.
 
     Parameters
     ----------
@@ -120,6 +130,23 @@ class Described:
     default: str = ""
     required: str = ""
     doc: str = ""
+    #: The range in numbers, where it involves no other key (the words say the same);
+    #: a rule that involves other keys is checked in code and declares none.
+    lo: float = -math.inf
+    hi: float = math.inf
+    open_lo: bool = False
+    open_hi: bool = False
+
+    @property
+    def bounded(self) -> bool:
+        """Whether the declaration holds the range in numbers."""
+        return self.lo > -math.inf or self.hi < math.inf
+
+    def admits(self, value: float) -> bool:
+        """Whether ``value`` (in SI) lies in the declared range."""
+        above = value > self.lo if self.open_lo else value >= self.lo
+        below = value < self.hi if self.open_hi else value <= self.hi
+        return above and below
 
     def requirement(self) -> str:
         """Whether the key is required: ``"yes"``, ``"no"`` or a condition."""
@@ -127,11 +154,16 @@ class Described:
 
 
 Spec = Mapping[str, Field | Choice | Flag | Text]
+#: A table of any input file: a :data:`Spec`, or one with lists of strings too (a list is
+#: not a case value: ``--set`` and sweeps assign scalars).
+FileSpec = Mapping[str, Field | Choice | Flag | Text | TextList]
 #: Keys of a table validated in code, in the order of the table.
 DescribedSpec = Mapping[str, Described]
 
 
-def check_keys(raw: Mapping[str, Any], allowed: set[str] | Spec, file: str, prefix: str) -> None:
+def check_keys(
+    raw: Mapping[str, Any], allowed: set[str] | FileSpec, file: str, prefix: str
+) -> None:
     """Refuse keys that are not in ``allowed``, suggesting the closest one."""
     for key in raw:
         if key not in allowed:
@@ -141,7 +173,9 @@ def check_keys(raw: Mapping[str, Any], allowed: set[str] | Spec, file: str, pref
             raise CaseError(file, _join(prefix, key), f"unknown key{hint} (allowed: {names})")
 
 
-def read_table(raw: Mapping[str, Any] | None, spec: Spec, file: str, prefix: str) -> dict[str, Any]:
+def read_table(
+    raw: Mapping[str, Any] | None, spec: FileSpec, file: str, prefix: str
+) -> dict[str, Any]:
     """Validate one table and return its values in SI.
 
     Parameters
@@ -183,6 +217,10 @@ def read_table(raw: Mapping[str, Any] | None, spec: Spec, file: str, prefix: str
             if not isinstance(value, bool):
                 raise CaseError(file, dotted, f"expected true or false, got {value!r}")
             out[key] = value
+        elif isinstance(field, TextList):
+            if not isinstance(value, list) or not all(isinstance(v, str) for v in value):
+                raise CaseError(file, dotted, f"expected a list of strings, got {value!r}")
+            out[key] = tuple(value)
         else:
             if not isinstance(value, str):
                 raise CaseError(file, dotted, f"expected a string, got {value!r}")
@@ -190,14 +228,19 @@ def read_table(raw: Mapping[str, Any] | None, spec: Spec, file: str, prefix: str
     return out
 
 
-def _describe(field: Field | Choice | Flag | Text) -> str:
+def _describe(field: Field | Choice | Flag | Text | TextList) -> str:
+    """What a key allows, and what it is (its ``doc``), for a missing key's message."""
     if isinstance(field, Field):
-        return f"allowed {field.allowed()}" + (f"; {field.doc}" if field.doc else "")
-    if isinstance(field, Choice):
-        return f"one of {list(field.choices)}"
-    if isinstance(field, Flag):
-        return "true or false"
-    return "a string"
+        allowed = f"allowed {field.allowed()}"
+    elif isinstance(field, Choice):
+        allowed = f"one of {list(field.choices)}"
+    elif isinstance(field, Flag):
+        allowed = "true or false"
+    elif isinstance(field, TextList):
+        allowed = "a list of strings"
+    else:
+        allowed = "a string"
+    return allowed + (f"; {field.doc}" if field.doc else "")
 
 
 def _join(prefix: str, key: str) -> str:

@@ -68,14 +68,20 @@ class TableReader:
         self,
         spec: Mapping[str, Any],
         name: str,
-        check: Callable[[float], bool],
+        check: Callable[[float], bool] | None = None,
         default: float | None = None,
         context: str = "",
     ) -> float:
         """Key ``name`` with the unit and the range words of its declaration
-        (:class:`recipsim.case.schema.Described` in ``spec``); ``context`` (e.g. the
-        length a range refers to) is appended to the range in messages."""
+        (:class:`recipsim.case.schema.Described` in ``spec``), checked against the
+        declared range (``check``: a rule involving other keys, for a declaration
+        without one); ``context`` (e.g. the length a range refers to) is appended to the
+        range in messages."""
         key = spec[name]
+        if check is None:
+            check = key.admits
+        elif key.bounded:
+            raise ValueError(f"{self.key(name)}: the range is declared, the rule in code too")
         allowed = f"{key.allowed} ({context})" if context else key.allowed
         return self.quantity(name, key.unit, check, allowed, default)
 

@@ -15,6 +15,7 @@ from __future__ import annotations
 import argparse
 import sys
 import time
+from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
@@ -97,26 +98,8 @@ def run_bench_command(args: argparse.Namespace, argv: list[str] | None) -> int:
 
 def _bench(args: argparse.Namespace, argv: list[str] | None) -> int:
     from recipsim.case.load import load_case
-    from recipsim.errors import SolverError
-    from recipsim.studies.bench.baseline import run_baseline
-    from recipsim.studies.bench.errors import error_columns
-    from recipsim.studies.bench.ladder import (
-        Rung,
-        build_ladder,
-        reference_overrides,
-        select_rungs,
-        self_check_overrides,
-    )
-    from recipsim.studies.bench.measure import OK, run_rung
-    from recipsim.studies.bench.report import (
-        CPU,
-        WALL,
-        console_table,
-        outcome_row,
-        speedup,
-        table,
-        write_bench,
-    )
+    from recipsim.studies.bench.ladder import build_ladder, select_rungs
+    from recipsim.studies.bench.report import CPU, WALL, console_table, speedup, table, write_bench
     from recipsim.studies.bench.system import machine_info
 
     say = (lambda *a: None) if args.quiet else (lambda *a: print(*a, flush=True))
@@ -124,9 +107,39 @@ def _bench(args: argparse.Namespace, argv: list[str] | None) -> int:
     out_dir = default_out(base.name, args.overrides, args.out)
     ladder = select_rungs(build_ladder(base, args.quick, not args.no_baseline), args.rungs)
     started = time.time()
-    meta: dict[str, Any] = {
+    meta = _meta(args, argv, base.name)
+    warmed: set[tuple[str, ...]] = set()
+    ref = _reference(args, base, warmed, meta, say)
+    if not args.quick:
+        _self_check(args, base, warmed, ref, meta, say)
+    frame = table(_run_ladder(args, base, ladder, warmed, ref, say))
+    by = CPU if args.rank_by == "cpu" else WALL
+    result = speedup(frame, by=by)
+    meta["result"] = result
+    if not args.quick:
+        from recipsim.studies.bench.startup import measure_startup
+
+        meta["startup"] = measure_startup(args.case, list(args.overrides))
+        say(_startup_line(meta["startup"]))
+    meta["machine_end"] = machine_info()
+    meta["elapsed [s]"] = time.time() - started
+    title = f"recipsim bench {base.name} {' '.join(args.overrides)}".strip()
+    where = write_bench(Path(out_dir), frame, meta, title, plots=not args.no_plots, by=by)
+    if not args.quiet:
+        print()
+        print(console_table(frame))
+        print()
+    print(_verdict(result) + f"\n-> {where}")
+    return 0
+
+
+def _meta(args: argparse.Namespace, argv: list[str] | None, case_name: str) -> dict[str, Any]:
+    """What ``bench.json`` records of the command and the machine before the rungs run."""
+    from recipsim.studies.bench.system import machine_info
+
+    return {
         "case": str(args.case),
-        "case_name": base.name,
+        "case_name": case_name,
         "overrides": list(args.overrides),
         "command": argv if argv is not None else sys.argv,
         "quick": bool(args.quick),
@@ -141,8 +154,19 @@ def _bench(args: argparse.Namespace, argv: list[str] | None) -> int:
             "with NUMBA_DISABLE_JIT=1, timed the same way"
         ),
     }
-    warmed: set[tuple[str, ...]] = set()
-    min_time = 0.0 if args.quick else MIN_TIME
+
+
+def _reference(
+    args: argparse.Namespace,
+    base: Any,
+    warmed: set[tuple[str, ...]],
+    meta: dict[str, Any],
+    say: Callable[..., None],
+) -> Any:
+    """The tight-tolerance reference every rung is compared with, recorded in ``meta``."""
+    from recipsim.errors import SolverError
+    from recipsim.studies.bench.ladder import Rung, reference_overrides
+    from recipsim.studies.bench.measure import OK, run_rung
 
     say(f"reference: {' '.join(reference_overrides())}")
     ref = run_rung(
@@ -155,7 +179,6 @@ def _bench(args: argparse.Namespace, argv: list[str] | None) -> int:
     )
     if ref.status != OK or ref.trace is None:
         raise SolverError(f"the reference did not converge ({ref.status}): {ref.message}")
-    ref_q, ref_trace = ref.quantities, ref.trace
     meta["reference"] = {
         "overrides": list(reference_overrides()),
         "revolutions": ref.revolutions,
@@ -163,33 +186,63 @@ def _bench(args: argparse.Namespace, argv: list[str] | None) -> int:
         "rhs_evaluations": ref.rhs_evaluations,
         "periodic_used": ref.periodic_used,
         "wall_time [s]": ref.wall_time,
-        "quantities": ref_q,
+        "quantities": ref.quantities,
     }
     say(f"  {ref.revolutions} revolutions, residual {ref.residual:.1e}, {ref.wall_time:.2f} s")
-    if not args.quick:
-        check = run_rung(
-            args.case,
-            args.overrides,
-            Rung("self-check", overrides=self_check_overrides()),
-            base,
-            repeats=1,
-            warmed=warmed,
-        )
-        if check.usable:
-            errs = error_columns(check.quantities, ref_q, check.trace, ref_trace)
-            meta["reference"]["self_check"] = {
-                "overrides": list(self_check_overrides()),
-                "revolutions": check.revolutions,
-                "status": check.status,
-                "errors": errs,
-            }
-            say(
-                f"  against {' '.join(self_check_overrides())} ({check.status}, "
-                f"{check.revolutions} revolutions): max error {errs['max_error [-]']:.1e}"
-            )
-        else:
-            meta["reference"]["self_check"] = {"status": check.status, "message": check.message}
+    return ref
 
+
+def _self_check(
+    args: argparse.Namespace,
+    base: Any,
+    warmed: set[tuple[str, ...]],
+    ref: Any,
+    meta: dict[str, Any],
+    say: Callable[..., None],
+) -> None:
+    """The reference against a tighter one still: how far its own error goes."""
+    from recipsim.studies.bench.errors import error_columns
+    from recipsim.studies.bench.ladder import Rung, self_check_overrides
+    from recipsim.studies.bench.measure import run_rung
+
+    check = run_rung(
+        args.case,
+        args.overrides,
+        Rung("self-check", overrides=self_check_overrides()),
+        base,
+        repeats=1,
+        warmed=warmed,
+    )
+    if check.usable:
+        errs = error_columns(check.quantities, ref.quantities, check.trace, ref.trace)
+        meta["reference"]["self_check"] = {
+            "overrides": list(self_check_overrides()),
+            "revolutions": check.revolutions,
+            "status": check.status,
+            "errors": errs,
+        }
+        say(
+            f"  against {' '.join(self_check_overrides())} ({check.status}, "
+            f"{check.revolutions} revolutions): max error {errs['max_error [-]']:.1e}"
+        )
+    else:
+        meta["reference"]["self_check"] = {"status": check.status, "message": check.message}
+
+
+def _run_ladder(
+    args: argparse.Namespace,
+    base: Any,
+    ladder: list[Any],
+    warmed: set[tuple[str, ...]],
+    ref: Any,
+    say: Callable[..., None],
+) -> list[dict[str, Any]]:
+    """One row per rung: its timings and its errors against the reference."""
+    from recipsim.studies.bench.baseline import run_baseline
+    from recipsim.studies.bench.measure import run_rung
+    from recipsim.studies.bench.report import outcome_row
+
+    min_time = 0.0 if args.quick else MIN_TIME
     rows = []
     for rung in ladder:
         if rung.baseline:
@@ -212,32 +265,14 @@ def _bench(args: argparse.Namespace, argv: list[str] | None) -> int:
                 warmed=warmed,
                 min_time=min_time,
             )
-        row = outcome_row(outcome, ref_q, ref_trace)
+        row = outcome_row(outcome, ref.quantities, ref.trace)
         rows.append(row)
         say(
             f"{rung.name:48s} {outcome.status:11s} {row['median_wall_time [s]']:9.4f} s  "
             f"max error {row['max_error [-]']:.2e}"
             + (f"  ({outcome.message[:100]})" if outcome.message else "")
         )
-    frame = table(rows)
-    by = CPU if args.rank_by == "cpu" else WALL
-    result = speedup(frame, by=by)
-    meta["result"] = result
-    if not args.quick:
-        from recipsim.studies.bench.startup import measure_startup
-
-        meta["startup"] = measure_startup(args.case, list(args.overrides))
-        say(_startup_line(meta["startup"]))
-    meta["machine_end"] = machine_info()
-    meta["elapsed [s]"] = time.time() - started
-    title = f"recipsim bench {base.name} {' '.join(args.overrides)}".strip()
-    where = write_bench(Path(out_dir), frame, meta, title, plots=not args.no_plots, by=by)
-    if not args.quiet:
-        print()
-        print(console_table(frame))
-        print()
-    print(_verdict(result) + f"\n-> {where}")
-    return 0
+    return rows
 
 
 def _startup_line(startup: dict[str, Any]) -> str:

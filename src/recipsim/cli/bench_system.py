@@ -1,11 +1,12 @@
-"""``recipsim bench-system [CASE] [--sweep SWEEP] [--jobs J] [--repeats N] [--first-run]``.
+"""``recipsim bench-system [CASE] [--sweep SWEEP] [--jobs J|LIST] [--repeats N] [--first-run]``.
 
 Time to answer, around the solver (:mod:`recipsim.studies.bench.system_time`): the stages
 of ``recipsim run`` (imports, case loading, model build, solve, tables, each figure,
-report writing) and the command end to end; a sweep on 1..J workers with its overhead
-ratio (end to end, and after start-up: modules imported, numba cache loaded) and parallel
-efficiency; optionally the first run with empty caches. Writes
-``<out>/system/system.json`` (default ``--out``: ``reports/bench``) and prints a table.
+report writing) and the command end to end; a sweep on 1..J workers (or a list of worker
+counts) with its overhead ratio (end to end, and after start-up: modules imported, numba
+cache loaded) and its parallel efficiency, end to end and after start-up; optionally the
+first run with empty caches. Writes ``<out>/system/system.json`` (default ``--out``:
+``reports/bench``) and prints a table.
 
 A subcommand of its own rather than ``bench --system``: ``bench`` ranks solver settings
 on one case (its options choose rungs, tolerances and a time budget), this one times the
@@ -19,7 +20,7 @@ import json
 from pathlib import Path
 from typing import Any
 
-from recipsim.cli.options import exit_status, positive_int
+from recipsim.cli.options import exit_status, positive_int, worker_counts
 
 
 def add_bench_system_parser(sub: Any) -> argparse.ArgumentParser:
@@ -31,7 +32,13 @@ def add_bench_system_parser(sub: Any) -> argparse.ArgumentParser:
     )
     parser.add_argument("case", nargs="?", default="reference_r134a_lbp", help="case to run")
     parser.add_argument("--sweep", default="throughput_100", help="sweep to map")
-    parser.add_argument("--jobs", type=positive_int, default=2, metavar="J", help="up to J")
+    parser.add_argument(
+        "--jobs",
+        type=worker_counts,
+        default=[1, 2],
+        metavar="J",
+        help="worker counts: J for 1..J, or a list such as 1,2,4,8,16 (default 2)",
+    )
     parser.add_argument("--repeats", type=positive_int, default=3, metavar="N")
     parser.add_argument("--map-repeats", type=positive_int, default=1, metavar="N")
     parser.add_argument("--no-map", action="store_true", help="skip the sweep")
@@ -50,6 +57,7 @@ def run_bench_system_command(args: argparse.Namespace, argv: list[str] | None) -
 
 def _bench_system(args: argparse.Namespace) -> int:
     from recipsim.atomic import atomic_file, mark_output
+    from recipsim.studies.bench.map_scaling import measure_map_scaling
     from recipsim.studies.bench.system import machine_info
     from recipsim.studies.bench.system_time import (
         extrapolate,
@@ -62,9 +70,11 @@ def _bench_system(args: argparse.Namespace) -> int:
     result: dict[str, Any] = {"machine": machine_info()}
     result["run"] = measure_run_stages(args.case, [], args.repeats)
     if not args.no_map:
-        jobs = list(range(1, args.jobs + 1))
-        result["map"] = measure_map(args.sweep, jobs, args.map_repeats)
+        result["map"] = measure_map(args.sweep, args.jobs, args.map_repeats)
         result["map"]["after_startup"] = measure_map_after_startup(args.sweep)
+        result["map"]["scaling_after_startup"] = measure_map_scaling(
+            args.sweep, args.jobs, args.map_repeats
+        )
         model = result["map"]["model"]
         if model:
             result["map"]["extrapolated"] = {
@@ -115,6 +125,15 @@ def format_system(result: dict[str, Any]) -> str:
             for label, t in m.get("extrapolated", {}).items():
                 lines.append(
                     f"  {label}: {t['wall [s]']:.2f} s, efficiency {t['efficiency [-]']:.2f}"
+                )
+        scaling = m.get("scaling_after_startup")
+        if scaling:
+            lines.append("  after start-up, no map plots:")
+            for jobs, t in scaling["runs"].items():
+                lines.append(
+                    f"  {jobs} worker(s): {t['wall [s]']:.2f} s wall "
+                    f"({t['points_per_second']:.0f} points/s, parent CPU "
+                    f"{t['parent_cpu [s]']:.2f} s), efficiency {t['efficiency [-]']:.2f}"
                 )
     if "first_run" in result:
         f = result["first_run"]

@@ -91,6 +91,18 @@ def positive_int(text: str) -> int:
     return value
 
 
+def worker_counts(text: str) -> list[int]:
+    """argparse type: worker counts, ``"J"`` for 1..J or ``"1,2,4,8,16"`` for those counts
+    (``recipsim bench-system --jobs``)."""
+    parts = [part.strip() for part in text.split(",")]
+    if not all(part.isdigit() and int(part) >= 1 for part in parts):
+        raise argparse.ArgumentTypeError(
+            f"expected J or a comma-separated list of whole numbers >= 1, got {text!r}"
+        )
+    counts = [int(part) for part in parts]
+    return list(range(1, counts[0] + 1)) if len(counts) == 1 else sorted(set(counts))
+
+
 def positive_float(text: str) -> float:
     """argparse type: a finite number > 0 (e.g. ``--scheduler-timeout``)."""
     try:

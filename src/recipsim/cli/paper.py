@@ -4,7 +4,8 @@ Writes ``<out>/<case name>/`` (``+<digest>`` with ``--set``; default ``--out``:
 ``reports/paper``).
 
 Runs, for the mechanism, geometry, operating point and pressure curve of a case,
-the pinned and the flexible crank train under (a) inertia only, (b) the gas load,
+the pinned and the flexible crank train (each flexible run the case itself, solved by
+its periodic solver) under (a) inertia only, (b) the gas load,
 (c) the gas load with the case's bearing damping, and writes ``table1.csv`` (the
 layout of the paper's Table 1) with the figures (:mod:`recipsim.studies.paper`).
 The undamped flexible runs (a), (b) are their periodic response at constant speed,
@@ -84,7 +85,7 @@ def add_paper_parser(sub: Any) -> None:
 def run_paper_command(args: argparse.Namespace) -> int:
     """Run the study for ``args.case``; returns the exit status."""
     from recipsim.case.load import load_case
-    from recipsim.model.build import build_model, crank_geometry
+    from recipsim.model.build import build_model
     from recipsim.physics.mechanics.tabulated import PressureCurve
     from recipsim.results.tables import cycle_table
     from recipsim.solve.periodic import solve_periodic
@@ -114,17 +115,14 @@ def run_paper_command(args: argparse.Namespace) -> int:
     drive = case.options.drive if case.options.mechanics == "flexible" else "torque_profile"
     start = args.undamped_start or ("periodic" if args.undamped_revolutions is None else "unloaded")
     study = run_paper_study(
-        case.mechanism,
-        crank_geometry(case),
+        case,
         curve,
-        op.shell_pressure,
-        op.shaft_speed,
         out,
         drive=drive,
         undamped_revolutions=8 if args.undamped_revolutions is None else args.undamped_revolutions,
         undamped_start=start,
         plots=not args.no_plots,
-        hydrodynamic=None if args.no_hydrodynamic else case,
+        hydrodynamic=not args.no_hydrodynamic,
         bearing_law=args.bearing_law,
     )
     rpm = op.shaft_speed * 60.0 / (2.0 * math.pi)

@@ -136,7 +136,7 @@ def overrides_digest(overrides: Sequence[str]) -> str:
     The same changes give the same digest whatever their order, spacing or repetition
     (the last value of a key wins, as when they are applied).
     """
-    from recipsim.case.load import parse_override
+    from recipsim.case.overrides import parse_override
 
     values: dict[str, Any] = {}
     for text in overrides:

@@ -1,7 +1,7 @@
 """Figures of the crank-train report tables: bearing loads, bearing orbits, drive torque.
 
-Every function takes report tables (pandas DataFrames with the columns of
-:meth:`recipsim.physics.mechanics.MechanismResult.columns`: ``crank_angle [deg]`` from TDC,
+Every function takes report tables (pandas DataFrames with the columns of a case's
+cycle table or the paper study's: ``crank_angle [deg]`` from TDC,
 ``bearing_force_<name> [N]`` or its ``_x``/``_y``/``_z`` components,
 ``bearing_displacement_<name>_x|_y [m]``, ``drive_torque [N m]``) keyed by a label
 ("pinned", "flexible", ...) and returns a :class:`matplotlib.figure.Figure`.

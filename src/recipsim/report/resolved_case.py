@@ -25,8 +25,8 @@ from pathlib import Path
 from typing import Any
 
 from recipsim import __version__
-from recipsim.case.files import resolve_reference
-from recipsim.case.load import (
+from recipsim.case.case import Case
+from recipsim.case.case_schema import (
     GEOMETRY_SPEC,
     HEAT_TRANSFER_SPEC,
     LEAKAGE_SPEC,
@@ -36,11 +36,11 @@ from recipsim.case.load import (
     SOLVER_SPEC,
     VALVE_SPEC,
     VALVES_TOP_SPEC,
-    Case,
-    toml_literal,
 )
+from recipsim.case.files import resolve_reference
 from recipsim.case.mechanism_schema import MECHANISM_UNITS as DECLARED_MECHANISM_UNITS
 from recipsim.case.motor import MOTOR_SPEC
+from recipsim.case.overrides import toml_literal
 from recipsim.case.schema import Field, Spec, read_table
 from recipsim.errors import CaseError
 

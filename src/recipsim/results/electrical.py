@@ -37,8 +37,9 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
-from recipsim.case.load import Case, OperatingPoint
+from recipsim.case.case import Case
 from recipsim.case.rating import SATURATED_LIQUID_BAND
+from recipsim.case.sections import OperatingPoint
 from recipsim.model.loss_sources import mean_friction_powers, motor_point
 from recipsim.physics.mean_friction import time_mean
 from recipsim.physics.thermo.table_states import TableFluid

@@ -185,7 +185,7 @@ def drifting_states(solution: PeriodicSolution, count: int = 3) -> list[str]:
     residual reference, as ``"name 1.2e-03"``."""
     import numpy as np
 
-    from recipsim.solve.revolution import residual_reference
+    from recipsim.solve.residual import residual_reference
 
     model = solution.model
     rev = solution.final

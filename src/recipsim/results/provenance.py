@@ -13,7 +13,7 @@ from typing import Any
 import pandas as pd
 
 from recipsim import __version__
-from recipsim.case.load import Case
+from recipsim.case.case import Case
 from recipsim.physics.thermo.coolprop_info import coolprop_version
 from recipsim.solve.periodic import PeriodicSolution
 

@@ -11,7 +11,7 @@ from recipsim.cache_dirs import numba_cache_lacks
 if TYPE_CHECKING:
     import pandas as pd
 
-    from recipsim.case.load import Case
+    from recipsim.case.case import Case
     from recipsim.solve.periodic import PeriodicSolution
     from recipsim.solve.startup import StartupRun
 

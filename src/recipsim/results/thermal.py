@@ -19,7 +19,7 @@ from recipsim.physics.thermo import cylinder as cyl
 from recipsim.physics.thermo.shell_network import NODES, SM, node_residuals
 
 if TYPE_CHECKING:
-    from recipsim.case.load import Case
+    from recipsim.case.case import Case
     from recipsim.solve.periodic import PeriodicSolution
 
 #: Columns of :func:`thermal_columns` (units in the names).

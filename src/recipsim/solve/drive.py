@@ -13,7 +13,7 @@ import math
 
 import numpy as np
 
-from recipsim.case.load import Case
+from recipsim.case.case import Case
 from recipsim.model.build import Model, build_model, cylinder_model
 from recipsim.physics.thermo import cylinder as cyl
 from recipsim.solve.periodic import sample_outputs, solve_periodic

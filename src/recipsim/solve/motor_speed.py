@@ -19,7 +19,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from recipsim.case.load import Case
+from recipsim.case.case import Case
 from recipsim.errors import SolverError
 from recipsim.model.build import Model
 from recipsim.model.loss_sources import constant_speed_mean_friction, revolution_shaft_power

@@ -38,20 +38,18 @@ import numpy as np
 
 from recipsim.model.build import Model
 from recipsim.model.scenes import SCENE_CYLINDER
+from recipsim.solve.residual import cycle_residual, residual_reference, state_change
 from recipsim.solve.revolution import (
     INTEGRATOR_METHODS,
     PeriodicSolution,
     Revolution,
     _Tally,
-    cycle_residual,
     discharge_enthalpy,
     integrate_revolution,
     integrator_method,
-    residual_reference,
     revolution_setup,
     sample_outputs,
     sample_times,
-    state_change,
 )
 from recipsim.solve.shooting import shooting_cost, solve_shooting
 from recipsim.solve.subharmonic import (
@@ -86,6 +84,10 @@ __all__ = [
     "solve_revolutions",
 ]
 
+#: ``solver.periodic = "auto"``: revolutions hand over to shooting when the residual's
+#: decay over the last ``_RATE_WINDOW`` revolutions predicts more revolutions to the
+#: tolerance than shooting needs (one per unknown for the Jacobian plus
+#: ``_SHOOTING_OVERHEAD``), and not before ``_AUTO_MIN_REVOLUTIONS`` revolutions.
 _RATE_WINDOW = 2
 _SHOOTING_OVERHEAD = 4
 _AUTO_MIN_REVOLUTIONS = 4

@@ -1,6 +1,7 @@
 """One revolution of any scene and what is measured on it: integration from 270 deg
-with the compiled integrator, the cycle residual against the previous revolution, the
-discharge-plenum enthalpy for the next one, statistics, and the outputs at the samples.
+with the compiled integrator, the discharge-plenum enthalpy for the next one,
+statistics, and the outputs at the samples (the cycle residual against the previous
+revolution is :mod:`.residual`).
 Shared by the revolution iteration (:mod:`.periodic`) and shooting (:mod:`.shooting`).
 """
 
@@ -106,6 +107,8 @@ class PeriodicSolution:
     newton_iterations: int = 0
     jacobians: int = 0
     jacobian_revolutions: int = 0
+    #: shooting only: the last Jacobian (scaled) and its scales, to seed another solve
+    jacobian: tuple[np.ndarray, np.ndarray] | None = None
     #: revolutions per period: > 1 for a subharmonic response (``final`` then holds the
     #: quadratures averaged over the period, :mod:`recipsim.solve.periodic`)
     period_revolutions: int = 1
@@ -313,10 +316,6 @@ class _Tally:
             setattr(self, name, total + count if total >= 0 and count >= 0 else -1)
 
 
-#: ``solver.periodic = "auto"``: revolutions hand over to shooting when the residual's
-#: decay over the last ``_RATE_WINDOW`` revolutions predicts more revolutions to the
-#: tolerance than shooting needs (one per unknown for the Jacobian plus
-#: ``_SHOOTING_OVERHEAD``), and not before ``_AUTO_MIN_REVOLUTIONS`` revolutions.
 @njit(cache=True)
 def _evaluate_samples(times, samples, sample_modes, par, ipar, props, pbuf, out):
     n = samples.shape[1]

@@ -75,14 +75,13 @@ import numpy as np
 
 from recipsim.model.build import Model
 from recipsim.solve.newton import newton_fixed_point
+from recipsim.solve.residual import cycle_residual, state_change
 from recipsim.solve.revolution import (
     PeriodicSolution,
     Revolution,
     _Tally,
-    cycle_residual,
     discharge_enthalpy,
     integrate_revolution,
-    state_change,
 )
 from recipsim.solve.shooting_map import (  # noqa: F401  (shooting_unknowns re-exported)
     RevolutionMap,
@@ -107,6 +106,7 @@ def solve_shooting(
     history: list[float] | None = None,
     tally: _Tally | None = None,
     t0: float | None = None,
+    jacobian: tuple[np.ndarray, np.ndarray] | None = None,
 ) -> PeriodicSolution:
     """Periodic steady state by Newton on the one-revolution map (module docstring).
 
@@ -119,6 +119,11 @@ def solve_shooting(
         one that revolution delivered. Default: start from ``model.y0``.
     history, tally, t0
         Residual history, counters and start time of the revolutions already run.
+    jacobian : (numpy.ndarray, numpy.ndarray), optional
+        A scaled Jacobian and its scales (``PeriodicSolution.jacobian`` of a solve of a
+        model with the same unknowns, e.g. the same crank train under another pressure
+        table at constant speed, whose map has the same linear part): the first Newton
+        solve starts from it instead of finite differences.
 
     Returns
     -------
@@ -132,7 +137,7 @@ def solve_shooting(
     SolverError
         If a plain revolution fails (with crank angle and state).
     """
-    return _Shooting(model, start, history, tally, t0).run()
+    return _Shooting(model, start, history, tally, t0, jacobian).run()
 
 
 class _StatesRepeat:
@@ -156,8 +161,11 @@ class _Shooting:
         history: list[float] | None,
         tally: _Tally | None,
         t0: float | None,
+        seed: tuple[np.ndarray, np.ndarray] | None = None,
     ) -> None:
         self.model = model
+        self.seed = seed
+        self.jacobian: tuple[np.ndarray, np.ndarray] | None = None
         self.s = model.case.solver
         self.t0 = time.perf_counter() if t0 is None else t0
         self.history = [] if history is None else history
@@ -168,7 +176,7 @@ class _Shooting:
         self.newton = 0
         self.jacobians = 0
         self.jacobian_revolutions = 0
-        self.jacobian: np.ndarray | None = None  # the last scaled dG/dz - I
+        self.map_jacobian: np.ndarray | None = None  # the last scaled dG/dz - I
         self.method = "shooting"
 
     def _plain(self, y: np.ndarray, mode: np.ndarray) -> Revolution:
@@ -227,9 +235,10 @@ class _Shooting:
             newton_iterations=self.newton,
             jacobians=self.jacobians,
             jacobian_revolutions=self.jacobian_revolutions,
+            jacobian=self.jacobian,
             multipliers=None
-            if self.jacobian is None
-            else np.linalg.eigvals(self.jacobian + np.eye(len(self.jacobian))),
+            if self.map_jacobian is None
+            else np.linalg.eigvals(self.map_jacobian + np.eye(len(self.map_jacobian))),
         )
 
     def run(self) -> PeriodicSolution:
@@ -262,6 +271,9 @@ class _Shooting:
             # the next base: a plain revolution from the end of the last one
             if fmap.set_base(rev.y_end, rev.mode_end):
                 jacobian = None
+                if self.seed is not None and self.seed[0].shape[0] == fmap.size:
+                    jacobian, ref = self.seed  # the first base only
+                self.seed = None
             z = fmap.pack(rev.y_end)
             rev = self._plain(rev.y_end.copy(), rev.mode_end.copy())
             g = fmap.pack(rev.y_end)
@@ -289,7 +301,9 @@ class _Shooting:
             self.newton += result.iterations
             self.jacobians += result.jacobians
             self.jacobian_revolutions += result.jacobian_evaluations
-            jacobian = self.jacobian = result.jacobian
+            jacobian = self.map_jacobian = result.jacobian
+            if jacobian is not None:
+                self.jacobian = (jacobian, ref)
             if result.stalled:
                 self.method = "shooting, fell back to revolutions"
                 newton_failed = True

@@ -31,7 +31,7 @@ Windows: the first from top dead centre to 270 deg, then one revolution each fro
 deg (both valves shut) on the crank-angle event, at most :data:`WINDOW_PERIODS` nominal
 periods long (longer: the motor cannot turn the crank, :class:`SolverError`). The
 transient has settled when, after the ramp, the cycle residual of
-:func:`recipsim.solve.revolution.cycle_residual` falls below ``solver.cycle_tolerance``.
+:func:`recipsim.solve.residual.cycle_residual` falls below ``solver.cycle_tolerance``.
 
 Energy over the transient (mechanism quadratures, summed over the windows): motor work
 = kinetic energy gained + gas work (the piston's work on the gas, net of the shell side,
@@ -55,11 +55,11 @@ from recipsim.physics.thermo import cylinder as cyl
 from recipsim.solve.integrator import N_STATS, ST_NACCEPT, ST_NFEV, ST_NSAMPLES, ST_STATUS, ST_T
 from recipsim.solve.integrator import integrate as integrate_scene
 from recipsim.solve.periodic import solve_periodic
+from recipsim.solve.residual import cycle_residual
 from recipsim.solve.revolution import (
     PeriodicSolution,
     Revolution,
     _raise_failure,
-    cycle_residual,
     discharge_enthalpy,
     integrator_method,
     sample_outputs,

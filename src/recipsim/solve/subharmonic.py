@@ -158,9 +158,9 @@ def period_residual(model: Model, revs: list[Revolution], previous: list[Revolut
     """The cycle residual of a period (module docstring)."""
     res = period_change(model, revs)
     for rev, before in zip(revs, previous, strict=True):
-        for q in revolution_totals(model):
+        for q, floor in revolution_totals(model):
             a, b = rev.y_end[q], before.y_end[q]
-            res = max(res, abs(a - b) / max(abs(a), abs(b), 1e-300))
+            res = max(res, abs(a - b) / max(abs(a), abs(b), floor, 1e-300))
     mass, energy = closures(model, period_average(revs, model.n_err).y_end)
     return max(res, abs(mass) / CLOSURE_ALLOWANCE, abs(energy) / CLOSURE_ALLOWANCE)
 

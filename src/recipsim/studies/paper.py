@@ -17,23 +17,23 @@ configuration reuses the ``gas`` pinned run). With the default ``drive="torque_p
 the damped crank is driven by the pinned driving torque of the same load (the paper's
 procedure) and its speed is free.
 
-Undamped flexible runs never settle by running revolutions (nothing dissipates the
-free vibration, Floquet multipliers of modulus 1). With the default
-``undamped_start="periodic"`` they are the periodic forced response, found by shooting
-(:func:`recipsim.solve.newton.newton_fixed_point` on the one-revolution map,
-integrated with ``method`` at a tenth of ``rtol``: undamped revolutions are noisier
-in the step sequence) at constant crank speed: under the angle-only
-torque profile an undamped crank has no periodic state to find (its speed drifts by
-the energy the torque does not balance, and the response of the undamped
-high-frequency modes is too sensitive to that speed for either solver to settle). The
-reported revolution is integrated once more from the periodic state and its
-periodicity is tested like the damped run's. ``undamped_start="quasi_static"`` or
-``"unloaded"`` instead report a transient as a time-marching run of the paper would:
-``undamped_revolutions`` revolutions under the study's drive from the quasi-static
-pinned pose at TDC, or from the pinned pose with undeflected bearings, the last one
-reported.
+Every flexible run is the case (its mechanism, geometry and operating point) under
+the load's pressure curve, solved like any case: the compiled scene and the shared
+periodic solver (:mod:`.paper_linear_runs`). Undamped flexible runs never settle by
+running revolutions (nothing dissipates the free vibration, Floquet multipliers of
+modulus 1). With the default ``undamped_start="periodic"`` they are the periodic forced
+response, found by shooting (``solver.periodic = "shooting"``,
+:func:`recipsim.solve.shooting.solve_shooting`, at a tenth of ``rtol``: undamped
+revolutions are noisier in the step sequence) at constant crank speed: under the
+angle-only torque profile an undamped crank has no periodic state to find (its speed
+drifts by the energy the torque does not balance, and the response of the undamped
+high-frequency modes is too sensitive to that speed for either solver to settle).
+``undamped_start="quasi_static"`` or ``"unloaded"`` instead report a transient as a
+time-marching run of the paper would: ``undamped_revolutions`` revolutions under the
+study's drive from the quasi-static pinned pose at TDC, or from the pinned pose with
+undeflected bearings, the last one reported.
 
-The hydrodynamic column (``hydrodynamic=case``): the ``inertia`` and ``gas`` loads with
+The hydrodynamic column (``hydrodynamic=True``): the ``inertia`` and ``gas`` loads with
 the primary, secondary and eccentric journals on oil films (``finite_journal`` by
 default, the case's film geometry and oil), run like any case through
 :mod:`recipsim.studies.paper_hydrodynamic` at constant speed; its RMS and peak loads
@@ -48,18 +48,18 @@ atomically (built in a temporary directory beside it, then swapped in):
   orbit radii ``<config>_flexible_orbit_max [m]``; with the hydrodynamic column also
   ``<config>_hydrodynamic_rms [N]``, ``_vs_pinned [-]``, ``_peak [N]``, ``_orbit_max [m]``
   and ``_min_film [m]`` (nan for the bearings without a film) for ``inertia`` and ``gas``;
-- ``cycle_<config>_<model>.csv``: the reported revolution of every run (report columns
-  of :meth:`recipsim.physics.mechanics.MechanismResult.columns` plus ``cylinder_pressure [Pa]``;
-  pinned tables have zero displacements);
-  ``cycle_<config>_hydrodynamic.csv`` are ``recipsim run``'s cycle tables;
+- ``cycle_<config>_<model>.csv``: the reported revolution of every run; the flexible and
+  hydrodynamic ones are ``recipsim run``'s cycle tables plus ``drive_torque [N m]``, the
+  pinned ones their bearing, torque, speed and ``cylinder_pressure [Pa]`` columns with
+  zero displacements;
 - ``bearing_loads_<config>.png``, ``orbits.png``, ``orbits_hydrodynamic.png`` (with the
   column: the journals inside their clearance circles), ``drive_torque.png``;
 - ``study.json`` (settings, and per run its revolutions, convergence and wall time; the
   films and the conclusion-3 answer) and ``README.md`` (the same, readable).
 
 The study's data types are in :mod:`.paper_runs`, its tables in :mod:`.paper_tables`,
-the runs on linear bearings in :mod:`.paper_linear_runs` (the undamped shooting in
-:mod:`.paper_undamped`), the hydrodynamic runs in :mod:`.paper_hydrodynamic`, the
+the runs on linear bearings in :mod:`.paper_linear_runs` (each flexible run a case,
+:mod:`.paper_load_run`), the hydrodynamic runs in :mod:`.paper_hydrodynamic`, the
 settings in :mod:`.paper_settings` and the files in :mod:`.paper_report`.
 """
 
@@ -71,19 +71,14 @@ from dataclasses import replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-import numpy as np
 import pandas as pd
 
 from recipsim.atomic import atomic_directory
-from recipsim.case.mechanism_spec import CrankGeometry, MechanismSpec
+from recipsim.model.build import crank_geometry
 from recipsim.physics.mechanics.tabulated import PressureCurve
-from recipsim.studies.paper_hydrodynamic import (
-    DEFAULT_LAW,
-    HydrodynamicRun,
-    constant_curve,
-    run_hydrodynamic,
-)
-from recipsim.studies.paper_linear_runs import flexible_runs, load_of, pinned_runs
+from recipsim.studies.paper_hydrodynamic import DEFAULT_LAW, constant_curve, run_hydrodynamic
+from recipsim.studies.paper_linear_runs import flexible_runs, pinned_runs
+from recipsim.studies.paper_load_run import LoadRun
 from recipsim.studies.paper_runs import (
     HYDRODYNAMIC_RUNS,
     RUNS,
@@ -92,7 +87,7 @@ from recipsim.studies.paper_runs import (
     RunRecord,
 )
 from recipsim.studies.paper_settings import hydrodynamic_settings, study_settings
-from recipsim.studies.paper_tables import build_table1, cylinder_pressures, flexible_table
+from recipsim.studies.paper_tables import build_table1, flexible_table
 
 if TYPE_CHECKING:
     from recipsim.case.load import Case
@@ -104,50 +99,43 @@ __all__ = ["run_paper_study", "write_paper_study"]
 
 
 def run_paper_study(
-    spec: MechanismSpec,
-    geometry: CrankGeometry,
+    case: Case,
     curve: PressureCurve,
-    shell_pressure: float,
-    omega: float,
     out_dir: str | Path | None,
     *,
     drive: str = "torque_profile",
     rtol: float = 1e-6,
-    method: str = "LSODA",
     undamped_revolutions: int = 8,
     samples_per_revolution: int = 360,
     plots: bool = True,
     undamped_start: str = "periodic",
     periodic_tolerance: float = 1e-3,
     max_revolutions: int = 30,
-    hydrodynamic: Case | None = None,
+    hydrodynamic: bool = False,
     bearing_law: str = DEFAULT_LAW,
 ) -> PaperStudy:
-    """Run the paper's pinned-against-flexible study and write its report.
+    """Run the paper's pinned-against-flexible study and write its report; the
+    :class:`PaperStudy`.
 
     Parameters
     ----------
-    spec : MechanismSpec
-        Mechanism with the bearings' stiffness and damping; the undamped runs use it
-        with zero damping, the ``gas_damped`` run as given.
-    geometry : CrankGeometry
+    case : Case
+        Gives the mechanism (the bearings' stiffness and damping: the undamped runs use
+        it with zero damping, the ``gas_damped`` run as given), the geometry, the shell
+        pressure (also the cylinder pressure of the ``inertia`` configuration: no net
+        gas force), the crank speed (constant for the pinned runs; prescribed, or
+        initial and nominal for ``drive="torque_profile"``) and the solver
+        (``solver.method``; the study sets the tolerances below).
     curve : PressureCurve
         Cylinder pressure against crank angle from TDC [rad], [Pa] (the ``gas`` load).
-    shell_pressure : float
-        Pressure under the piston [Pa]; also the cylinder pressure of the ``inertia``
-        configuration (no net gas force).
-    omega : float
-        Crank speed [rad/s]: constant for the pinned runs; prescribed, or initial and
-        nominal for ``drive="torque_profile"``.
     out_dir : str or pathlib.Path or None
         Report directory, replaced atomically if it exists; None writes nothing.
     drive : {"torque_profile", "constant_speed"}
         Drive of the flexible runs; ``torque_profile`` applies the pinned driving torque
         of the same load (the paper's procedure).
-    rtol : float
-        Relative tolerance of the flexible runs [-].
-    method : str
-        ``solve_ivp`` method.
+    rtol, periodic_tolerance : float
+        Relative tolerance of the flexible runs (``solver.rtol``) [-]; cycle tolerance of
+        the damped and the shooting runs (``solver.cycle_tolerance``).
     undamped_revolutions : int
         Revolutions of the undamped transients (``undamped_start`` other than
         ``"periodic"``); the last one is reported.
@@ -157,73 +145,67 @@ def run_paper_study(
         Write the figures.
     undamped_start : {"periodic", "quasi_static", "unloaded"}
         The undamped runs: their periodic response at constant speed, by shooting
-        (``periodic``); or a transient of ``undamped_revolutions`` from TDC with the
-        bearings deflected by the pinned loads (``quasi_static``, the default of
-        :func:`recipsim.solve.mechanism_ivp.simulate_mechanism`) or undeflected
-        (``unloaded``), which starts a much larger free vibration.
-    periodic_tolerance : float
-        Periodicity tolerance of the damped and the shooting runs [-].
+        (``periodic``); or a transient of ``undamped_revolutions`` with the bearings
+        deflected by the pinned loads (``quasi_static``, a case's initial state) or
+        undeflected (``unloaded``), which starts a much larger free vibration.
     max_revolutions : int
         Revolution limit of the damped run; of a shooting run, twice this (its
         Jacobian costs one revolution per state).
-    hydrodynamic : Case, optional
-        Adds the hydrodynamic column: the case whose journals' film data and oil the
-        ``inertia`` and ``gas`` loads run on (its shell pressure and speed are used;
-        :func:`recipsim.studies.paper_hydrodynamic.run_hydrodynamic`); its mechanism
-        should be ``spec``, whose pinned runs it is compared with.
+    hydrodynamic : bool
+        Add the hydrodynamic column: the ``inertia`` and ``gas`` loads with the case's
+        journals on films (:func:`recipsim.studies.paper_hydrodynamic.run_hydrodynamic`).
     bearing_law : {"finite_journal", "short_journal"}
         Film law of the hydrodynamic journals.
-
-    Returns
-    -------
-    PaperStudy
 
     Raises
     ------
     ValueError
-        For an unknown ``drive`` or ``undamped_start``, or fewer than 1 revolution or
-        4 samples.
-    RuntimeError
+        An unknown ``drive`` or ``undamped_start``, fewer than 1 revolution or 4 samples.
+    SolverError
         If an integration fails.
     CaseError
-        If the ``hydrodynamic`` case's journals lack film data.
+        A setting outside a case key's range, or journals without film data (``hydrodynamic``).
     """
     _check_settings(drive, undamped_start, undamped_revolutions, samples_per_revolution)
     start = time.perf_counter()
-    angles = np.ascontiguousarray(curve.crank_angle, dtype=float)
-    loads = {
-        "inertia": np.full(angles.shape, float(shell_pressure)),
-        "gas": np.ascontiguousarray(curve.pressure, dtype=float),
-    }
+    loads = {"inertia": constant_curve(case.operating_point.shell_pressure), "gas": curve}
     options: dict[str, Any] = {
-        "drive": drive,
-        "rtol": rtol,
-        "method": method,
-        "undamped_revolutions": undamped_revolutions,
-        "undamped_start": undamped_start,
+        "drive": drive, "rtol": rtol, "method": case.solver.method,
+        "undamped_revolutions": undamped_revolutions, "undamped_start": undamped_start,
         "samples_per_revolution": samples_per_revolution,
-        "periodic_tolerance": periodic_tolerance,
-        "max_revolutions": max_revolutions,
-    }
+        "periodic_tolerance": periodic_tolerance, "max_revolutions": max_revolutions,
+    }  # fmt: skip
+    study = _run_study(case, curve, loads, options, hydrodynamic, bearing_law)
+    return _write_study(study, out_dir, plots, start)
+
+
+def _run_study(
+    case: Case,
+    curve: PressureCurve,
+    loads: dict[str, PressureCurve],
+    options: dict[str, Any],
+    hydrodynamic: bool,
+    bearing_law: str,
+) -> PaperStudy:
+    """Every run of the study (pinned, flexible, and the hydrodynamic column if asked),
+    its tables and settings; nothing written, no ``compute``/``write``/``total`` times."""
     cycles: dict[str, pd.DataFrame] = {}
     runs: dict[str, RunRecord] = {}
-    pinned = pinned_runs(spec, geometry, angles, loads, shell_pressure, omega, options)
+    pinned = pinned_runs(case, loads, options)
     for name, (table, _, record) in pinned.items():
         cycles[name], runs[name] = table, record
-    flexible = flexible_runs(spec, geometry, angles, loads, shell_pressure, omega, options)
+    flexible = flexible_runs(case, loads, options)
     for name, (result_f, record) in flexible.items():
-        gas = cylinder_pressures(result_f.crank_angle, angles, loads[load_of(record.configuration)])
-        cycles[name], runs[name] = flexible_table(result_f, gas), record
-    films: dict[str, HydrodynamicRun] = {}
-    settings = study_settings(spec, geometry, curve, shell_pressure, omega, **options)
-    if hydrodynamic is not None:
-        inertia_curve = constant_curve(shell_pressure)
-        films = run_hydrodynamic(
-            hydrodynamic,
-            {"inertia": inertia_curve, "gas": curve},
-            law=bearing_law,
-            samples_per_revolution=samples_per_revolution,
-        )
+        cycles[name], runs[name] = flexible_table(result_f), record
+    films: dict[str, LoadRun] = {}
+    op = case.operating_point
+    settings = study_settings(
+        case.mechanism, crank_geometry(case), curve, op.shell_pressure, op.shaft_speed,
+        case=case.name, **options,
+    )  # fmt: skip
+    if hydrodynamic:
+        samples = options["samples_per_revolution"]
+        films = run_hydrodynamic(case, loads, law=bearing_law, samples_per_revolution=samples)
         for config, h in films.items():
             name = f"{config}_hydrodynamic"
             cycles[name] = h.cycle
@@ -231,20 +213,27 @@ def run_paper_study(
                 name, config, "hydrodynamic", "case", h.revolutions, h.converged, h.residual,
                 h.nfev, h.wall_time,
             )  # fmt: skip
-        settings["hydrodynamic"] = hydrodynamic_settings(hydrodynamic, bearing_law)
+        settings["hydrodynamic"] = hydrodynamic_settings(case, bearing_law)
     order = [*RUNS, *(HYDRODYNAMIC_RUNS if films else ())]
-    timings = {name: runs[name].wall_time for name in order}
     loads_p = {k: v[1] for k, v in pinned.items()}
-    study = PaperStudy(
+    return PaperStudy(
         table1=build_table1(loads_p, {k: v[0] for k, v in flexible.items()}, films),
         cycles={k: cycles[k] for k in order},
         runs={k: runs[k] for k in order},
-        timings=timings,
+        timings={name: runs[name].wall_time for name in order},
         settings=settings,
         flexible={k: v[0] for k, v in flexible.items()},
         pinned=loads_p,
         hydrodynamic=films,
     )
+
+
+def _write_study(
+    study: PaperStudy, out_dir: str | Path | None, plots: bool, start: float
+) -> PaperStudy:
+    """Write the report into ``out_dir`` (None: nothing); the study with its files and
+    the ``compute``, ``write`` and ``total`` times since ``start`` [s]."""
+    timings = study.timings
     files: tuple[Path, ...] = ()
     if out_dir is not None:
         t0 = time.perf_counter()

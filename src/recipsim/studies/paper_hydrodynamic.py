@@ -22,15 +22,13 @@ Rosenbrock-W step (the films' squeeze damping makes the crank train stiff), as i
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass, replace
 from typing import Any
 
 import numpy as np
-import pandas as pd
 
 from recipsim.case.load import Case
-from recipsim.physics.mechanics.layout import BEARING_NAMES
 from recipsim.physics.mechanics.tabulated import PressureCurve
+from recipsim.studies.paper_load_run import LoadRun, tabulated_case
 
 #: Load configurations of the hydrodynamic column (the films bring their own damping,
 #: so ``gas_damped`` has no hydrodynamic counterpart).
@@ -43,62 +41,8 @@ DEFAULT_LAW = "finite_journal"
 SOLVER_METHOD = "dopri5_stiff"
 
 
-@dataclass(frozen=True)
-class HydrodynamicRun:
-    """One load of the hydrodynamic column, solved like a case.
-
-    Attributes
-    ----------
-    configuration : str
-        One of :data:`HYDRODYNAMIC_CONFIGURATIONS`.
-    case : Case
-        The case that was run (tabulated pressure, constant speed, film journals).
-    cycle : pandas.DataFrame
-        Its cycle table (``recipsim run``'s, from TDC at equal crank-angle steps), plus
-        ``drive_torque [N m]`` (the shaft torque, the study's torque column).
-    summary : dict
-        Its summary row (``bearing_rms_<name> [N]``, ``min_film_thickness_<name> [m]``,
-        ``friction_power_<name> [W]``, ...).
-    revolutions, nfev : int
-        Revolutions integrated (shooting Jacobians included), right-hand-side evaluations.
-    converged : bool
-        The case's periodicity test passed.
-    residual : float
-        Cycle residual of the reported revolution [-].
-    wall_time : float
-        [s].
-    """
-
-    configuration: str
-    case: Case
-    cycle: pd.DataFrame
-    summary: dict[str, Any]
-    revolutions: int
-    converged: bool
-    residual: float
-    nfev: int
-    wall_time: float
-
-    @property
-    def force_rms(self) -> np.ndarray:
-        """(6,) RMS force magnitude per bearing, ``BEARING_NAMES`` order [N]."""
-        return np.array([self.summary[f"bearing_rms_{b} [N]"] for b in BEARING_NAMES])
-
-    @property
-    def force_peak(self) -> np.ndarray:
-        """(6,) peak force magnitude per bearing [N]."""
-        return np.array([self.summary[f"bearing_max_{b} [N]"] for b in BEARING_NAMES])
-
-    @property
-    def orbit_radius_max(self) -> np.ndarray:
-        """(6,) largest journal displacement per bearing [m]."""
-        return np.array([self.summary[f"orbit_radius_max_{b} [m]"] for b in BEARING_NAMES])
-
-    @property
-    def min_film_thickness(self) -> np.ndarray:
-        """(6,) smallest film per bearing [m]; nan for the bearings without a film."""
-        key = "min_film_thickness_{} [m]"
-        return np.array([self.summary.get(key.format(b), np.nan) for b in BEARING_NAMES])
+#: One load of the column (the study's flexible runs are the same kind of result).
+HydrodynamicRun = LoadRun
 
 
 def hydrodynamic_case(
@@ -137,20 +81,12 @@ def hydrodynamic_case(
         If a journal lacks its film data.
     """
     changes: dict[str, Any] = {
-        "options.mechanics": "flexible",
         "options.drive": "constant_speed",
         "solver.method": SOLVER_METHOD,
         "solver.samples_per_revolution": samples_per_revolution,
     }
     changes.update({f"bearings.{name}.law": law for name in JOURNALS})
-    lubricated = case.with_(changes)
-    name = f"{case.name}_hydrodynamic" + (f"_{label}" if label else "")
-    return replace(
-        lubricated,
-        name=name,
-        options=replace(lubricated.options, pressure="tabulated"),
-        pressure_curve=curve,
-    )
+    return tabulated_case(case, curve, changes, "hydrodynamic" + (f"_{label}" if label else ""))
 
 
 def run_hydrodynamic(

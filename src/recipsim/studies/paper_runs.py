@@ -12,8 +12,7 @@ from typing import Any
 import pandas as pd
 
 from recipsim.physics.mechanics.pinned import PinnedLoads
-from recipsim.solve.mechanism_ivp import MechanismResult
-from recipsim.studies.paper_hydrodynamic import HydrodynamicRun
+from recipsim.studies.paper_load_run import LoadRun
 
 #: Load configurations, in the paper's order.
 CONFIGURATIONS = ("inertia", "gas", "gas_damped")
@@ -51,8 +50,8 @@ class RunRecord:
     mode : str
         ``"algebraic"`` (pinned), ``"shooting"`` (undamped flexible, periodic
         response), ``"fixed_revolutions"`` (undamped flexible transient),
-        ``"until_periodic"`` (damped flexible) or ``"case"`` (hydrodynamic: the case's
-        periodic solver, :func:`recipsim.solve.periodic.solve_periodic`).
+        ``"until_periodic"`` (damped flexible) or ``"case"`` (hydrodynamic); every
+        flexible run is a case solved by :func:`recipsim.solve.periodic.solve_periodic`.
     revolutions : int
         Revolutions integrated (0 for pinned; with shooting every revolution, the
         Jacobian's included).
@@ -60,8 +59,8 @@ class RunRecord:
         Periodicity test passed (damped and shooting runs); True for pinned (exactly
         periodic); None for fixed-revolution runs (not tested).
     cycle_change : float or None
-        Largest state change over the last revolution relative to its scale [-]
-        (flexible runs).
+        Cycle residual of the reported revolution [-]
+        (:func:`recipsim.solve.residual.cycle_residual`; flexible runs).
     nfev : int
         Right-hand-side evaluations (0 for pinned).
     wall_time : float
@@ -96,11 +95,11 @@ class PaperStudy:
         and ``"total"`` [s]; ``study.json`` holds the runs' and ``"compute"``.
     settings : dict
         The study's settings (as written to ``study.json``).
-    flexible : dict of str to MechanismResult
+    flexible : dict of str to LoadRun
         The flexible runs (``inertia_flexible``, ``gas_flexible``, ``gas_damped_flexible``).
     pinned : dict of str to PinnedLoads
         The pinned runs (``inertia_pinned``, ``gas_pinned``).
-    hydrodynamic : dict of str to HydrodynamicRun
+    hydrodynamic : dict of str to LoadRun
         The hydrodynamic runs by configuration (``inertia``, ``gas``); empty without
         the column.
     out_dir : pathlib.Path or None
@@ -114,8 +113,8 @@ class PaperStudy:
     runs: dict[str, RunRecord]
     timings: dict[str, float]
     settings: dict[str, Any]
-    flexible: dict[str, MechanismResult] = field(repr=False)
+    flexible: dict[str, LoadRun] = field(repr=False)
     pinned: dict[str, PinnedLoads] = field(repr=False)
-    hydrodynamic: dict[str, HydrodynamicRun] = field(default_factory=dict, repr=False)
+    hydrodynamic: dict[str, LoadRun] = field(default_factory=dict, repr=False)
     out_dir: Path | None = None
     files: tuple[Path, ...] = ()

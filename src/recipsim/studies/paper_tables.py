@@ -1,5 +1,6 @@
-"""The paper study's tables: the report table of a pinned and of a flexible run (the
-columns of a case's cycle table) and ``table1.csv`` (the layout of the paper's Table 1)."""
+"""The paper study's tables: the report table of a pinned run (the bearing, torque and
+speed columns of a flexible run's, the case's cycle table) and ``table1.csv`` (the layout
+of the paper's Table 1)."""
 
 from __future__ import annotations
 
@@ -11,8 +12,7 @@ import pandas as pd
 from recipsim.physics.mechanics.layout import BEARING_NAMES
 from recipsim.physics.mechanics.pinned import PinnedLoads
 from recipsim.physics.mechanics.tabulated import tabulated_pressure
-from recipsim.solve.mechanism_ivp import MechanismResult
-from recipsim.studies.paper_hydrodynamic import HydrodynamicRun
+from recipsim.studies.paper_load_run import LoadRun
 from recipsim.studies.paper_runs import (
     CONFIGURATIONS,
     HYDRODYNAMIC_RUNS,
@@ -31,7 +31,8 @@ def cylinder_pressures(theta: np.ndarray, angles: np.ndarray, pressures: np.ndar
 def pinned_table(
     loads: PinnedLoads, omega: float, cylinder_pressure: np.ndarray | None = None
 ) -> pd.DataFrame:
-    """Report table of a pinned run, with the columns of a flexible one.
+    """Report table of a pinned run, with the bearing, torque and speed columns of a
+    flexible one.
 
     Parameters
     ----------
@@ -72,25 +73,14 @@ def pinned_table(
     return pd.DataFrame(cols)
 
 
-def flexible_table(
-    result: MechanismResult, cylinder_pressure: np.ndarray | None = None
-) -> pd.DataFrame:
-    """Report table of a flexible run (:meth:`MechanismResult.columns` as a DataFrame).
-
-    Parameters
-    ----------
-    result : MechanismResult
-    cylinder_pressure : numpy.ndarray, optional
-        Cylinder pressure at the samples [Pa], added as ``cylinder_pressure [Pa]``.
-
-    Returns
-    -------
-    pandas.DataFrame
-    """
-    cols = result.columns()
-    if cylinder_pressure is not None:
-        cols[PRESSURE_COLUMN] = np.asarray(cylinder_pressure, dtype=float)
-    return pd.DataFrame(cols)
+def flexible_table(run: LoadRun) -> pd.DataFrame:
+    """Report table of a flexible run: the case's cycle table (``drive_torque [N m]``
+    included) with the axial displacements ``bearing_displacement_<name>_z [m]`` (zero:
+    the displacements are normal to the bearing axes), as in the pinned tables."""
+    table = run.cycle.copy()
+    for name in BEARING_NAMES:
+        table[f"bearing_displacement_{name}_z [m]"] = 0.0
+    return table
 
 
 def table1_columns(hydrodynamic: bool = False) -> list[str]:
@@ -115,8 +105,8 @@ def table1_columns(hydrodynamic: bool = False) -> list[str]:
 
 def build_table1(
     pinned: dict[str, PinnedLoads],
-    flexible: dict[str, MechanismResult],
-    hydrodynamic: dict[str, HydrodynamicRun],
+    flexible: dict[str, LoadRun],
+    hydrodynamic: dict[str, LoadRun],
 ) -> pd.DataFrame:
     """``table1.csv``: per bearing the RMS and peak loads of every run, the flexible and
     hydrodynamic runs against pinned, orbits and films (:func:`table1_columns`)."""

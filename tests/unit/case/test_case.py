@@ -6,7 +6,8 @@ from pathlib import Path
 import pytest
 
 from helpers import ALL_CASES, REFERENCE
-from recipsim.case.load import load_case, parse_override
+from recipsim.case.load import load_case
+from recipsim.case.overrides import parse_override
 from recipsim.cli.main import main
 from recipsim.errors import CaseError
 

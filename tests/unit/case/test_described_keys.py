@@ -75,3 +75,66 @@ def test_declared_defaults_are_the_applied_ones() -> None:
     )
     assert ROTOR_SPEC["counterweight_mass"].default.startswith("0 ")
     assert load_case("reference_r134a_lbp").mechanism.rotor.counterweight_mass == 0.0
+
+
+def _specs() -> list[tuple[str, dict]]:
+    return [
+        ("mechanism.piston", PISTON_SPEC),
+        ("mechanism.connecting_rod", ROD_SPEC),
+        ("mechanism.rotor", ROTOR_SPEC),
+        ("bearings", BEARING_SPEC),
+        ("oil", OIL_SPEC),
+    ]
+
+
+def test_declared_numeric_ranges_agree_with_their_words() -> None:
+    """A range held in numbers (checked from the declaration) says the same in words:
+    an open bound reads '<' or '> ', a closed one '...' or '>='."""
+    bounded = 0
+    for table, spec in _specs():
+        for key, field in spec.items():
+            if not field.bounded:
+                continue
+            bounded += 1
+            words = field.allowed
+            if field.lo > -float("inf"):
+                closed = "..." in words or ">=" in words
+                assert closed != field.open_lo, (table, key, words)
+            if field.hi < float("inf"):
+                closed = "..." in words
+                assert closed != field.open_hi, (table, key, words)
+    assert bounded >= 15
+
+
+@pytest.mark.parametrize(
+    ("override", "key", "refused"),
+    [
+        ('bearings.primary.diameter="1 mm"', "bearings.primary.diameter", True),
+        ('bearings.primary.film_temperature="200 K"', "bearings.primary.film_temperature", True),
+        ("bearings.primary.contact_friction=1", "bearings.primary.contact_friction", False),
+        ("bearings.primary.contact_friction=1.01", "bearings.primary.contact_friction", True),
+        ("mechanism.rotor.counterweight_mass=0", "mechanism.rotor.counterweight_mass", False),
+        ("mechanism.rotor.counterweight_mass=-1", "mechanism.rotor.counterweight_mass", True),
+        ("mechanism.connecting_rod.centre_of_mass_fraction=1", "centre_of_mass_fraction", True),
+        ("mechanism.piston.mass=0", "mechanism.piston.mass", True),
+        ('oil.film_temperature="500 K"', "oil.film_temperature", True),
+    ],
+)
+def test_the_declared_ranges_are_the_checked_ones(override: str, key: str, refused: bool) -> None:
+    """The declaration's bounds decide, at the bound itself, and the message names the
+    key with the declaration's words."""
+    if not refused:
+        load_case("reference_r134a_lbp_lubricated", [override])
+        return
+    with pytest.raises(CaseError) as info:
+        load_case("reference_r134a_lbp_lubricated", [override])
+    assert key in str(info.value) and "out of range; allowed:" in str(info.value)
+
+
+def test_a_rule_in_code_cannot_shadow_a_declared_range() -> None:
+    from recipsim.case.table_reader import TableReader
+
+    reader = TableReader({"mass": 1.0}, "f.toml", "mechanism.piston")
+    assert reader.described(PISTON_SPEC, "mass") == 1.0
+    with pytest.raises(ValueError, match="declared"):
+        reader.described(PISTON_SPEC, "mass", lambda v: v > 2.0)

@@ -65,23 +65,32 @@ def initial_state(
         gas_pressure = float(par[lay.P_SHELL_PRESSURE])
     out = np.zeros(N_PIN_OUT)
     pinned_reactions(theta, omega, 0.0, gas_pressure, par, out)
+    big_end = _place_rotor(par, out, y, theta)
+    _place_rod_and_piston(par, out, y, theta, big_end)
+    return y
 
-    def deflection(i: int) -> np.ndarray:
-        k = effective_stiffness(par, i)
-        f = out[3 * i : 3 * i + 2]
-        if k <= 0.0:
-            return np.zeros(2)
-        e = -f / k
-        clearance = par[_ROW + i * _NB + lay.BP_CLEARANCE]
-        size = float(np.hypot(e[0], e[1]))
-        if clearance > 0.0 and size > 0.5 * clearance:  # a film law: stay inside it
-            e *= 0.5 * clearance / size
-        return e
 
-    r, big_l = par[lay.P_CRANK_RADIUS], par[lay.P_ROD_LENGTH]
+def _deflection(par: np.ndarray, out: np.ndarray, i: int) -> np.ndarray:
+    """Bearing ``i``'s deflection (x, y) under its pinned reaction in ``out`` [m]."""
+    k = effective_stiffness(par, i)
+    f = out[3 * i : 3 * i + 2]
+    if k <= 0.0:
+        return np.zeros(2)
+    e = -f / k
+    clearance = par[_ROW + i * _NB + lay.BP_CLEARANCE]
+    size = float(np.hypot(e[0], e[1]))
+    if clearance > 0.0 and size > 0.5 * clearance:  # a film law: stay inside it
+        e *= 0.5 * clearance / size
+    return e
+
+
+def _place_rotor(par: np.ndarray, out: np.ndarray, y: np.ndarray, theta: float) -> np.ndarray:
+    """Rotor offset and tilts from the two main bearings' deflections, written into ``y``;
+    returns the big end's position (x, y) [m], the eccentric bearing's deflection off."""
+    r = par[lay.P_CRANK_RADIUS]
     zg = par[lay.P_ROTOR_COM_Z]
     h1, h2 = par[lay.P_PRIMARY_Z] - zg, par[lay.P_SECONDARY_Z] - zg
-    e1, e2 = deflection(lay.B_PRIMARY), deflection(lay.B_SECONDARY)
+    e1, e2 = _deflection(par, out, lay.B_PRIMARY), _deflection(par, out, lay.B_SECONDARY)
     # marker at height h: (x_g + h sin(beta), y_g - h sin(alpha) cos(beta)), small tilts
     beta = (e1[0] - e2[0]) / (h1 - h2)
     alpha = -(e1[1] - e2[1]) / (h1 - h2)
@@ -94,15 +103,24 @@ def initial_state(
         y[0], y[1], 0.0, 0.0, ca, sa, cb, sb, 0.0, 0.0, 0.0,
         r * math.cos(theta), r * math.sin(theta), -zg,
     )  # fmt: skip
-    e3 = deflection(lay.B_ECCENTRIC)
-    big_end = np.array([pex, pey]) - e3
+    e3 = _deflection(par, out, lay.B_ECCENTRIC)
+    big_end: np.ndarray = np.array([pex, pey]) - e3
+    return big_end
 
+
+def _place_rod_and_piston(
+    par: np.ndarray, out: np.ndarray, y: np.ndarray, theta: float, big_end: np.ndarray
+) -> None:
+    """Piston tilt and offset from its two guide films, the rod between the big end and
+    the pin, written into ``y`` as departures from the rigid pose."""
+    r, big_l = par[lay.P_CRANK_RADIUS], par[lay.P_ROD_LENGTH]
     u_pin = par[lay.P_PISTON_PIN_U]
     u_top, u_skirt = par[lay.P_PISTON_TOP_U], par[lay.P_PISTON_SKIRT_U]
-    e5, e6 = deflection(lay.B_PISTON_TOP)[1], deflection(lay.B_PISTON_SKIRT)[1]
+    e5 = _deflection(par, out, lay.B_PISTON_TOP)[1]
+    e6 = _deflection(par, out, lay.B_PISTON_SKIRT)[1]
     gam = math.asin((e5 - e6) / (u_top - u_skirt))
     yp = e5 - u_top * math.sin(gam)
-    e4 = deflection(lay.B_PIN)
+    e4 = _deflection(par, out, lay.B_PIN)
     small_y = yp + u_pin * math.sin(gam) - e4[1]
     sphi = (small_y - big_end[1]) / big_l
     phi = math.asin(sphi)
@@ -120,7 +138,6 @@ def initial_state(
     y[lay.Y_PISTON_DX] = xp - (r + big_l - xd - u_pin)
     y[lay.Y_PISTON_Y] = yp
     y[lay.Y_PISTON_TILT] = gam
-    return y
 
 
 def effective_stiffness(par: np.ndarray, i: int) -> float:

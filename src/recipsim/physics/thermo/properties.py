@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import ctypes
 import weakref
+from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
 import numba.experimental.function_type  # noqa: F401  (registers typeof for WAP objects)
@@ -103,75 +104,20 @@ class HeosProperties(types.WrapperAddressProtocol):
         self.table: PropertyTable | None = None
         self.calls = 0
         self.failures = 0
-        constants = fluid_constants(coolprop_name)
-        r_gas, t_crit = constants.gas_constant, constants.t_crit
         # ctypes keeps the callback below in a reference cycle, freed only by the cyclic
         # collector: held weakly, the buffer (11 MB with a table) is freed, or reused by
         # PropertyTable.property_buffer, as soon as this object goes
         buffer_ref = weakref.ref(self.buffer)
-        # CoolProp (about 2 s to import) is loaded at the first call: with a property
-        # table in the buffer's tail the compiled code may never need it
-        state: Any = None
-        sat: Any = None
-        dmasst = i_p = i_t = i_d = twophase = 0
-
-        def load_coolprop() -> None:
-            nonlocal state, sat, dmasst, i_p, i_t, i_d, twophase
-            import CoolProp.CoolProp as CP
-
-            state = CP.AbstractState(backend, coolprop_name)
-            sat = CP.AbstractState(backend, coolprop_name)
-            dmasst, twophase = CP.DmassT_INPUTS, CP.iphase_twophase
-            i_p, i_t, i_d = CP.iP, CP.iT, CP.iDmass
-
         # A Ctrl-C that arrives while this callback runs would be swallowed by ctypes
         # (it returns 0: "success" with a stale buffer). Catch it, fail this and every
         # later call so the integrator stops, and let the caller re-raise it.
         interrupted = self._interrupted = [False]
-
-        def callback(temperature: float, density: float) -> int:
-            try:
-                if interrupted[0]:
-                    return STATUS_DOMAIN
-                if not (t_min <= temperature <= t_max) or not (density > 0.0):
-                    return STATUS_DOMAIN
-                buf = buffer_ref()
-                if buf is None:  # the object is gone: nothing to fill
-                    return STATUS_DOMAIN
-                if state is None:
-                    load_coolprop()
-                state.update(dmasst, density, temperature)
-                p = state.p()
-                if temperature < t_crit and state.phase() == twophase:
-                    _fill_two_phase(sat, temperature, density, p, state.hmass(), state.Q(), buf)
-                else:
-                    buf[PROP_PRESSURE] = p
-                    buf[PROP_ENTHALPY] = state.hmass()
-                    cv = state.cvmass()
-                    dpdt = state.first_partial_deriv(i_p, i_t, i_d)
-                    buf[PROP_CV] = cv
-                    buf[PROP_DPDT] = dpdt
-                    c = state.speed_sound()
-                    buf[PROP_KAPPA] = density * c * c / p
-                    cp0 = state.cp0mass()
-                    buf[PROP_K0] = cp0 / (cp0 - r_gas)
-                    buf[PROP_QUALITY] = -1.0
-                    # (dp/drho)_T = c^2 - T (dp/dT)^2 / (rho^2 c_v)
-                    buf[PROP_DPDRHO] = c * c - temperature * dpdt * dpdt / (density**2 * cv)
-                    if transport:
-                        buf[PROP_VISCOSITY] = state.viscosity()
-                        buf[PROP_CONDUCTIVITY] = state.conductivity()
-                        buf[PROP_CP] = state.cpmass()
-            except Exception:
-                return STATUS_DOMAIN
-            except BaseException:  # KeyboardInterrupt, SystemExit
-                interrupted[0] = True
-                return STATUS_DOMAIN
-            return STATUS_OK
-
+        callback, load_coolprop, coolprop_state = _coolprop_callback(
+            coolprop_name, backend, transport, t_min, t_max, buffer_ref, interrupted
+        )
         self._python_callback = callback
         self._load_coolprop = load_coolprop
-        self._coolprop_state = lambda: state
+        self._coolprop_state = coolprop_state
         self._cfunc = ctypes.CFUNCTYPE(ctypes.c_int32, ctypes.c_double, ctypes.c_double)(callback)
 
     def raise_if_interrupted(self) -> None:
@@ -255,3 +201,76 @@ def _fill_two_phase(
     buf[PROP_VISCOSITY] = mu_v
     buf[PROP_CONDUCTIVITY] = k_v
     buf[PROP_CP] = cp_v
+
+
+def _coolprop_callback(
+    coolprop_name: str,
+    backend: str,
+    transport: bool,
+    t_min: float,
+    t_max: float,
+    buffer_ref: weakref.ref[np.ndarray],
+    interrupted: list[bool],
+) -> tuple[Callable[[float, float], int], Callable[[], None], Callable[[], Any]]:
+    """The Python callback that fills the buffer from CoolProp, the loader of CoolProp
+    (called at the first state), and a getter of its ``AbstractState`` (``None`` until
+    loaded). ``interrupted[0]`` is set by a Ctrl-C caught inside the callback.
+    """
+    constants = fluid_constants(coolprop_name)
+    r_gas, t_crit = constants.gas_constant, constants.t_crit
+    # CoolProp (about 2 s to import) is loaded at the first call: with a property
+    # table in the buffer's tail the compiled code may never need it
+    state: Any = None
+    sat: Any = None
+    dmasst = i_p = i_t = i_d = twophase = 0
+
+    def load_coolprop() -> None:
+        nonlocal state, sat, dmasst, i_p, i_t, i_d, twophase
+        import CoolProp.CoolProp as CP
+
+        state = CP.AbstractState(backend, coolprop_name)
+        sat = CP.AbstractState(backend, coolprop_name)
+        dmasst, twophase = CP.DmassT_INPUTS, CP.iphase_twophase
+        i_p, i_t, i_d = CP.iP, CP.iT, CP.iDmass
+
+    def callback(temperature: float, density: float) -> int:
+        try:
+            if interrupted[0]:
+                return STATUS_DOMAIN
+            if not (t_min <= temperature <= t_max) or not (density > 0.0):
+                return STATUS_DOMAIN
+            buf = buffer_ref()
+            if buf is None:  # the object is gone: nothing to fill
+                return STATUS_DOMAIN
+            if state is None:
+                load_coolprop()
+            state.update(dmasst, density, temperature)
+            p = state.p()
+            if temperature < t_crit and state.phase() == twophase:
+                _fill_two_phase(sat, temperature, density, p, state.hmass(), state.Q(), buf)
+            else:
+                buf[PROP_PRESSURE] = p
+                buf[PROP_ENTHALPY] = state.hmass()
+                cv = state.cvmass()
+                dpdt = state.first_partial_deriv(i_p, i_t, i_d)
+                buf[PROP_CV] = cv
+                buf[PROP_DPDT] = dpdt
+                c = state.speed_sound()
+                buf[PROP_KAPPA] = density * c * c / p
+                cp0 = state.cp0mass()
+                buf[PROP_K0] = cp0 / (cp0 - r_gas)
+                buf[PROP_QUALITY] = -1.0
+                # (dp/drho)_T = c^2 - T (dp/dT)^2 / (rho^2 c_v)
+                buf[PROP_DPDRHO] = c * c - temperature * dpdt * dpdt / (density**2 * cv)
+                if transport:
+                    buf[PROP_VISCOSITY] = state.viscosity()
+                    buf[PROP_CONDUCTIVITY] = state.conductivity()
+                    buf[PROP_CP] = state.cpmass()
+        except Exception:
+            return STATUS_DOMAIN
+        except BaseException:  # KeyboardInterrupt, SystemExit
+            interrupted[0] = True
+            return STATUS_DOMAIN
+        return STATUS_OK
+
+    return callback, load_coolprop, lambda: state

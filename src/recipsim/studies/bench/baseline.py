@@ -33,7 +33,7 @@ from typing import Any
 
 import numpy as np
 
-from recipsim.case.load import Case
+from recipsim.case.case import Case
 from recipsim.studies.bench.ladder import Rung, case_settings, fidelity
 from recipsim.studies.bench.measure import FAILED, OK, UNAVAILABLE, Outcome, load_rung
 

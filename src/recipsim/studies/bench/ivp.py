@@ -26,6 +26,7 @@ from __future__ import annotations
 
 import math
 import warnings
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
@@ -184,109 +185,170 @@ def _tolerances(model: Model) -> np.ndarray:
     return np.where(controlled, s.atol * model.scale, _NO_CONTROL)
 
 
+@dataclass
+class _Progress:
+    """Where a revolution under ``solve_ivp`` stands: time, state, counters."""
+
+    y: np.ndarray
+    t: float = 0.0
+    i_sample: int = 0
+    nfev: int = 0
+    n_events: int = 0
+    same_instant: int = 0
+    t_last_event: float = -math.inf
+    finished_by_event: bool = False
+
+
 def integrate_revolution_ivp(
     model: Model, y: np.ndarray, mode: np.ndarray, n_samples: int, method: str
 ) -> Revolution:
-    """One revolution from ``y`` with ``solve_ivp`` (mirrors ``periodic.integrate_revolution``)."""
-    s = model.case.solver
+    """One revolution from ``y`` with ``solve_ivp`` (mirrors ``periodic.integrate_revolution``).
+
+    Each call of ``solve_ivp`` (:func:`_solve_piece`) runs to the revolution's end or to
+    the first event; its samples are kept and the event applied (:func:`_apply_event`)
+    before the next piece starts from it.
+    """
     y_start = y.copy()
     mode_start = mode.copy()
     y_run, mode_run, t_end, times, samples, sample_modes = revolution_setup(
         model, y, mode, n_samples
     )
-    mode_run = np.ascontiguousarray(mode_run, dtype=np.int64)
-    funcs = _SceneFunctions(model, mode_run)
+    funcs = _SceneFunctions(model, np.ascontiguousarray(mode_run, dtype=np.int64))
     mode_run = funcs.ctx.mode  # the array the compiled code sees (the same buffer)
-    atol = _tolerances(model)
-    max_step = s.max_step / model.par[cyl.C_OMEGA]
-    t = 0.0
-    i_sample = 0
-    nfev = 0
-    n_events = 0
-    same_instant = 0
-    t_last_event = -math.inf
-    finished_by_event = False
-    while t < t_end:
-        pending = times[i_sample:]
-        pending = pending[(pending >= t) & (pending < t_end)]
-        t_eval = np.append(pending, t_end)
-        try:
-            sol = solve_ivp(
-                funcs.rhs,
-                (t, t_end),
-                y_run,
-                method=method,
-                t_eval=t_eval,
-                events=funcs.events or None,
-                rtol=s.rtol,
-                atol=atol,
-                max_step=max_step,
-            )
-        except ValueError as exc:  # scipy's event location (brentq) on the step's interpolant
-            raise SolverError(
-                f"solve_ivp ({method}) failed to locate an event after t = {t:.6g} s into the "
-                f"revolution: {exc} (the method's interpolant does not reproduce the event "
-                "function's sign at the step's ends)"
-            ) from exc
-        nfev += int(sol.nfev)
-        if sol.status == -1:
-            raise SolverError(
-                f"solve_ivp ({method}) failed at t = {sol.t[-1] if sol.t.size else t:.6g} s "
-                f"into the revolution: {sol.message}"
-            )
+    limits = (_tolerances(model), model.case.solver.max_step / model.par[cyl.C_OMEGA])
+    run = _Progress(y=y_run)
+    while run.t < t_end:
+        pending = times[run.i_sample :]
+        pending = pending[(pending >= run.t) & (pending < t_end)]
+        sol = _solve_piece(model, funcs, run, np.append(pending, t_end), limits, method)
+        run.nfev += int(sol.nfev)
         got = len(sol.t)  # a list when no point of t_eval was reached
         n_keep = got - 1 if sol.status == 0 else got  # the last point of a full run is t_end
         for j in range(n_keep):
-            samples[i_sample + j] = sol.y[:, j]
-            sample_modes[i_sample + j] = mode_run
-        i_sample += n_keep
+            samples[run.i_sample + j] = sol.y[:, j]
+            sample_modes[run.i_sample + j] = mode_run
+        run.i_sample += n_keep
         if sol.status == 0:
-            y_run = np.array(sol.y[:, -1])
-            t = t_end
+            run.y = np.array(sol.y[:, -1])
+            run.t = t_end
             break
-        # the earliest event ends this piece
-        fired = [(ev[0], j) for j, ev in enumerate(sol.t_events) if ev.size]
-        t_event, j = min(fired)
-        k = active_events(model)[j]
-        y_run = np.ascontiguousarray(sol.y_events[j][0], dtype=float).copy()
-        terminal = bool(_act(k, t_event, y_run, funcs.ctx))
-        funcs.forget()
-        n_events += 1
-        if t_event - t_last_event < 1e-12 * max(1.0, abs(t_event)):
-            same_instant += 1
-            if same_instant > _MAX_EVENTS_AT_ONE_INSTANT:
-                raise SolverError(
-                    f"more than {_MAX_EVENTS_AT_ONE_INSTANT} events at t = {t_event:.6g} s "
-                    "into the revolution (valve chattering)"
-                )
-        else:
-            same_instant = 0
-        t_last_event = t_event
-        t = t_event
-        if terminal:
-            finished_by_event = True
+        if _apply_event(model, funcs, sol, run):
+            run.finished_by_event = True
             break
-    nfev += funcs.n_event_evaluations
+    run.nfev += funcs.n_event_evaluations
+    return _revolution(model, run, (y_start, mode_start, mode_run), (times, samples, sample_modes))
+
+
+def _solve_piece(
+    model: Model,
+    funcs: _SceneFunctions,
+    run: _Progress,
+    t_eval: np.ndarray,
+    limits: tuple[np.ndarray, float],
+    method: str,
+) -> Any:
+    """``solve_ivp`` from ``run`` to the revolution's end (``t_eval[-1]``) or the first
+    event; ``limits``: the absolute tolerances and the largest step [s].
+
+    Raises
+    ------
+    SolverError
+        If ``solve_ivp`` fails or cannot locate an event.
+    """
+    atol, max_step = limits
+    try:
+        sol = solve_ivp(
+            funcs.rhs,
+            (run.t, t_eval[-1]),
+            run.y,
+            method=method,
+            t_eval=t_eval,
+            events=funcs.events or None,
+            rtol=model.case.solver.rtol,
+            atol=atol,
+            max_step=max_step,
+        )
+    except ValueError as exc:  # scipy's event location (brentq) on the step's interpolant
+        raise SolverError(
+            f"solve_ivp ({method}) failed to locate an event after t = {run.t:.6g} s into the "
+            f"revolution: {exc} (the method's interpolant does not reproduce the event "
+            "function's sign at the step's ends)"
+        ) from exc
+    if sol.status == -1:
+        raise SolverError(
+            f"solve_ivp ({method}) failed at t = {sol.t[-1] if sol.t.size else run.t:.6g} s "
+            f"into the revolution: {sol.message}"
+        )
+    return sol
+
+
+def _apply_event(model: Model, funcs: _SceneFunctions, sol: Any, run: _Progress) -> bool:
+    """Apply the earliest event that ended ``sol`` to ``run`` (state, time, counters);
+    True when it ends the revolution.
+
+    Raises
+    ------
+    SolverError
+        On more than :data:`_MAX_EVENTS_AT_ONE_INSTANT` events at one instant.
+    """
+    fired = [(ev[0], j) for j, ev in enumerate(sol.t_events) if ev.size]
+    t_event, j = min(fired)
+    k = active_events(model)[j]
+    run.y = np.ascontiguousarray(sol.y_events[j][0], dtype=float).copy()
+    terminal = bool(_act(k, t_event, run.y, funcs.ctx))
+    funcs.forget()
+    run.n_events += 1
+    if t_event - run.t_last_event < 1e-12 * max(1.0, abs(t_event)):
+        run.same_instant += 1
+        if run.same_instant > _MAX_EVENTS_AT_ONE_INSTANT:
+            raise SolverError(
+                f"more than {_MAX_EVENTS_AT_ONE_INSTANT} events at t = {t_event:.6g} s "
+                "into the revolution (valve chattering)"
+            )
+    else:
+        run.same_instant = 0
+    run.t_last_event = t_event
+    run.t = t_event
+    return terminal
+
+
+def _revolution(
+    model: Model,
+    run: _Progress,
+    start: tuple[np.ndarray, np.ndarray, np.ndarray],
+    sampled: tuple[np.ndarray, np.ndarray, np.ndarray],
+) -> Revolution:
+    """The finished revolution: ``start`` (initial state and mode, the final mode's
+    buffer), ``sampled`` (times, samples, their modes) and the counters of ``run``.
+
+    Raises
+    ------
+    SolverError
+        If a free-speed crank did not complete the revolution.
+    """
+    y_start, mode_start, mode_run = start
+    times, samples, sample_modes = sampled
     if model.free_speed:
-        if not finished_by_event:
+        if not run.finished_by_event:
             raise SolverError(
                 "the crank did not complete a revolution in three nominal periods: the drive "
                 "torque cannot keep the mechanism turning"
             )
-        times, samples, sample_modes = times[:i_sample], samples[:i_sample], sample_modes[:i_sample]
+        n = run.i_sample
+        times, samples, sample_modes = times[:n], samples[:n], sample_modes[:n]
     if model.scene != scenes.SCENE_CYLINDER:
-        y_run[model.mechanism_offset + mlay.Y_CRANK_ANGLE] -= 2.0 * math.pi
+        run.y[model.mechanism_offset + mlay.Y_CRANK_ANGLE] -= 2.0 * math.pi
     stats = np.zeros(N_STATS)
-    stats[ST_NFEV] = nfev
+    stats[ST_NFEV] = run.nfev
     stats[ST_NACCEPT] = -1  # solve_ivp does not report its steps with t_eval
     stats[ST_NREJECT] = -1
-    stats[ST_NEVENTS] = n_events
-    stats[ST_T] = t
-    stats[ST_NSAMPLES] = i_sample
+    stats[ST_NEVENTS] = run.n_events
+    stats[ST_T] = run.t
+    stats[ST_NSAMPLES] = run.i_sample
     rev = Revolution(
-        y_start, y_run, mode_start, mode_run.copy(), times, samples, sample_modes, stats
+        y_start, run.y, mode_start, mode_run.copy(), times, samples, sample_modes, stats
     )
-    rev.duration = t
+    rev.duration = run.t
     return rev
 
 

@@ -35,7 +35,8 @@ import re
 from dataclasses import dataclass
 from typing import Any
 
-from recipsim.case.load import Case, parse_override
+from recipsim.case.case import Case
+from recipsim.case.overrides import parse_override
 from recipsim.errors import RecipsimError
 
 DOPRI5 = "dopri5"
@@ -79,7 +80,7 @@ SELF_CHECK_OVERRIDES = (
 def _revolutions_if_available() -> tuple[str, ...]:
     """``solver.periodic=revolutions`` where the option exists (the reference iterates
     revolutions, the plainest periodic solver), nothing where it does not yet."""
-    from recipsim.case.load import SOLVER_SPEC
+    from recipsim.case.case_schema import SOLVER_SPEC
 
     return ("solver.periodic=revolutions",) if "periodic" in SOLVER_SPEC else ()
 

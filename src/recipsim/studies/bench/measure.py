@@ -24,7 +24,8 @@ from typing import Any
 
 import numpy as np
 
-from recipsim.case.load import Case, load_case
+from recipsim.case.case import Case
+from recipsim.case.load import load_case
 from recipsim.errors import CaseError, RecipsimError
 from recipsim.studies.bench.errors import compared_quantities
 from recipsim.studies.bench.ladder import (

@@ -30,7 +30,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.optimize import least_squares
 
-from recipsim.case.load import Case
+from recipsim.case.case import Case
 from recipsim.errors import RecipsimError
 from recipsim.studies.calibrate.data import MeasuredPoint
 

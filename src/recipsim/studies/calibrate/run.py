@@ -11,7 +11,7 @@ from typing import Any
 
 import pandas as pd
 
-from recipsim.case.load import Case
+from recipsim.case.case import Case
 from recipsim.errors import RecipsimError
 from recipsim.studies.calibrate.data import MeasuredPoint, read_points
 from recipsim.studies.calibrate.fit import (

@@ -15,6 +15,17 @@ from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any
 
+from recipsim.case.files import read_toml
+from recipsim.case.schema import (
+    Choice,
+    Field,
+    FileSpec,
+    Spec,
+    Text,
+    TextList,
+    check_keys,
+    read_table,
+)
 from recipsim.errors import CaseError
 from recipsim.studies.check.metrics import METRICS
 
@@ -84,53 +95,81 @@ def find_cases(paths: Iterable[Path]) -> list[Path]:
     return files
 
 
-_EXPECTATION_KEYS = {
-    "expected",
-    "message",
-    "reason",
-    "mass_tolerance",
-    "energy_tolerance",
-    "drive_tolerance",
-    "fast",
-    "minimum",
+#: The keys of ``[defaults]`` and ``[cases.<name>]``, read by
+#: :func:`recipsim.case.schema.read_table` (a key a table leaves out keeps the value of
+#: ``[defaults]``, then of :class:`Expectation`); the case-file reference prints them.
+EXPECTATION_SPEC: FileSpec = {
+    "expected": Choice(OUTCOMES, "converged", "the outcome the case must end with"),
+    "message": Text(
+        "",
+        "regular expression (case-insensitive search) the message of a refused or failed "
+        "run must match; empty: any message",
+    ),
+    "reason": Text("", "why this is the expectation (copied to check.csv)"),
+    "mass_tolerance": Field(
+        "dimensionless",
+        MASS_TOLERANCE,
+        lo=0.0,
+        open_lo=True,
+        doc="largest mass closure of a converged run, over the swept mass",
+    ),
+    "energy_tolerance": Field(
+        "dimensionless",
+        ENERGY_TOLERANCE,
+        lo=0.0,
+        open_lo=True,
+        doc="largest energy closure of a converged run, over its isentropic work",
+    ),
+    "drive_tolerance": Field(
+        "dimensionless",
+        DRIVE_TOLERANCE,
+        lo=0.0,
+        open_lo=True,
+        doc="largest drive closure (P_shaft = P_gas + P_bearings) of a converged run",
+    ),
+    "fast": TextList(
+        (),
+        "extra KEY=VALUE overrides under --fast, after solver.rtol=1e-5, "
+        "solver.samples_per_revolution=360 and those of [defaults]",
+    ),
 }
+#: ``minimum``: lower bounds on the metrics of a converged run, a sub-table.
+MINIMUM_SPEC: Spec = {
+    "suction_reed_openings": Field(
+        "dimensionless", None, lo=0.0, doc="openings of the suction reed per revolution"
+    ),
+    "discharge_reed_openings": Field(
+        "dimensionless", None, lo=0.0, doc="openings of the discharge reed per revolution"
+    ),
+    "volumetric_efficiency": Field(
+        "dimensionless", None, lo=0.0, hi=2.0, doc="volumetric efficiency [-]"
+    ),
+}
+_EXPECTATION_KEYS = {*EXPECTATION_SPEC, "minimum"}
 
 
 def _expectation(raw: Any, base: Expectation, file: str, key: str) -> Expectation:
-    """Validate one table of the expectations file on top of ``base``."""
-    from recipsim.case.schema import check_keys
-
+    """Validate one table of the expectations file on top of ``base``: the keys it gives
+    replace ``base``'s; ``fast`` overrides accumulate."""
     if not isinstance(raw, dict):
         raise CaseError(file, key, "expected a table")
     check_keys(raw, _EXPECTATION_KEYS, file, key)
-    values: dict[str, Any] = {}
-    for name, value in raw.items():
-        where = f"{key}.{name}"
-        if name == "expected":
-            if value not in OUTCOMES:
-                raise CaseError(file, where, f"{value!r} is not allowed; choose one of {OUTCOMES}")
-        elif name in ("message", "reason"):
-            if not isinstance(value, str):
-                raise CaseError(file, where, "expected a string")
-            if name == "message":
-                try:
-                    re.compile(value)
-                except re.error as exc:
-                    raise CaseError(file, where, f"not a regular expression: {exc}") from None
-        elif name.endswith("_tolerance"):
-            if isinstance(value, bool) or not isinstance(value, int | float) or value <= 0:
-                raise CaseError(file, where, "expected a positive number, e.g. 1e-3")
-            value = float(value)
-        elif name == "fast":
-            if not isinstance(value, list) or not all(isinstance(v, str) for v in value):
-                raise CaseError(file, where, 'expected a list of "KEY=VALUE" strings')
-            value = base.fast + tuple(value)
-        elif name == "minimum":
-            if not isinstance(value, dict):
-                raise CaseError(file, where, f"expected a table of metrics {METRICS}")
-            check_keys(value, set(METRICS), file, where)
-            value = {m: float(v) for m, v in value.items()}
-        values[name] = value
+    scalars = {name: value for name, value in raw.items() if name != "minimum"}
+    read = read_table(scalars, EXPECTATION_SPEC, file, key)
+    values: dict[str, Any] = {name: read[name] for name in scalars}
+    if "message" in values:
+        try:
+            re.compile(values["message"])
+        except re.error as exc:
+            raise CaseError(file, f"{key}.message", f"not a regular expression: {exc}") from None
+    if "fast" in values:
+        values["fast"] = base.fast + values["fast"]
+    if "minimum" in raw:
+        where = f"{key}.minimum"
+        if not isinstance(raw["minimum"], dict):
+            raise CaseError(file, where, f"expected a table of metrics {METRICS}")
+        bounds = read_table(raw["minimum"], MINIMUM_SPEC, file, where)
+        values["minimum"] = {m: float(bounds[m]) for m in raw["minimum"]}
     return replace(base, **values)
 
 
@@ -150,9 +189,6 @@ def load_expectations(path: Path) -> tuple[Expectation, dict[str, Expectation]]:
         Naming the file and key of anything invalid, including a ``[cases.<name>]``
         with no ``<name>.toml`` beside the file.
     """
-    from recipsim.case.load import read_toml
-    from recipsim.case.schema import check_keys
-
     raw, _ = read_toml(path, "expectations")
     file = str(path)
     check_keys(raw, {"defaults", "cases"}, file, "")

@@ -1,9 +1,11 @@
 """Run a sweep end to end: plan, resume, compute, record, tabulate, plot.
 
 :func:`run_sweep` is the Python entry point behind ``recipsim sweep``; it calls one
-function per step: :func:`_open_store` (claim the output directory), :func:`_resume`
-(reuse finished points, queue the others), :func:`_compute` (run the queued points,
-recording each as it finishes) and :mod:`.outputs` (tables, plots, provenance).
+function per step: :func:`_checked_options` (refuse bad options and oversized sweeps
+before any point is built), :func:`_plan` (the output directory and the points),
+:func:`_open_store` (claim the output directory), :func:`_resume` (reuse finished points,
+queue the others), :func:`_compute` (run the queued points, recording each as it
+finishes) and :func:`_outcome` with :mod:`.outputs` (tables, plots, provenance).
 """
 
 from __future__ import annotations
@@ -29,7 +31,7 @@ from recipsim.studies.sweep.outputs import (
 )
 from recipsim.studies.sweep.plan import PlannedPoint, plan_sweep
 from recipsim.studies.sweep.spec import SweepSpec, load_sweep
-from recipsim.studies.sweep.store import PointStore
+from recipsim.studies.sweep.store import PointStore, SolveAndSave, point_record
 from recipsim.studies.sweep.worker import OK, SOLVED, PointTask
 
 if TYPE_CHECKING:
@@ -60,17 +62,6 @@ def _check_parquet() -> None:
         ) from None
 
 
-def _record(task: PointTask, result: dict[str, Any], run_id: str) -> dict[str, Any]:
-    return {
-        "status": result["status"],
-        "message": result["message"],
-        "summary": result["summary"],
-        "overrides": list(task.overrides),
-        "run": run_id,
-        "finished": time.strftime("%Y-%m-%dT%H:%M:%S%z"),
-    }
-
-
 def run_sweep(
     path: str | Path | SweepSpec,
     *,
@@ -91,69 +82,87 @@ def run_sweep(
     allow_external_paths: bool = False,
     figures: FigureProcesses | None = None,
 ) -> SweepOutcome:
-    """Run (or resume) a sweep.
+    """Run (or resume) a sweep; what it produced, as a :class:`SweepOutcome`.
 
     Parameters
     ----------
     path : str, Path or SweepSpec
         Sweep file, or a sweep built in Python (:func:`recipsim.api.sweep`).
-    jobs : int, optional
-        Local worker processes (default: the CPUs available); 1 runs the points in
-        this process. Ignored with ``scheduler``.
-    scheduler : str, optional
-        Address of a Dask distributed scheduler to run the points on.
+    jobs, scheduler, scheduler_timeout : int, optional; str, optional; float
+        Local worker processes (default: the CPUs available; 1 runs the points in this
+        process), ignored with ``scheduler``: the address of a Dask distributed
+        scheduler to run the points on; seconds to wait for it to answer [s].
     out : str or Path
-        Parent of the sweep's output directory (default ``reports/sweeps``): the sweep
-        goes to ``<out>/<name>``, or ``<out>/<name>+<digest of the overrides>``.
+        Parent of the output directory ``<out>/<name>`` (``<out>/<name>+<digest of the
+        overrides>`` with overrides); default ``reports/sweeps``.
     overrides : iterable of str
         ``KEY=VALUE`` overrides for every point (``--set``).
-    reports : bool
-        Also write a full report per point (``reports/<point_id>/``).
+    reports, parquet : bool
+        Also write a full report per point (``reports/<point_id>/``); also write
+        ``summary.parquet`` (needs pyarrow).
     plots : bool or collection of str
-        Draw the map plots (and the figures of per-point reports); a collection names
-        the map plots to draw (:data:`recipsim.studies.sweep.plots.MAP_NAMES`).
-    parquet : bool
-        Also write ``summary.parquet`` (needs pyarrow).
-    retry_failed : bool
-        Recompute points recorded with a status other than ``ok``.
-    fresh : bool
-        Forget every finished point and compute everything again.
+        Draw the map plots (and the figures of per-point reports), or the map plots
+        named (:data:`recipsim.studies.sweep.plots.MAP_NAMES`).
+    retry_failed, fresh : bool
+        Recompute the points recorded with a status other than ``ok``; forget every
+        finished point and compute everything again.
     progress : bool
         Show a progress bar on standard error if it is a terminal.
-    argv : list of str, optional
-        Command line, for the provenance file.
-    started : float, optional
-        :func:`time.perf_counter` value at which the command started (so that the
-        reported wall time includes its imports); default: now.
+    argv, started : list of str; float, optional
+        Command line, for the provenance file; :func:`time.perf_counter` value at which
+        the command started (the reported wall time includes its imports; default: now).
     max_points : int, optional
         Refuse sweeps of more points (default: the sweep file's ``max_points``, else
         100 000), checked before any point is built.
-    scheduler_timeout : float
-        Seconds to wait for the Dask scheduler to answer [s].
     allow_external_paths : bool
         Let the sweep's ``base`` and the cases name files outside their directory.
     figures : FigureProcesses, optional
-        Forked processes that draw the map plots, shared between them
-        (:func:`recipsim.report.figure_process.start_figure_processes`, the command
-        line's); None draws them here, one after the other.
-
-    Returns
-    -------
-    SweepOutcome
+        Forked processes that draw the map plots, shared between them (the command
+        line's :func:`recipsim.report.figure_process.start_figure_processes`); None: here.
 
     Raises
     ------
     CaseError
-        Invalid sweep file (or an unknown case key in it), more points than allowed,
-        an output directory that recipsim did not write, or one that recorded other
+        Invalid sweep file (or an unknown case key in it), more points than allowed, an
+        output directory that recipsim did not write, or one that recorded other
         overrides (unless ``fresh``).
-    SweepInterrupted
-        Ctrl-C; finished points are kept and a rerun resumes.
-    WorkerLost
-        A worker died; finished points are kept and a rerun resumes.
+    SweepInterrupted, WorkerLost
+        Ctrl-C, a worker that died; finished points are kept and a rerun resumes.
     """
     start = time.perf_counter() if started is None else started
     spec = path if isinstance(path, SweepSpec) else load_sweep(path, allow_external_paths)
+    plots = _checked_options(spec, parquet, plots, max_points)
+    overrides = list(overrides)
+    root, planned = _plan(spec, Path(out), overrides, max_points, allow_external_paths)
+    store = _open_store(root, overrides, fresh)
+    work = _resume(spec, planned, store, retry_failed, reports, bool(plots), allow_external_paths)
+    where = (scheduler, jobs, scheduler_timeout)
+    ran = (_compute(work, store, planned, spec.name, where, progress), scheduler)
+    outcome = _outcome(spec, root, planned, work, (plots, parquet, figures), ran, start)
+    write_provenance(outcome, scheduler, argv)
+    return outcome
+
+
+def _plan(
+    spec: SweepSpec,
+    out: Path,
+    overrides: list[str],
+    max_points: int | None,
+    allow_external_paths: bool,
+) -> tuple[Path, list[PlannedPoint]]:
+    """The sweep's output directory and its points.
+
+    The directory is ``<out>/<name>+<digest>`` with ``--set``, as ``recipsim run`` names
+    reports: other overrides never share (or resume into) one directory; it must be new,
+    empty or an earlier sweep's.
+    """
+    root = report_dir(out, spec.name, overrides)
+    return root, plan_sweep(spec, overrides, max_points, allow_external_paths)
+
+
+def _checked_options(spec: SweepSpec, parquet: bool, plots: Plots, max_points: int | None) -> Plots:
+    """Refuse, before any point is built, ``--parquet`` without pyarrow, unknown map plot
+    names and a sweep over the point limit; the plots to draw."""
     if parquet:
         _check_parquet()
     if plots is not True and plots:  # names of map plots, checked before any point runs
@@ -161,23 +170,31 @@ def run_sweep(
 
         plots = check_map_names(plots)
     spec.check_size(max_points)
-    overrides = list(overrides)
-    # <name>+<digest> with --set, as `recipsim run` names reports: other overrides never
-    # share (or resume into) one directory; a new, empty or earlier sweep directory
-    root = report_dir(Path(out), spec.name, overrides)
-    planned = plan_sweep(spec, overrides, max_points, allow_external_paths)
-    store = _open_store(root, overrides, fresh)
-    work = _resume(spec, planned, store, retry_failed, reports, bool(plots), allow_external_paths)
-    tasks = work.tasks
-    used_jobs = 0 if scheduler or not tasks else max(1, min(jobs or default_jobs(), len(tasks)))
-    if tasks:
-        _compute(work, store, planned, spec.name, scheduler, used_jobs, progress, scheduler_timeout)
+    return plots
 
+
+def _outcome(
+    spec: SweepSpec,
+    root: Path,
+    planned: list[PlannedPoint],
+    work: _Work,
+    outputs: tuple[Plots, bool, FigureProcesses | None],
+    ran: tuple[int, str | None],
+    start: float,
+) -> SweepOutcome:
+    """Tabulate the points and write the sweep's files.
+
+    ``outputs``: the plots, parquet and the figure processes; ``ran``: the worker processes
+    used and the scheduler (used if any point was computed); the wall time is taken from
+    ``start``.
+    """
+    plots, parquet, figures = outputs
     table = build_table(planned, work.records)
-    axes = [c for c in table.columns if c in {c for p in planned for c in p.columns}]
+    axis_columns = {c for p in planned for c in p.columns}
+    axes = [c for c in table.columns if c in axis_columns]
     files = write_outputs(spec, root, table, axes, plots, parquet, figures)
     wall = time.perf_counter() - start
-    outcome = SweepOutcome(
+    return SweepOutcome(
         spec=spec,
         directory=root,
         table=table,
@@ -186,11 +203,9 @@ def run_sweep(
         reused=work.reused,
         wall_time=wall,
         files=files,
-        jobs=used_jobs,
-        scheduler=scheduler if tasks else None,
+        jobs=ran[0],
+        scheduler=ran[1] if work.tasks else None,
     )
-    write_provenance(outcome, scheduler, argv)
-    return outcome
 
 
 @dataclass
@@ -255,20 +270,30 @@ def _compute(
     store: PointStore,
     planned: list[PlannedPoint],
     name: str,
-    scheduler: str | None,
-    jobs: int,
+    where: tuple[str | None, int | None, float],
     progress: bool,
-    scheduler_timeout: float,
-) -> None:
+) -> int:
     """Run ``work.tasks``, saving each point as it finishes, with an optional progress bar.
+
+    ``where``: the Dask scheduler's address (or None), the local worker processes asked
+    for (None: the CPUs available) and the seconds to wait for the scheduler.
+
+    Returns
+    -------
+    int
+        Local worker processes used (0 on a Dask cluster or with nothing to run).
 
     Raises
     ------
     SweepInterrupted
         On Ctrl-C, saying how many points are finished and where they are kept.
     """
-    run_id = uuid.uuid4().hex
+    scheduler, asked, scheduler_timeout = where
     tasks = work.tasks
+    jobs = 0 if scheduler or not tasks else max(1, min(asked or default_jobs(), len(tasks)))
+    if not tasks:
+        return jobs
+    run_id = uuid.uuid4().hex
     bar: Any = None
     not_ok = 0
 
@@ -281,10 +306,8 @@ def _compute(
                 return
             bar = tqdm(total=len(tasks), desc=name, unit="pt", file=sys.stderr, dynamic_ncols=True)
 
-    def on_result(task: PointTask, result: dict[str, Any]) -> None:
+    def on_record(task: PointTask, record: dict[str, Any]) -> None:
         nonlocal not_ok
-        record = _record(task, result, run_id)
-        store.save(task.point_id, record)
         work.records[task.point_id] = record
         work.computed.append(task.point_id)
         if bar is not None:
@@ -293,8 +316,22 @@ def _compute(
                 bar.set_postfix(failed=not_ok, refresh=False)
             bar.update(1)
 
+    def on_result(task: PointTask, result: dict[str, Any]) -> None:
+        record = point_record(task, result, run_id)
+        store.save(task.point_id, record)
+        on_record(task, record)
+
     try:
-        _execute(tasks, scheduler, jobs, on_result, on_start, scheduler_timeout)
+        if scheduler:
+            from recipsim.studies.sweep.dask_runner import run_dask
+
+            run_dask(tasks, scheduler, on_result, on_start, scheduler_timeout)
+        elif jobs > 1:  # local workers share this file system: each saves its points
+            _prepare_fork()
+            save = SolveAndSave(str(store.root), run_id)
+            runner().run_pool(tasks, jobs, on_record, on_start, solve=save)
+        else:
+            runner().run_inline(tasks, on_result, on_start)
     except KeyboardInterrupt:
         done = len(work.records)
         raise SweepInterrupted(
@@ -304,6 +341,7 @@ def _compute(
     finally:
         if bar is not None:
             bar.close()
+    return jobs
 
 
 def _keep(
@@ -317,25 +355,15 @@ def _keep(
     return True
 
 
-def _execute(
-    tasks: list[PointTask],
-    scheduler: str | None,
-    jobs: int,
-    on_result: Any,
-    on_start: Any,
-    scheduler_timeout: float,
-) -> None:
+def runner() -> Any:
+    """The runner module, imported where a sweep computes points (not to plan one)."""
     from recipsim.studies.sweep import runner
 
-    if scheduler:
-        runner.run_dask(tasks, scheduler, on_result, on_start, scheduler_timeout)
-        return
-    if jobs > 1:
-        # import the solver here, before the workers are forked: they start warm
-        import recipsim.model.build  # noqa: F401
-        import recipsim.results.tables  # noqa: F401
-        import recipsim.solve.periodic  # noqa: F401
+    return runner
 
-        runner.run_pool(tasks, jobs, on_result, on_start)
-    else:
-        runner.run_inline(tasks, on_result, on_start)
+
+def _prepare_fork() -> None:
+    """Import the solver before the workers are forked: they start warm."""
+    import recipsim.model.build  # noqa: F401
+    import recipsim.results.tables  # noqa: F401
+    import recipsim.solve.periodic  # noqa: F401

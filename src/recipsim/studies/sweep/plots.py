@@ -103,15 +103,44 @@ def _lines(
         if key[1:] not in rest:
             rest.append(key[1:])
         colour = first.index(key[0]) % 10
-        style_index = rest.index(key[1:])
-        style = {
-            "color": f"C{colour}",
-            "ls": _STYLES[style_index % len(_STYLES)],
-            "marker": _MARKERS[style_index % len(_MARKERS)],
-        }
+        style = {"color": f"C{colour}", **_style(rest.index(key[1:]))}
         label = ", ".join(_value_label(c, v) for c, v in zip(groups, key, strict=True))
         out.append((label, style, rows.sort_values(x)))
     return out
+
+
+def _style(index: int) -> dict[str, Any]:
+    """Line style and marker of the ``index``-th combination of the other group axes:
+    distinct pairs for the first 32 (the marker shifts by one every 8)."""
+    return {
+        "ls": _STYLES[index % len(_STYLES)],
+        "marker": _MARKERS[(index + index // len(_MARKERS)) % len(_MARKERS)],
+    }
+
+
+#: More lines than this get a key (a colour per value of the first group axis, a style per
+#: combination of the others) instead of a legend entry per line.
+MAX_LEGEND_LINES = 12
+
+
+def legend_entries(table: pd.DataFrame, groups: list[str]) -> tuple[list[Any], list[str]]:
+    """Handles and labels of a map's key: a colour per value of the first group axis and
+    a line style per combination of the others (used above :data:`MAX_LEGEND_LINES`)."""
+    from matplotlib.lines import Line2D
+
+    handles: list[Any] = []
+    labels: list[str] = []
+    for i, value in enumerate(dict.fromkeys(table[groups[0]])):
+        handles.append(Line2D([], [], color=f"C{i % 10}", ls="-"))
+        labels.append(_value_label(groups[0], value))
+    if len(groups) > 1:
+        combos = list(dict.fromkeys(zip(*(table[c] for c in groups[1:]), strict=True)))
+        for i, combo in enumerate(combos):
+            handles.append(Line2D([], [], color="0.3", ms=4, **_style(i)))
+            labels.append(
+                ", ".join(_value_label(c, v) for c, v in zip(groups[1:], combo, strict=True))
+            )
+    return handles, labels
 
 
 def plot_map(
@@ -131,14 +160,20 @@ def plot_map(
     else:
         fig = ax.figure
     xlabel = ""
-    for label, style, rows in _lines(table, x, groups):
+    # only the columns drawn: each line's rows are sorted by x, a copy per line (of all
+    # 130-odd summary columns it cost 3 ms a line, 5 of the 18 s of a 1000-point map)
+    narrow = table[list(dict.fromkeys([*groups, x, y]))]
+    for label, style, rows in _lines(narrow, x, groups):
         xs, xlabel = _display(x, rows[x].to_numpy(dtype=float))
         ax.plot(xs, rows[y].to_numpy(dtype=float), label=label or None, ms=4, lw=1.2, **style)
     ax.set_xlabel(xlabel)
     ax.set_ylabel(ylabel or y)
     ax.grid(True, alpha=0.3)
-    if groups:
-        ax.legend(fontsize=7, ncol=2 if len(ax.get_lines()) > 6 else 1)
+    lines = len(ax.get_lines())
+    if groups and lines > MAX_LEGEND_LINES:
+        ax.legend(*legend_entries(table, groups), fontsize=6, ncol=2)
+    elif groups:
+        ax.legend(fontsize=7, ncol=2 if lines > 6 else 1)
     return fig
 
 
@@ -156,7 +191,17 @@ def plot_bearing_loads(table: pd.DataFrame, x: str, groups: list[str]) -> Figure
     nrows = math.ceil(len(columns) / ncols)
     from matplotlib.figure import Figure
 
-    fig = Figure(figsize=(4.2 * ncols, 3.4 * nrows))
+    lines = _lines(table, x, groups)
+    if len(lines) > MAX_LEGEND_LINES:
+        handles, labels = legend_entries(table, groups)
+    else:
+        handles, labels = [], [label for label, _, _ in lines if label]
+    legend_rows = math.ceil(len(labels) / 3) if labels else 0
+    legend_height = 0.19 * legend_rows + (0.15 if legend_rows else 0.0)
+    # a legend that would take over 40 % of the panels' height gets height of its own
+    height = 3.4 * nrows
+    height += max(0.0, 0.6 + legend_height - 0.4 * height)
+    fig = Figure(figsize=(4.2 * ncols, height))
     axes = fig.subplots(nrows, ncols, squeeze=False)
     for ax, column in zip(axes.flat, columns, strict=False):
         name = BEARING_COLUMN.match(column).group(1)  # type: ignore[union-attr]
@@ -170,10 +215,10 @@ def plot_bearing_loads(table: pd.DataFrame, x: str, groups: list[str]) -> Figure
     fig.suptitle("peak bearing loads")
     # one legend for all panels, below them, in fixed margins [inch]: inside a panel it
     # hid the data and the constrained layout took a third of the drawing time
-    handles, labels = axes.flat[0].get_legend_handles_labels()
-    legend_rows = math.ceil(len(labels) / 3) if labels else 0
+    if not handles:
+        handles, labels = axes.flat[0].get_legend_handles_labels()
     width, height = fig.get_size_inches()
-    bottom = 0.6 + 0.19 * legend_rows + (0.15 if legend_rows else 0.0)
+    bottom = 0.6 + legend_height
     fig.subplots_adjust(
         left=0.75 / width,
         right=1.0 - 0.2 / width,

@@ -1,4 +1,5 @@
-"""Run sweep points: in the calling process, in a local process pool or on Dask.
+"""Run sweep points: in the calling process or in a local process pool (on Dask:
+:mod:`recipsim.studies.sweep.dask_runner`).
 
 Every runner calls ``on_result(task, result)`` in the calling process, once per
 point, as soon as that point is finished, so that the caller can write it to disk
@@ -20,7 +21,6 @@ from __future__ import annotations
 
 import multiprocessing
 import os
-import re
 import signal
 import sys
 import threading
@@ -30,17 +30,17 @@ from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, wai
 from concurrent.futures.process import BrokenProcessPool
 from typing import Any
 
-from recipsim.errors import CaseError, RecipsimError
+from recipsim.errors import RecipsimError
 from recipsim.studies.sweep.worker import (
-    FAILED,
     PointTask,
     init_worker,
     run_point,
     run_points,
-    worker_version,
 )
 
 ResultCallback = Callable[[PointTask, dict[str, Any]], None]
+#: solves one point where it runs (picklable): run_point, or SolveAndSave
+Solve = Callable[[PointTask], dict[str, Any]]
 StartCallback = Callable[[], None]
 
 
@@ -48,7 +48,8 @@ class WorkerLost(RecipsimError):
     """A worker process died, or the Dask cluster went away, during a sweep."""
 
 
-def _nothing() -> None:
+def nothing() -> None:
+    """The default ``on_start``: no progress bar to open."""
     return None
 
 
@@ -90,13 +91,17 @@ class _DeferredInterrupt:
 
 
 def run_inline(
-    tasks: Sequence[PointTask], on_result: ResultCallback, on_start: StartCallback = _nothing
+    tasks: Sequence[PointTask],
+    on_result: ResultCallback,
+    on_start: StartCallback = nothing,
+    solve: Solve = run_point,
 ) -> None:
-    """Run the points one after the other in this process (``--jobs 1``)."""
+    """Run the points one after the other in this process (``--jobs 1``) with ``solve``
+    (default :func:`~recipsim.studies.sweep.worker.run_point`)."""
     on_start()
     with _DeferredInterrupt() as interrupt:
         for task in tasks:
-            result = run_point(task)
+            result = solve(task)
             on_result(task, result)
             if interrupt.requested:
                 raise KeyboardInterrupt
@@ -142,9 +147,13 @@ def run_pool(
     tasks: Sequence[PointTask],
     jobs: int,
     on_result: ResultCallback,
-    on_start: StartCallback = _nothing,
+    on_start: StartCallback = nothing,
+    solve: Solve = run_point,
 ) -> None:
-    """Run the points on ``jobs`` persistent local worker processes.
+    """Run the points on ``jobs`` persistent local worker processes, each point with
+    ``solve`` (default :func:`~recipsim.studies.sweep.worker.run_point`; a
+    :class:`~recipsim.studies.sweep.store.SolveAndSave` writes each record where it was
+    solved).
 
     Where workers are forked (Linux) the first point is solved here first: the solver's
     compiled code, the base case and its property table are then loaded once, in this
@@ -161,7 +170,7 @@ def run_pool(
         started = True
         on_start()
         started_at = time.perf_counter()
-        run_inline([queue.pop()], on_result)
+        run_inline([queue.pop()], on_result, solve=solve)
         point_seconds = time.perf_counter() - started_at
     window = 2 * jobs
     running: dict[Future[list[dict[str, Any]]], list[PointTask]] = {}
@@ -172,7 +181,7 @@ def run_pool(
                 while queue and len(running) < window:
                     size = chunk_size(point_seconds, len(queue), jobs) if point_seconds else 1
                     batch = [queue.pop() for _ in range(min(size, len(queue)))]
-                    running[executor.submit(run_points, batch)] = batch
+                    running[executor.submit(run_points, batch, solve)] = batch
                 if not started:  # the workers exist once the first point was submitted
                     started = True
                     on_start()
@@ -217,176 +226,3 @@ def _drain(
                 on_result(task, result)
     except KeyboardInterrupt:
         pass
-
-
-_SCHEDULER_ADDRESS = re.compile(r"(tcp|tls|ws|wss|inproc|ucx)://[^\s/]+(:\d+)?/?")
-
-
-def _prepare_dask_workers(client: Any, first: PointTask) -> None:
-    """Register :class:`~recipsim.studies.sweep.dask_plugin.PrepareWorker` on the
-    cluster: every worker, present or joining later, loads the solver and the base case
-    once."""
-    from recipsim.studies.sweep.dask_plugin import PrepareWorker
-
-    plugin = PrepareWorker(first.case, first.allow_external_paths)
-    register = getattr(client, "register_plugin", None) or client.register_worker_plugin
-    try:
-        register(plugin, name="recipsim-prepare")
-    except Exception as exc:  # a worker that cannot prepare fails its points, said there
-        print(f"recipsim: could not prepare the Dask workers ({exc})", file=sys.stderr)
-
-
-def check_scheduler_address(address: str) -> None:
-    """Refuse an address that is not ``PROTOCOL://HOST[:PORT]`` before connecting.
-
-    Raises
-    ------
-    CaseError
-        Naming ``--scheduler`` and the allowed form.
-    """
-    if not _SCHEDULER_ADDRESS.fullmatch(address):
-        raise CaseError(
-            "--scheduler",
-            "",
-            f"{address!r} is not a scheduler address; expected PROTOCOL://HOST:PORT, e.g. "
-            "tcp://127.0.0.1:8786",
-        )
-
-
-def probe_scheduler(address: str, timeout: float) -> None:
-    """Check that a ``tcp://`` address answers like a Dask scheduler within ``timeout``.
-
-    A Dask scheduler sends its handshake as soon as a connection opens; a server that
-    accepts the connection and stays silent (not Dask) would leave ``Client`` waiting
-    for minutes. Other protocols are left to ``Client``'s own timeout.
-
-    Raises
-    ------
-    RecipsimError
-        Nothing listens there, or what listens sends nothing within ``timeout`` [s].
-    """
-    import socket
-
-    protocol, _, location = address.partition("://")
-    if protocol != "tcp":
-        return
-    host, _, port = location.rstrip("/").rpartition(":")
-    if not port.isdigit():
-        host, port = location.rstrip("/"), "8786"
-    try:
-        with socket.create_connection((host.strip("[]"), int(port)), timeout=timeout) as sock:
-            sock.settimeout(timeout)
-            if not sock.recv(1):
-                raise RecipsimError(f"the server at {address} closed the connection: not Dask")
-    except TimeoutError:
-        raise RecipsimError(
-            f"no Dask scheduler answers at {address} within {timeout:g} s (--scheduler-timeout)"
-        ) from None
-    except OSError as exc:
-        raise RecipsimError(
-            f"cannot reach the Dask scheduler at {address}: {exc.strerror or exc}"
-        ) from None
-
-
-def run_dask(
-    tasks: Sequence[PointTask],
-    address: str,
-    on_result: ResultCallback,
-    on_start: StartCallback = _nothing,
-    connect_timeout: float = 10.0,
-) -> None:
-    """Run the points on an existing Dask distributed cluster.
-
-    Parameters
-    ----------
-    tasks : sequence of PointTask
-    address : str
-        Scheduler address, e.g. ``tcp://127.0.0.1:8786``.
-    on_result, on_start : callable
-        See the module docstring.
-    connect_timeout : float
-        Seconds to wait for the scheduler [s].
-
-    Raises
-    ------
-    RecipsimError
-        When Dask is not installed, the scheduler cannot be reached, or the workers
-        cannot import this version of recipsim.
-    WorkerLost
-        When the cluster goes away during the sweep.
-    """
-    try:
-        from dask.distributed import Client, as_completed
-        from distributed.scheduler import KilledWorker
-    except ImportError:
-        raise RecipsimError(
-            "--scheduler needs Dask distributed: pip install 'dask[distributed]' "
-            "(or pip install 'recipsim[dask]')"
-        ) from None
-    check_scheduler_address(address)
-    probe_scheduler(address, connect_timeout)
-    try:
-        client = Client(address, timeout=connect_timeout, set_as_default=False)
-    except Exception as exc:  # OSError on a timeout, ValueError on a malformed address
-        reason = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
-        raise RecipsimError(
-            f"cannot reach the Dask scheduler at {address} within {connect_timeout:g} s: {reason}"
-        ) from None
-    try:
-        from recipsim import __version__
-
-        try:
-            remote = client.submit(worker_version, pure=False).result(timeout=120)
-        except Exception as exc:
-            raise RecipsimError(
-                f"the Dask workers at {address} cannot run recipsim ({type(exc).__name__}: "
-                f"{exc}); install recipsim {__version__} in the workers' environment"
-            ) from None
-        if remote != __version__:
-            raise RecipsimError(
-                f"the Dask workers run recipsim {remote}, this is {__version__}; results "
-                "would not be comparable"
-            )
-        if tasks:
-            _prepare_dask_workers(client, tasks[0])
-        workers = max(1, len(client.scheduler_info().get("workers", {})))
-        size = chunk_size(0.0, len(tasks), workers)
-        futures = {}
-        for start in range(0, len(tasks), size):
-            batch = list(tasks[start : start + size])
-            key = f"recipsim-points-{batch[0].point_id}-{len(batch)}"
-            futures[client.submit(run_points, batch, key=key, pure=False)] = batch
-        on_start()
-        try:
-            pending = as_completed(futures, loop=client.loop)
-            for future in pending:
-                batch = futures[future]
-                try:
-                    results = future.result()
-                except KilledWorker as exc:
-                    if len(batch) > 1:  # find the point that kills: one by one
-                        for task in batch:
-                            single = client.submit(
-                                run_points, [task], key=f"recipsim-point-{task.point_id}"
-                            )
-                            futures[single] = [task]
-                            pending.add(single)
-                        continue
-                    results = [
-                        {
-                            "status": FAILED,
-                            "message": f"the point killed its Dask worker repeatedly ({exc})",
-                            "summary": {},
-                        }
-                    ]
-                except Exception as exc:
-                    raise WorkerLost(
-                        f"the Dask cluster failed during the sweep ({type(exc).__name__}: {exc})"
-                    ) from None
-                for task, result in zip(batch, results, strict=True):
-                    on_result(task, result)
-        except BaseException:
-            client.cancel([f for f in futures if not f.done()])
-            raise
-    finally:
-        client.close()

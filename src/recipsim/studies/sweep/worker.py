@@ -24,6 +24,7 @@ import os
 import signal
 import threading
 import time
+from collections.abc import Callable
 from dataclasses import dataclass
 from functools import lru_cache
 from pathlib import Path
@@ -131,10 +132,12 @@ def run_point(task: PointTask) -> dict[str, Any]:
     return {"status": status, "message": str(row.pop("status_message", "")), "summary": row}
 
 
-def run_points(tasks: list[PointTask]) -> list[dict[str, Any]]:
-    """Solve a batch of points in order (see :func:`run_point`); one round trip to a
-    worker for several points."""
-    return [run_point(task) for task in tasks]
+def run_points(
+    tasks: list[PointTask], solve: Callable[[PointTask], dict[str, Any]] = run_point
+) -> list[dict[str, Any]]:
+    """Solve a batch of points in order with ``solve`` (default :func:`run_point`); one
+    round trip to a worker for several points."""
+    return [solve(task) for task in tasks]
 
 
 def point_case(path: str, overrides: tuple[str, ...], allow_external_paths: bool) -> Case:

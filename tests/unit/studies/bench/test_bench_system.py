@@ -105,3 +105,38 @@ def test_system_timing_keeps_a_sweep_with_failed_points():
     ]
     with pytest.raises(RecipsimError, match="worker lost"):
         _timed(lost, sweep=True)
+
+
+def test_worker_counts_of_bench_system() -> None:
+    """``--jobs J`` is 1..J; a list is taken as given (sorted, each once); anything else
+    is refused with the allowed forms."""
+    import argparse
+
+    from recipsim.cli.options import worker_counts
+
+    assert worker_counts("3") == [1, 2, 3]
+    assert worker_counts("16,1,4,2,8,4") == [1, 2, 4, 8, 16]
+    for bad in ("0", "1,x", "", "2,-1"):
+        with pytest.raises(argparse.ArgumentTypeError, match="comma-separated"):
+            worker_counts(bad)
+
+
+def test_scaling_after_start_up_measures_each_worker_count(tmp_path) -> None:
+    """A 6-point sweep on 1 and 2 workers inside one started interpreter: every point
+    solved in each run, efficiency T(1) / (J T(J)) with T(1) as its own reference."""
+    from helpers import REFERENCE
+    from recipsim.studies.bench.map_scaling import measure_map_scaling
+
+    sweep = tmp_path / "tiny.toml"
+    sweep.write_text(
+        f'name = "tiny"\nbase = "{REFERENCE.as_posix()}"\n[axes]\n'
+        'operating_point.evaporating_temperature = ["-30 degC", "-25 degC", "-20 degC"]\n'
+        'operating_point.shaft_speed = ["3000 rpm", "3500 rpm"]\n'
+    )
+    result = measure_map_scaling(str(sweep), [1, 2])
+    assert result["points"] == 6
+    one, two = result["runs"]["1"], result["runs"]["2"]
+    assert one["ok"] == two["ok"] == 6
+    assert one["efficiency [-]"] == 1.0
+    assert two["efficiency [-]"] == pytest.approx(one["wall [s]"] / (2 * two["wall [s]"]))
+    assert two["points_per_second"] == pytest.approx(6 / two["wall [s]"])

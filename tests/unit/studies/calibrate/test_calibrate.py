@@ -14,7 +14,8 @@ from pathlib import Path
 import pandas as pd
 import pytest
 
-from recipsim.case.load import Case, load_case
+from recipsim.case.case import Case
+from recipsim.case.load import load_case
 from recipsim.cli.main import main
 from recipsim.errors import CaseError
 from recipsim.studies.calibrate.data import printed_resolution, read_points

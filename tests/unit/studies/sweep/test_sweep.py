@@ -308,7 +308,7 @@ operating_point.evaporating_temperature = ["-30 degC", "-20 degC", "80 degC"]
 
 
 def test_unreachable_scheduler_is_a_clear_error(tmp_path):
-    from recipsim.studies.sweep.runner import run_dask
+    from recipsim.studies.sweep.dask_runner import run_dask
 
     with pytest.raises(RecipsimError, match="cannot reach the Dask scheduler"):
         run_dask([], "tcp://127.0.0.1:9", lambda task, result: None, connect_timeout=0.5)

@@ -89,3 +89,49 @@ def test_bearing_map_has_one_legend_below_the_panels() -> None:
     boxes = [ax.get_tightbbox(renderer) for ax in fig.axes if ax.get_visible()]
     lowest = min(box.y0 for box in boxes if box is not None)
     assert legend.y1 <= lowest + 1
+
+
+def test_pool_workers_save_their_own_points(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """On the local pool each point's record is written by the process that solved it:
+    the parent writes only the first point (solved here before the workers fork), so
+    saving is not a serial step of the parent. Every record reads back with a valid
+    checksum and the table is that of one process."""
+    import os
+
+    from recipsim.studies.sweep.store import PointStore
+
+    writers = tmp_path / "writers.txt"
+    save = PointStore.save
+
+    def noting_save(self: PointStore, point_id: str, record: dict) -> None:
+        with open(writers, "a") as handle:
+            handle.write(f"{os.getpid()}\n")
+        save(self, point_id, record)
+
+    monkeypatch.setattr(PointStore, "save", noting_save)
+    pool = run_sweep(_sweep(tmp_path), out=tmp_path / "pool", jobs=2, plots=False)
+    pids = writers.read_text().split()
+    assert len(pids) == 12
+    assert pids.count(str(os.getpid())) == 1  # the warm first point
+    store = PointStore(pool.directory)
+    for pid, overrides in zip(pool.table["point_id"], _overrides(pool), strict=True):
+        assert store.load(pid, overrides) is not None  # checksum and overrides match
+    writers.unlink()
+    inline = run_sweep(_sweep(tmp_path), out=tmp_path / "inline", jobs=1, plots=False)
+    assert writers.read_text().split() == [str(os.getpid())] * 12
+    drop = list(TIMING_COLUMNS)
+    assert pool.table.drop(columns=drop).equals(inline.table.drop(columns=drop))
+
+
+def _overrides(outcome: object) -> list[list[str]]:
+    """Each point's overrides, as its record holds them."""
+    import json
+
+    directory = outcome.directory  # type: ignore[attr-defined]
+    table = outcome.table  # type: ignore[attr-defined]
+    return [
+        json.loads((directory / "points" / f"{pid}.json").read_text())["overrides"]
+        for pid in table["point_id"]
+    ]

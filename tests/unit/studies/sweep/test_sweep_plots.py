@@ -97,3 +97,47 @@ def test_no_plots_without_a_converged_point(tmp_path):
     table["status"] = "invalid"
     assert save_map_plots(table, AXES, tmp_path) == []
     assert not list(tmp_path.iterdir())
+
+
+def large_map(bearings: bool) -> tuple[pd.DataFrame, list[str]]:
+    """10 condensing temperatures x 10 speeds x 3 evaporating temperatures: 100 lines
+    (the layout of ``throughput_1000``, whose bearing-load plot once failed with
+    "bottom cannot be >= top": a legend entry per line took more than the figure)."""
+    rows = []
+    for condensing in np.linspace(308.15, 330.65, 10):
+        for speed in np.linspace(209.4, 586.4, 10):
+            for evaporating in (238.15, 243.15, 248.15):
+                row = {
+                    "condensing_temperature [K]": condensing,
+                    "shaft_speed [rad/s]": speed,
+                    "evaporating_temperature [K]": evaporating,
+                    "status": "ok",
+                    "cooling_capacity [W]": speed * (evaporating - 200.0) / (condensing - 250.0),
+                }
+                if bearings:
+                    for i, name in enumerate(BEARINGS):
+                        row[f"bearing_max_{name} [N]"] = 100.0 * (i + 1) + speed
+                rows.append(row)
+    return pd.DataFrame(rows), [
+        "condensing_temperature [K]",
+        "shaft_speed [rad/s]",
+        "evaporating_temperature [K]",
+    ]
+
+
+def test_many_lines_get_a_key_instead_of_a_legend_entry_each(tmp_path):
+    table, axes = large_map(bearings=True)
+    x = x_column(table, axes)
+    groups = group_columns(table, axes, x)
+    fig = plot_map(table, "cooling_capacity [W]", x, groups)
+    assert len(fig.axes[0].get_lines()) == 100
+    texts = [t.get_text() for t in fig.axes[0].get_legend().get_texts()]
+    # a colour per condensing temperature, a style per speed: 20 entries, not 100
+    assert len(texts) == 20
+    assert texts[0] == "condensing 35 °C" and texts[10] == "shaft speed 2000 rpm"
+    # the ten speeds' styles are all different (line style and marker together)
+    handles = fig.axes[0].get_legend().legend_handles
+    styles = {(h.get_linestyle(), h.get_marker()) for h in handles[10:]}
+    assert len(styles) == 10
+    written = save_map_plots(table, axes, tmp_path)
+    assert tmp_path / "map_bearing_loads.png" in written

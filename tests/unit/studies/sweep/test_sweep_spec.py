@@ -128,6 +128,10 @@ def test_unknown_axis_key_fails_fast_naming_sweep_and_key(tmp_path, capsys):
         ("name = 'a/b'\n[axes]\nrefrigerant = ['R134a']\n", "name", "directory name"),
         ("stray = 1\n[axes]\nrefrigerant = ['R134a']\n", "stray", "unknown key"),
         ("[set]\nsolver.rtol = 1e-7\n", "axes", "needs [axes] or [[points]]"),
+        # the top level is read by the shared schema: the key and its allowed range
+        ("max_points = 0\n[axes]\nrefrigerant = ['R134a']\n", "max_points", "allowed [1, inf]"),
+        ("max_points = 2.5\n[axes]\nrefrigerant = ['R134a']\n", "max_points", "whole number"),
+        ("description = 3\n[axes]\nrefrigerant = ['R134a']\n", "description", "a string"),
     ],
 )
 def test_sweep_file_errors_name_the_key(tmp_path, body, key, words):
@@ -145,6 +149,19 @@ def test_missing_base_case(tmp_path):
     with pytest.raises(CaseError) as info:
         load_sweep(path)
     assert info.value.key == "base" and "no such case file" in info.value.message
+    path.write_text('[axes]\nrefrigerant = ["R134a"]\n')
+    with pytest.raises(CaseError) as info:
+        load_sweep(path)
+    assert info.value.key == "base" and "missing required key" in info.value.message
+    assert "a shipped case by name" in info.value.message  # what base is, from SWEEP_SPEC
+
+
+def test_top_level_defaults(tmp_path):
+    spec = load_sweep(
+        write(tmp_path, "max_points = 7\n[axes]\nrefrigerant = ['R134a']\n", "my map.toml")
+    )
+    assert spec.name == "my_map" and spec.description == ""
+    assert spec.max_points == 7 and isinstance(spec.max_points, int)
 
 
 def test_command_line_set_may_not_name_an_axis(tmp_path):

@@ -1,0 +1,189 @@
+"""The declared keys of a case file's own tables: one :class:`~recipsim.case.schema.Field`
+or :class:`~recipsim.case.schema.Choice` per key, with its unit, default, range and meaning.
+
+The tables that have their own modules declare their keys there (``[motor]`` in
+:mod:`.motor`, ``[thermal]`` in :mod:`.thermal`, ``[oil]`` in :mod:`.lubrication`,
+``[mechanism]`` and ``[bearings]`` in :mod:`.mechanism_schema`). The case-file reference
+in the docs is generated from these mappings (``docs/_ext/case_reference.py``).
+"""
+
+from __future__ import annotations
+
+import math
+
+from recipsim.case.rating import RATING_SPEC
+from recipsim.case.schema import Choice, Field, Flag, Spec, Text
+
+#: the top of the file: the case's name, its description and its refrigerant
+HEADER_SPEC: Spec = {"name": Text(None), "description": Text(""), "refrigerant": Text()}
+
+OPTION_SPEC: Spec = {
+    "pressure": Choice(("cylinder", "tabulated"), "cylinder", "pressure source"),
+    "properties": Choice(("heos", "table"), "heos", "property backend"),
+    "valves": Choice(("ideal", "quasi_static", "reed"), "reed", "valve model"),
+    "heat_transfer": Choice(("adiabatic", "annand", "adair"), "adiabatic", "in-cylinder heat"),
+    "leakage": Choice(("none", "piston_gap"), "none", "piston-cylinder leakage"),
+    "mechanics": Choice(("pinned", "flexible"), "pinned", "crank train"),
+    "bearing_law": Choice(
+        ("linear", "short_journal", "finite_journal"),
+        "linear",
+        "law of the journal bearings (primary, secondary, eccentric) whose table names none",
+    ),
+    "drive": Choice(("constant_speed", "torque_profile", "induction_motor"), "constant_speed"),
+    "friction": Choice(
+        ("off", "mean", "films"),
+        None,
+        "mechanical friction: none, mean Petroff journals and viscous skirt, or the oil films "
+        "(default: films where a bearing runs on one, else off)",
+    ),
+    "motor": Choice(
+        ("lossless", "equivalent_circuit"), "lossless", "motor losses and electrical power"
+    ),
+    "thermal": Choice(
+        ("fixed_wall", "network"),
+        "fixed_wall",
+        "suction plenum at the inlet state and the given wall temperature, or the shell's "
+        "thermal network ([thermal])",
+    ),
+    "speed": Choice(
+        ("case", "motor_slip"),
+        "case",
+        "crank speed: operating_point.shaft_speed, or the speed at which the equivalent "
+        "circuit carries the cycle's load torque (constant speed, equivalent_circuit motor)",
+    ),
+}
+
+OPERATING_POINT_SPEC: Spec = {
+    "rating_point": Text(None, "name of a rating point in the refrigerant file"),
+    "evaporating_temperature": Field("K", None, lo=50.0, hi=700.0),
+    "condensing_temperature": Field("K", None, lo=50.0, hi=700.0),
+    "suction_pressure": Field("Pa", None, lo=0.0, open_lo=True, hi=1e9),
+    "discharge_pressure": Field("Pa", None, lo=0.0, open_lo=True, hi=1e9),
+    "suction_temperature": Field("K", None, lo=50.0, hi=700.0),
+    "liquid_temperature": Field("K", None, lo=50.0, hi=700.0),
+    "shell_pressure": Field("Pa", None, lo=0.0, open_lo=True, hi=1e9),
+    "shaft_speed": Field("rad/s", lo=0.0, hi=2000.0, open_lo=True, doc="e.g. '3500 rpm'"),
+    **RATING_SPEC,
+}
+
+GEOMETRY_SPEC: Spec = {
+    "bore": Field("m", lo=1e-3, hi=0.5),
+    "stroke": Field("m", lo=1e-3, hi=0.5),
+    "connecting_rod_length": Field("m", lo=1e-3, hi=2.0),
+    "clearance_ratio": Field("dimensionless", None, lo=0.0, hi=1.0, open_lo=True),
+    "clearance_volume": Field("m^3", None, lo=0.0, open_lo=True),
+    "liner_length": Field("m", None, lo=1e-3, hi=1.0, doc="head to open end of the bore"),
+}
+
+VALVE_SPEC: Spec = {
+    "port_diameter": Field("m", lo=1e-4, hi=0.2),
+    "reed_width": Field("m", lo=1e-4, hi=0.2),
+    "reed_thickness": Field("m", lo=1e-6, hi=0.01),
+    "reed_length": Field("m", lo=1e-4, hi=0.5),
+    "port_position": Field("m", None, lo=1e-4, hi=0.5, doc="clamp to port centre"),
+    "stop_height": Field("m", lo=1e-5, hi=0.05),
+    "youngs_modulus": Field("Pa", 1.93e11, lo=1e9, hi=1e12),
+    "density": Field("kg/m^3", 7800.0, lo=100.0, hi=30000.0),
+    "damping_ratio": Field("dimensionless", 0.02, lo=0.0, hi=2.0),
+    "restitution": Field("dimensionless", 0.3, lo=0.0, hi=1.0),
+    "preload": Field("N", 0.0, lo=0.0, hi=1e4),
+    "flow_coefficient": Field("dimensionless", 0.8, lo=0.0, hi=2.0, open_lo=True),
+    "force_coefficient": Field("dimensionless", 1.1, lo=0.0, hi=3.0, open_lo=True),
+    "flow_area": Choice(
+        ("port", "reed_diameter"),
+        "port",
+        "curtain pi d x on the port's diameter (edge of the port) or the reed's (its rim)",
+    ),
+    "momentum_force": Flag(False, "the jet's momentum flux mdot^2/(rho A) pushes on the reed"),
+}
+
+VALVES_TOP_SPEC: Spec = {
+    "flow_model": Choice(("real_gas", "ideal_gas"), "real_gas", "isentropic nozzle form"),
+    "laminar_pressure_difference": Field(
+        "Pa", 100.0, lo=0.0, hi=1e5, open_lo=True, doc="below it the flow goes linear in dp"
+    ),
+    "stick_velocity": Field("m/s", 0.01, lo=0.0, hi=10.0, doc="impacts slower than this stick"),
+}
+
+LEAKAGE_SPEC: Spec = {
+    "model": Choice(
+        ("isothermal", "incompressible"),
+        "isothermal",
+        "gap law: compressible isothermal (mean-pressure density) or upstream density",
+    ),
+    "radial_clearance": Field("m", 6e-6, lo=0.0, hi=1e-3, open_lo=True),
+    "eccentricity_ratio": Field(
+        "dimensionless",
+        0.0,
+        lo=0.0,
+        hi=1.0,
+        open_hi=True,
+        doc="piston offset/clearance, rigid crank",
+    ),
+}
+
+HEAT_TRANSFER_SPEC: Spec = {
+    "wall_temperature": Field("K", None, lo=50.0, hi=900.0),
+    "coefficient": Field("dimensionless", None, lo=0.0, hi=100.0, doc="correlation constant a"),
+}
+
+SOLVER_SPEC: Spec = {
+    "method": Choice(("dopri5", "dopri5_stiff", "ros34pw2"), "dopri5", "integrator"),
+    "rtol": Field("dimensionless", 1e-6, lo=1e-13, hi=1e-2),
+    "atol": Field("dimensionless", None, lo=1e-16, hi=1e-2, doc="on scaled states; default rtol"),
+    "cycle_tolerance": Field("dimensionless", 1e-4, lo=1e-12, hi=0.1),
+    "max_revolutions": Field("dimensionless", 60, lo=1, hi=10000, integer=True),
+    "min_revolutions": Field("dimensionless", 2, lo=1, hi=1000, integer=True),
+    "samples_per_revolution": Field("dimensionless", 720, lo=36, hi=100000, integer=True),
+    "max_step": Field(
+        "rad", math.radians(2.0), lo=1e-7, hi=math.pi, doc="largest crank-angle step"
+    ),
+    "start": Choice(
+        ("periodic", "rest"),
+        "periodic",
+        "periodic steady state; 'rest': start-up from standstill (induction_motor drive)",
+    ),
+    "standstill_pressure": Field(
+        "Pa",
+        None,
+        lo=0.0,
+        open_lo=True,
+        hi=1e9,
+        doc="start = 'rest': equalised pressure; default saturation at the ambient temperature",
+    ),
+    "pull_down_time": Field(
+        "s",
+        2.5,
+        lo=0.0,
+        hi=60.0,
+        doc="start = 'rest': plenums ramp from the standstill to the case's pressures",
+    ),
+    "periodic": Choice(("auto", "revolutions", "shooting"), "auto", "periodic steady-state solver"),
+    "envelope": Choice(
+        ("refuse", "ignore"), "refuse", "a point outside the refrigerant's [envelope]"
+    ),
+}
+
+TOP_KEYS = {
+    "name",
+    "description",
+    "refrigerant",
+    "options",
+    "operating_point",
+    "geometry",
+    "valves",
+    "leakage",
+    "heat_transfer",
+    "solver",
+    "mechanism",
+    "bearings",
+    "pressure_curve",
+    "motor",
+    "oil",
+    "thermal",
+}
+
+
+PRESSURE_CURVE_SPEC: Spec = {
+    "file": Text(None, "CSV with 'crank_angle [deg]' (from TDC) and 'cylinder_pressure [Pa]'"),
+}
