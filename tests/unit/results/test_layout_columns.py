@@ -43,3 +43,19 @@ def test_mechanism_columns_read_their_own_output_slots() -> None:
     assert len(read) == 3 * 6 + 2 * 6 + 4 + 4 * 6 + 2
     for column in read:
         np.testing.assert_array_equal(cols[column], aux[:, by_column[column].index])
+
+
+def test_drifting_states_are_named_by_the_scene_state_tables() -> None:
+    from types import SimpleNamespace
+
+    from recipsim.model import scenes
+    from recipsim.results.outcome import _state_names
+
+    cylinder = SimpleNamespace(scene=scenes.SCENE_CYLINDER, n_err=cyl.N_ERR)
+    assert _state_names(cylinder)[cyl.Y_T] == "gas_temperature"
+    coupled = SimpleNamespace(
+        scene=scenes.SCENE_COUPLED, n_err=cyl.N_STATE + mlay.N_STATE, mechanism_offset=cyl.N_STATE
+    )
+    names = _state_names(coupled)
+    assert names[cyl.Y_VD] == "discharge_valve_velocity"
+    assert names[cyl.N_STATE + mlay.Y_CRANK_SPEED] == "mechanism_crank_speed"
