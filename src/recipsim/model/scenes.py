@@ -10,7 +10,10 @@ A scene is a right-hand side, its event functions and its event actions. Three e
   flexible piston's position, the mechanism feels the cylinder's pressure. The
   pressure is a function of the gas state only, so there is no algebraic loop.
 
-One layout for all scenes (built once from the case by :func:`recipsim.model.build.build_model`):
+One layout for all scenes (built once from the case by :func:`recipsim.model.build.build_model`),
+declared in the tables :data:`IPAR`, :data:`PAR` (up to the tables), :data:`STATES`
+(one per scene) and :data:`OUTPUTS`, composed of the cylinder's and the mechanism's
+(:mod:`recipsim.physics.layout_table`):
 
 - ``par`` = [cylinder block (``cylinder.N_PAR``) | mechanism block (``layout.N_PAR``) |
   scene scalars (``N_SCENE_PAR``) | tables: pressure angles, pressures, drive angles,
@@ -31,6 +34,7 @@ import math
 
 from numba import njit
 
+from recipsim.physics.layout_table import Layout
 from recipsim.physics.mechanics import layout as lay
 from recipsim.physics.mechanics.flexible import flexible_rhs
 from recipsim.physics.mechanics.piston_pose import piston_axial_displacement, piston_lateral_offset
@@ -45,32 +49,45 @@ SCENE_MECHANISM = 1
 SCENE_COUPLED = 2
 
 # ---- integer parameters (after the cylinder's own) -----------------------------------
-I_PTAB = cyl.N_IPAR  # offset of the pressure table in par
-I_PTAB_N = cyl.N_IPAR + 1  # its length
-I_DTAB = cyl.N_IPAR + 2  # offset of the drive torque table
-I_DTAB_N = cyl.N_IPAR + 3
-I_STOP_ON_ANGLE = cyl.N_IPAR + 4  # 1: the terminal crank-angle event is armed
-I_BTAB = cyl.N_IPAR + 5  # offset of the bearing tables (finite_journal) in par
-I_BTAB_N = cyl.N_IPAR + 6  # their total length (at least 1)
-N_IPAR = cyl.N_IPAR + 7
+IPAR = Layout("scene integer parameters")
+IPAR.include(cyl.IPAR)
+I_PTAB = IPAR.add("pressure_table", "index", "offset of the pressure table in par")
+I_PTAB_N = IPAR.add("pressure_table_length", "count", "its length")
+I_DTAB = IPAR.add("drive_table", "index", "offset of the drive torque table in par")
+I_DTAB_N = IPAR.add("drive_table_length", "count", "its length")
+I_STOP_ON_ANGLE = IPAR.add("stop_on_angle", "code", "1: the terminal crank-angle event is armed")
+I_BTAB = IPAR.add("bearing_tables", "index", "offset of the bearing tables (finite_journal)")
+I_BTAB_N = IPAR.add("bearing_tables_length", "count", "their total length (at least 1)")
+N_IPAR = IPAR.size
 
-# ---- float parameters ----------------------------------------------------------------
-P_MECH = cyl.N_PAR  # first entry of the mechanism block
-P_SCENE = P_MECH + lay.N_PAR  # first scene scalar
-P_THETA_END = P_SCENE  # crank angle that ends a revolution [rad]
-P_LEAK_CLEARANCE = P_SCENE + 1  # radial piston clearance for the eccentricity [m]
-N_SCENE_PAR = 4
-P_TABLES = P_SCENE + N_SCENE_PAR
+# ---- float parameters (before the tables) --------------------------------------------
+PAR = Layout("scene float parameters")
+PAR.include(cyl.PAR)
+P_MECH = PAR.include(lay.PAR, "mechanism_")  # first entry of the mechanism block
+P_SCENE = PAR.size  # first scene scalar
+P_THETA_END = PAR.add("theta_end", "rad", "crank angle that ends a revolution")
+P_LEAK_CLEARANCE = PAR.add("leak_clearance", "m", "radial piston clearance for the eccentricity")
+N_SCENE_PAR = PAR.size - P_SCENE
+P_TABLES = PAR.size
 
 # ---- states --------------------------------------------------------------------------
-#: Mechanism quadratures, after the mechanism states: work of the drive, energy
-#: dissipated in the bearings, work of the gas on the piston [J].
-MQ_DRIVE = 0
-MQ_BEARINGS = 1
-MQ_GAS = 2
-N_MECH_QUAD = 3
+#: Mechanism quadratures, after the mechanism states.
+MECH_QUAD = Layout("mechanism quadratures")
+MQ_DRIVE = MECH_QUAD.add("drive_work", "J", "work of the drive")
+MQ_BEARINGS = MECH_QUAD.add("bearing_dissipation", "J", "energy dissipated in the bearings")
+MQ_GAS = MECH_QUAD.add("gas_work_on_piston", "J", "work of the gas on the piston")
+N_MECH_QUAD = MECH_QUAD.size
+MECHANISM_STATES = Layout("mechanism scene states")
+_MECH_Y_MECHANISM = MECHANISM_STATES.include(lay.STATES, "mechanism_")
+MECHANISM_STATES.include(MECH_QUAD)
+COUPLED_STATES = Layout("coupled scene states")
+COUPLED_STATES.include(cyl.STATES)
+_MECH_Y_COUPLED = COUPLED_STATES.include(lay.STATES, "mechanism_")
+COUPLED_STATES.include(MECH_QUAD)
+#: State table of each scene, indexed by scene code.
+STATES = (cyl.STATES, MECHANISM_STATES, COUPLED_STATES)
 #: Offsets of the mechanism block in the state vector of each scene.
-MECH_Y = (0, 0, cyl.N_STATE)  # indexed by scene code (cylinder scene: unused)
+MECH_Y = (0, _MECH_Y_MECHANISM, _MECH_Y_COUPLED)  # indexed by scene code (cylinder: unused)
 
 
 def mechanism_state_offset(scene: int) -> int:
@@ -86,8 +103,10 @@ def state_size(scene: int) -> int:
 
 
 # ---- outputs -------------------------------------------------------------------------
-A_MECH = cyl.N_AUX  # first mechanism output
-N_AUX = cyl.N_AUX + lay.N_AUX
+OUTPUTS = Layout("scene outputs")
+OUTPUTS.include(cyl.OUTPUTS)
+A_MECH = OUTPUTS.include(lay.OUTPUTS, "mechanism_")  # first mechanism output
+N_AUX = OUTPUTS.size
 
 N_EVENTS = cyl.N_EVENTS + 1
 EV_THETA_END = cyl.N_EVENTS

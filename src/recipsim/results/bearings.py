@@ -3,8 +3,10 @@
 Forces are those on the journal-side body (rotor for primary, secondary and
 eccentric; piston for pin, piston_top and piston_skirt), inertial X, Y, Z [N];
 displacements are journal minus bushing marker normal to the bearing axis [m] (zero
-for the pinned mechanism). Every column name carries its unit; the meaning of each
-column is documented in ``reports/README.md``.
+for the pinned mechanism). Every column name carries its unit; the columns that are
+mechanism outputs take name and unit from the layout's table
+(:data:`recipsim.physics.mechanics.layout.OUTPUTS`); the meaning of each column is
+documented in ``reports/README.md``.
 """
 
 from __future__ import annotations
@@ -23,15 +25,21 @@ from recipsim.physics.mechanics.pinned import N_PIN_OUT, PIN_DRIVE_TORQUE, pinne
 _DISPLACEMENT_AXES = "xy"
 
 
+def _column(index: int) -> str:
+    """Report column of mechanism output ``index``: its layout name and unit."""
+    return lay.OUTPUTS.column(index)
+
+
 def bearing_columns(forces: np.ndarray, displacements: np.ndarray) -> dict[str, np.ndarray]:
     """Report columns from (n, 6, 3) force [N] and displacement [m] arrays."""
     cols: dict[str, np.ndarray] = {}
     for i, name in enumerate(lay.BEARING_NAMES):
-        for k, ax in enumerate("xyz"):
-            cols[f"bearing_force_{name}_{ax} [N]"] = forces[:, i, k]
+        for k in range(3):
+            cols[_column(lay.A_BEARING_FORCE + 3 * i + k)] = forces[:, i, k]
         cols[f"bearing_force_{name} [N]"] = np.linalg.norm(forces[:, i], axis=1)
         for ax in _DISPLACEMENT_AXES:
-            cols[f"bearing_displacement_{name}_{ax} [m]"] = displacements[:, i, "xyz".index(ax)]
+            k = "xyz".index(ax)
+            cols[_column(lay.A_BEARING_DISPLACEMENT + 3 * i + k)] = displacements[:, i, k]
     return cols
 
 
@@ -53,23 +61,24 @@ def flexible_columns(mech_aux: np.ndarray, mech_par: np.ndarray) -> dict[str, np
     f = mech_aux[:, lay.A_BEARING_FORCE : lay.A_BEARING_FORCE + 3 * nb].reshape(-1, nb, 3)
     d = mech_aux[:, lay.A_BEARING_DISPLACEMENT : lay.A_BEARING_DISPLACEMENT + 3 * nb]
     cols = bearing_columns(f, d.reshape(-1, nb, 3))
-    cols["crank_speed [rad/s]"] = mech_aux[:, lay.A_CRANK_SPEED]
-    cols["piston_lateral_displacement [m]"] = mech_aux[:, lay.A_PISTON_LATERAL]
-    cols["piston_tilt [rad]"] = mech_aux[:, lay.A_PISTON_TILT]
-    cols["bearing_power_loss [W]"] = mech_aux[:, lay.A_BEARING_POWER]
+    for index in (lay.A_CRANK_SPEED, lay.A_PISTON_LATERAL, lay.A_PISTON_TILT, lay.A_BEARING_POWER):
+        cols[_column(index)] = mech_aux[:, index]
     films = film_clearances(mech_par)
     for name, clearance in films.items():
         i = lay.BEARING_NAMES.index(name)
         e = np.hypot(d[:, 3 * i], d[:, 3 * i + 1])
         cols[f"film_thickness_{name} [m]"] = clearance - e
         cols[f"eccentricity_ratio_{name} [-]"] = e / clearance
-        cols[f"friction_torque_{name} [N m]"] = mech_aux[:, lay.A_BEARING_TORQUE + 2 * i]
-        cols[f"bearing_power_loss_{name} [W]"] = mech_aux[:, lay.A_BEARING_DISSIPATION + i]
-        cols[f"contact_force_{name} [N]"] = mech_aux[:, lay.A_BEARING_CONTACT + i]
-        cols[f"film_peak_pressure_{name} [Pa]"] = mech_aux[:, lay.A_BEARING_PEAK_PRESSURE + i]
+        for index in (
+            lay.A_BEARING_TORQUE + 2 * i,  # on the journal-side body
+            lay.A_BEARING_DISSIPATION + i,
+            lay.A_BEARING_CONTACT + i,
+            lay.A_BEARING_PEAK_PRESSURE + i,
+        ):
+            cols[_column(index)] = mech_aux[:, index]
     if "piston_skirt" in films:
-        cols["piston_friction_force [N]"] = mech_aux[:, lay.A_PISTON_FRICTION]
-        cols["piston_friction_power [W]"] = mech_aux[:, lay.A_PISTON_FRICTION_POWER]
+        for index in (lay.A_PISTON_FRICTION, lay.A_PISTON_FRICTION_POWER):
+            cols[_column(index)] = mech_aux[:, index]
     return cols
 
 
@@ -118,10 +127,9 @@ def pinned_columns(
     nb = lay.N_BEARINGS
     forces = out[:, : 3 * nb].reshape(-1, nb, 3)
     cols = bearing_columns(forces, np.zeros_like(forces))
-    cols["crank_speed [rad/s]"] = np.full(theta.shape, omega)
-    cols["piston_lateral_displacement [m]"] = np.zeros(theta.shape)
-    cols["piston_tilt [rad]"] = np.zeros(theta.shape)
-    cols["bearing_power_loss [W]"] = np.zeros(theta.shape)
+    cols[_column(lay.A_CRANK_SPEED)] = np.full(theta.shape, omega)
+    for index in (lay.A_PISTON_LATERAL, lay.A_PISTON_TILT, lay.A_BEARING_POWER):
+        cols[_column(index)] = np.zeros(theta.shape)  # the same columns as the flexible crank's
     return cols, out[:, PIN_DRIVE_TORQUE].copy()
 
 

@@ -200,25 +200,12 @@ def drifting_states(solution: PeriodicSolution, count: int = 3) -> list[str]:
 
 
 def _state_names(model: Any) -> list[str]:
-    from recipsim.physics.thermo import cylinder as cyl
+    """Names of the error-controlled states, from the scene's state table
+    (:data:`recipsim.model.scenes.STATES`: ``gas_temperature``, ``mechanism_crank_speed``)."""
+    from recipsim.model.scenes import STATES
 
-    names = [f"state {i}" for i in range(model.n_err)]
-    if model.has_gas:
-        gas = {
-            cyl.Y_T: "gas temperature",
-            cyl.Y_RHO: "gas density",
-            cyl.Y_XS: "suction reed lift",
-            cyl.Y_VS: "suction reed velocity",
-            cyl.Y_XD: "discharge reed lift",
-            cyl.Y_VD: "discharge reed velocity",
-        }
-        for i, name in gas.items():
-            if i < model.n_err:
-                names[i] = name
-    if model.n_err > getattr(model, "mechanism_offset", model.n_err):
-        for i in range(model.mechanism_offset, model.n_err):
-            names[i] = f"mechanism state {i - model.mechanism_offset}"
-    return names
+    entries = STATES[model.scene].entries
+    return [entries[i].name if i < len(entries) else f"state {i}" for i in range(model.n_err)]
 
 
 def classify(

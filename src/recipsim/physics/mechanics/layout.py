@@ -1,30 +1,18 @@
-"""Index constants of the compiled mechanism: parameter array, state vector, outputs.
+"""Layout of the compiled mechanism: parameter array, state vector, outputs, each
+declared once in a table (:class:`~recipsim.physics.layout_table.Layout`: name, unit,
+meaning) that hands out the index constants the compiled code reads.
 
 Everything the compiled (numba) functions need is passed as one float64 parameter
-array ``par`` whose entries are named by the ``P_*`` constants below; integer codes
-(drive, bearing law, bearing axis) are stored as floats and converted inside. Only
-integer constants live at module level: numba freezes module-level arrays into its
-cache, integers are harmless.
+array ``par`` whose entries are named by the ``P_*`` constants (table :data:`PAR`, with
+one :data:`BEARING` row per bearing); integer codes (drive, bearing law, bearing axis)
+are stored as floats and converted inside. Only integer constants live at module
+level: numba freezes module-level arrays into its cache, integers are harmless (the
+tables are Python objects the compiled code never reads).
 
-State vector ``y`` (``N_STATE`` = 22 entries): ``N_COORD`` = 11 coordinates followed
-by their time derivatives in the same order (``y[N_COORD + i] = d y[i] / dt``).
-
-======  =====================  ==========================================================
-index   name                   meaning [unit]
-======  =====================  ==========================================================
-0       ``Y_ROTOR_X``          rotor centre of mass, X [m] (0 when centred)
-1       ``Y_ROTOR_Y``          rotor centre of mass, Y [m]
-2       ``Y_ROTOR_TILT_X``     rotor tilt about X, first Cardan angle [rad]
-3       ``Y_ROTOR_TILT_Y``     rotor tilt about the once-tilted Y, second angle [rad]
-4       ``Y_CRANK_ANGLE``      spin about the twice-tilted Z = crank angle from TDC [rad]
-5       ``Y_ROD_DX``           rod centre of mass minus its rigid slider-crank position, X [m]
-6       ``Y_ROD_DY``           same, Y [m]
-7       ``Y_ROD_DANGLE``       rod angle minus its rigid slider-crank angle [rad]
-8       ``Y_PISTON_DX``        piston centre of mass minus its rigid position, X [m]
-9       ``Y_PISTON_Y``         piston centre of mass, lateral Y [m]
-10      ``Y_PISTON_TILT``      piston tilt about Z (pin axis), secondary rotation [rad]
-11..21  ``Y_*_V*``, ...        time derivatives of 0..10; ``Y_CRANK_SPEED`` = 15 [rad/s]
-======  =====================  ==========================================================
+State vector ``y`` (table :data:`STATES`, ``N_STATE`` = 22 entries): ``N_COORD`` = 11
+coordinates followed by their time derivatives in the same order
+(``y[N_COORD + i] = d y[i] / dt``). Outputs: table :data:`OUTPUTS`; the names of the
+slots the report writes are its column names.
 
 Rod and piston coordinates are deviations from the rigid slider-crank at the current
 crank angle ``y[Y_CRANK_ANGLE]``: they are of the size of the bearing deflections
@@ -33,6 +21,8 @@ error in the crank angle is a phase error, not a spurious spring force.
 """
 
 from __future__ import annotations
+
+from recipsim.physics.layout_table import Layout
 
 # --------------------------------------------------------------------------- bearings
 #: Bearing numbers, as in the paper (1 primary ... 6 piston skirt), zero-based.
@@ -80,55 +70,77 @@ AXIS_X = 0
 AXIS_Y = 1
 AXIS_Z = 2
 
-#: Per-bearing parameter row (offset ``P_BEARINGS + i * N_BEARING_PAR``).
-BP_LAW = 0  # law code
-BP_AXIS = 1  # axis code; the force is normal to it
-BP_STIFFNESS = 2  # [N/m]
-BP_DAMPING = 3  # [N s/m]
-BP_CLEARANCE = 4  # radial clearance [m] (hydrodynamic laws; 0 for linear)
-BP_DIAMETER = 5  # journal diameter [m] (hydrodynamic laws)
-BP_LENGTH = 6  # bearing length [m] (hydrodynamic laws)
-BP_VISCOSITY = 7  # oil dynamic viscosity at the film temperature [Pa s] (hydrodynamic laws)
-BP_CONTACT_FILM = 8  # film thickness below which asperity contact starts [m]
-BP_CONTACT_STIFFNESS = 9  # contact penalty stiffness (law of the kernel) [N/m^1.5]
-BP_CONTACT_FRICTION = 10  # Coulomb friction coefficient of the contact [-]
-BP_TABLE = 11  # offset of the finite_journal table in the bearing-table array (-1: none)
-N_BEARING_PAR = 12
+#: Per-bearing parameter row (offsets within a row; row i starts at
+#: ``P_BEARINGS + i * N_BEARING_PAR``).
+BEARING = Layout("bearing parameters")
+_b = BEARING.add
+BP_LAW = _b("law", "code", "bearing law (LAW_*)")
+BP_AXIS = _b("axis", "code", "axis code (AXIS_*); the force is normal to it")
+BP_STIFFNESS = _b("stiffness", "N/m", "stiffness of the linear law")
+BP_DAMPING = _b("damping", "N s/m", "damping of the linear law")
+BP_CLEARANCE = _b("clearance", "m", "radial clearance (hydrodynamic laws; 0 for linear)")
+BP_DIAMETER = _b("diameter", "m", "journal diameter (hydrodynamic laws)")
+BP_LENGTH = _b("length", "m", "bearing length (hydrodynamic laws)")
+BP_VISCOSITY = _b("viscosity", "Pa s", "oil dynamic viscosity at the film temperature")
+BP_CONTACT_FILM = _b("contact_film", "m", "film thickness below which asperity contact starts")
+BP_CONTACT_STIFFNESS = _b("contact_stiffness", "N/m^1.5", "contact penalty stiffness")
+BP_CONTACT_FRICTION = _b("contact_friction", "-", "Coulomb friction coefficient of the contact")
+BP_TABLE = _b(
+    "table", "index", "offset of the finite_journal table in the bearing tables (-1: none)"
+)
+N_BEARING_PAR = BEARING.size
 
 # ----------------------------------------------------------------------- parameters
-P_CRANK_RADIUS = 0  # r [m]
-P_ROD_LENGTH = 1  # L, big-end to small-end centres [m]
-P_PISTON_AREA = 2  # crown area pi D^2 / 4 [m^2]
-P_SHELL_PRESSURE = 3  # pressure under the piston [Pa]
-P_SPEED = 4  # crank speed of the constant_speed drive [rad/s]
-P_DRIVE = 5  # drive code (DRIVE_*)
-P_ROTOR_MASS = 6  # [kg]
-P_ROTOR_POLAR_INERTIA = 7  # about the spin axis [kg m^2]
-P_ROTOR_TRANSVERSE_INERTIA = 8  # about a diameter through the centre of mass [kg m^2]
-P_ROTOR_COM_Z = 9  # axial position of the rotor centre of mass [m]
-P_PRIMARY_Z = 10  # axial position of bearing 1 [m]
-P_SECONDARY_Z = 11  # axial position of bearing 2 [m]
-P_ROD_MASS = 12  # [kg]
-P_ROD_COM_FRACTION = 13  # centre of mass distance from the big end / L [-]
-P_ROD_INERTIA = 14  # about Z through the centre of mass [kg m^2]
-P_PISTON_MASS = 15  # [kg]
-P_PISTON_INERTIA = 16  # about Z (pin axis) through the centre of mass [kg m^2]
-P_PISTON_PIN_U = 17  # pin centre along the piston axis from the CoM, + towards crown [m]
-P_PISTON_CROWN_U = 18  # crown centre, same convention [m]
-P_PISTON_TOP_U = 19  # piston_top bearing marker, same convention [m]
-P_PISTON_SKIRT_U = 20  # piston_skirt bearing marker, same convention [m]
-P_PIN_FROM_CROWN = 21  # pin distance below the crown [m]
-P_MOTOR_SYNC_SPEED = 22  # induction motor: synchronous speed [rad/s]
-P_MOTOR_BREAKDOWN_TORQUE = 23  # induction motor: forward-field peak torque [N m]
-P_MOTOR_BREAKDOWN_SLIP = 24  # induction motor: slip at the peak [-]
-P_MOTOR_BACKWARD_RATIO = 25  # induction motor: backward/forward field ratio [-]
-P_COUNTERWEIGHT_MASS = 26  # rotor counterweight (point mass on the rotor) [kg]
-P_COUNTERWEIGHT_RADIUS = 27  # its distance from the spin axis [m]
-P_COUNTERWEIGHT_ANGLE = 28  # its angle ahead of the crank pin about +Z [rad]
-P_COUNTERWEIGHT_Z = 29  # its axial position (eccentric plane z = 0) [m]
-P_DETAILED_OUTPUTS = 30  # 1: also compute the post-processing outputs (peak film pressures)
-P_BEARINGS = 31  # first bearing row
-N_PAR = P_BEARINGS + N_BEARINGS * N_BEARING_PAR
+PAR = Layout("mechanism parameters")
+_p = PAR.add
+P_CRANK_RADIUS = _p("crank_radius", "m", "crank radius r")
+P_ROD_LENGTH = _p("rod_length", "m", "rod length L, big-end to small-end centres")
+P_PISTON_AREA = _p("piston_area", "m2", "crown area pi D^2 / 4")
+P_SHELL_PRESSURE = _p("shell_pressure", "Pa", "pressure under the piston")
+P_SPEED = _p("speed", "rad/s", "crank speed of the constant_speed drive")
+P_DRIVE = _p("drive", "code", "drive code (DRIVE_*)")
+P_ROTOR_MASS = _p("rotor_mass", "kg", "rotor mass")
+P_ROTOR_POLAR_INERTIA = _p("rotor_polar_inertia", "kg m2", "rotor inertia about the spin axis")
+P_ROTOR_TRANSVERSE_INERTIA = _p(
+    "rotor_transverse_inertia", "kg m2", "rotor inertia about a diameter through its CoM"
+)
+P_ROTOR_COM_Z = _p("rotor_com_z", "m", "axial position of the rotor centre of mass")
+P_PRIMARY_Z = _p("primary_z", "m", "axial position of bearing 1")
+P_SECONDARY_Z = _p("secondary_z", "m", "axial position of bearing 2")
+P_ROD_MASS = _p("rod_mass", "kg", "connecting-rod mass")
+P_ROD_COM_FRACTION = _p("rod_com_fraction", "-", "rod centre of mass from the big end / L")
+P_ROD_INERTIA = _p("rod_inertia", "kg m2", "rod inertia about Z through its centre of mass")
+P_PISTON_MASS = _p("piston_mass", "kg", "piston mass")
+P_PISTON_INERTIA = _p(
+    "piston_inertia", "kg m2", "piston inertia about Z (pin axis) through its CoM"
+)
+P_PISTON_PIN_U = _p(
+    "piston_pin_u", "m", "pin centre along the piston axis from the CoM, + to crown"
+)
+P_PISTON_CROWN_U = _p("piston_crown_u", "m", "crown centre, same convention")
+P_PISTON_TOP_U = _p("piston_top_u", "m", "piston_top bearing marker, same convention")
+P_PISTON_SKIRT_U = _p("piston_skirt_u", "m", "piston_skirt bearing marker, same convention")
+P_PIN_FROM_CROWN = _p("pin_from_crown", "m", "pin distance below the crown")
+P_MOTOR_SYNC_SPEED = _p("motor_sync_speed", "rad/s", "induction motor: synchronous speed")
+P_MOTOR_BREAKDOWN_TORQUE = _p(
+    "motor_breakdown_torque", "N m", "induction motor: forward-field peak torque"
+)
+P_MOTOR_BREAKDOWN_SLIP = _p("motor_breakdown_slip", "-", "induction motor: slip at the peak")
+P_MOTOR_BACKWARD_RATIO = _p(
+    "motor_backward_ratio", "-", "induction motor: backward/forward field ratio"
+)
+P_COUNTERWEIGHT_MASS = _p("counterweight_mass", "kg", "rotor counterweight (point mass)")
+P_COUNTERWEIGHT_RADIUS = _p("counterweight_radius", "m", "its distance from the spin axis")
+P_COUNTERWEIGHT_ANGLE = _p(
+    "counterweight_angle", "rad", "its angle ahead of the crank pin about +Z"
+)
+P_COUNTERWEIGHT_Z = _p("counterweight_z", "m", "its axial position (eccentric plane z = 0)")
+P_DETAILED_OUTPUTS = _p(
+    "detailed_outputs", "code", "1: also compute the post-processing outputs (peak film pressures)"
+)
+#: First bearing row.
+P_BEARINGS = PAR.add_rows(BEARING, BEARING_NAMES)
+N_PAR = PAR.size
 
 #: Drive codes (``par[P_DRIVE]``).
 DRIVE_CONSTANT_SPEED = 0
@@ -141,91 +153,102 @@ DRIVE_CODES: dict[str, int] = {
 }
 
 # ---------------------------------------------------------------------------- state
-Y_ROTOR_X = 0
-Y_ROTOR_Y = 1
-Y_ROTOR_TILT_X = 2
-Y_ROTOR_TILT_Y = 3
-Y_CRANK_ANGLE = 4
-Y_ROD_DX = 5
-Y_ROD_DY = 6
-Y_ROD_DANGLE = 7
-Y_PISTON_DX = 8
-Y_PISTON_Y = 9
-Y_PISTON_TILT = 10
-N_COORD = 11
-Y_ROTOR_VX = N_COORD + Y_ROTOR_X
-Y_ROTOR_VY = N_COORD + Y_ROTOR_Y
-Y_ROTOR_TILT_X_RATE = N_COORD + Y_ROTOR_TILT_X
-Y_ROTOR_TILT_Y_RATE = N_COORD + Y_ROTOR_TILT_Y
-Y_CRANK_SPEED = N_COORD + Y_CRANK_ANGLE
-Y_ROD_DVX = N_COORD + Y_ROD_DX
-Y_ROD_DVY = N_COORD + Y_ROD_DY
-Y_ROD_DANGLE_RATE = N_COORD + Y_ROD_DANGLE
-Y_PISTON_DVX = N_COORD + Y_PISTON_DX
-Y_PISTON_VY = N_COORD + Y_PISTON_Y
-Y_PISTON_TILT_RATE = N_COORD + Y_PISTON_TILT
-N_STATE = 2 * N_COORD
+#: Coordinates, then their time derivatives in the same order.
+STATES = Layout("mechanism states")
+_y = STATES.add
+Y_ROTOR_X = _y("rotor_x", "m", "rotor centre of mass, X (0 when centred)")
+Y_ROTOR_Y = _y("rotor_y", "m", "rotor centre of mass, Y")
+Y_ROTOR_TILT_X = _y("rotor_tilt_x", "rad", "rotor tilt about X, first Cardan angle")
+Y_ROTOR_TILT_Y = _y("rotor_tilt_y", "rad", "rotor tilt about the once-tilted Y, second angle")
+Y_CRANK_ANGLE = _y("crank_angle", "rad", "spin about the twice-tilted Z: crank angle from TDC")
+Y_ROD_DX = _y("rod_dx", "m", "rod CoM minus its rigid slider-crank position, X")
+Y_ROD_DY = _y("rod_dy", "m", "rod CoM minus its rigid slider-crank position, Y")
+Y_ROD_DANGLE = _y("rod_dangle", "rad", "rod angle minus its rigid slider-crank angle")
+Y_PISTON_DX = _y("piston_dx", "m", "piston CoM minus its rigid position, X")
+Y_PISTON_Y = _y("piston_y", "m", "piston centre of mass, lateral Y")
+Y_PISTON_TILT = _y("piston_tilt", "rad", "piston tilt about Z (pin axis), secondary rotation")
+N_COORD = STATES.size
+Y_ROTOR_VX = _y("rotor_vx", "m/s", "d rotor_x / dt")
+Y_ROTOR_VY = _y("rotor_vy", "m/s", "d rotor_y / dt")
+Y_ROTOR_TILT_X_RATE = _y("rotor_tilt_x_rate", "rad/s", "d rotor_tilt_x / dt")
+Y_ROTOR_TILT_Y_RATE = _y("rotor_tilt_y_rate", "rad/s", "d rotor_tilt_y / dt")
+Y_CRANK_SPEED = _y("crank_speed", "rad/s", "d crank_angle / dt")
+Y_ROD_DVX = _y("rod_dvx", "m/s", "d rod_dx / dt")
+Y_ROD_DVY = _y("rod_dvy", "m/s", "d rod_dy / dt")
+Y_ROD_DANGLE_RATE = _y("rod_dangle_rate", "rad/s", "d rod_dangle / dt")
+Y_PISTON_DVX = _y("piston_dvx", "m/s", "d piston_dx / dt")
+Y_PISTON_VY = _y("piston_vy", "m/s", "d piston_y / dt")
+Y_PISTON_TILT_RATE = _y("piston_tilt_rate", "rad/s", "d piston_tilt / dt")
+N_STATE = STATES.size
 
-STATE_NAMES: tuple[str, ...] = (
-    "rotor_x [m]",
-    "rotor_y [m]",
-    "rotor_tilt_x [rad]",
-    "rotor_tilt_y [rad]",
-    "crank_angle [rad]",
-    "rod_dx [m]",
-    "rod_dy [m]",
-    "rod_dangle [rad]",
-    "piston_dx [m]",
-    "piston_y [m]",
-    "piston_tilt [rad]",
-    "rotor_vx [m/s]",
-    "rotor_vy [m/s]",
-    "rotor_tilt_x_rate [rad/s]",
-    "rotor_tilt_y_rate [rad/s]",
-    "crank_speed [rad/s]",
-    "rod_dvx [m/s]",
-    "rod_dvy [m/s]",
-    "rod_dangle_rate [rad/s]",
-    "piston_dvx [m/s]",
-    "piston_vy [m/s]",
-    "piston_tilt_rate [rad/s]",
-)
+#: State names with units (``"rotor_x [m]"``), in state order.
+STATE_NAMES: tuple[str, ...] = tuple(e.column for e in STATES.entries)
 
 # ---------------------------------------------------------------------------- outputs
-#: Force on the journal-side body (rotor for 1, 2, 3; piston for 4, 5, 6) from the
-#: other body, inertial X, Y, Z: ``aux[A_BEARING_FORCE + 3 * i + k]`` [N].
-A_BEARING_FORCE = 0
-#: Relative displacement journal marker minus bushing marker, inertial X, Y, Z, only
-#: the components normal to the bearing axis (others 0): ``A_BEARING_DISPLACEMENT +
-#: 3 * i + k`` [m]. Rotor, eccentric and pin bearings: (x, y, 0); piston: (0, y, 0).
-A_BEARING_DISPLACEMENT = 3 * N_BEARINGS
-A_DRIVE_TORQUE = 6 * N_BEARINGS  # driving torque about the rotor axis [N m]
-A_GAS_FORCE = A_DRIVE_TORQUE + 1  # -(p - p_shell) A_p, along the piston axis [N]
-A_KINETIC_ENERGY_ROTOR = A_DRIVE_TORQUE + 2  # [J]
-A_KINETIC_ENERGY_ROD = A_DRIVE_TORQUE + 3  # [J]
-A_KINETIC_ENERGY_PISTON = A_DRIVE_TORQUE + 4  # [J]
-A_SPRING_ENERGY = A_DRIVE_TORQUE + 5  # elastic energy of the linear bearings [J]
-A_BEARING_POWER = A_DRIVE_TORQUE + 6  # power absorbed by all bearings, -sum F.de/dt [W]
-A_DRIVE_POWER = A_DRIVE_TORQUE + 7  # torque x spin rate about the rotor axis [W]
-A_GAS_POWER = A_DRIVE_TORQUE + 8  # power of the gas force on the piston [W]
-A_PISTON_DISPLACEMENT = A_DRIVE_TORQUE + 9  # crown axial displacement from rigid TDC [m]
-A_PISTON_SPEED = A_DRIVE_TORQUE + 10  # its time derivative (dV/dt = A_p * this) [m/s]
-A_PISTON_LATERAL = A_DRIVE_TORQUE + 11  # piston centre of mass, Y [m]
-A_PISTON_TILT = A_DRIVE_TORQUE + 12  # piston tilt about Z [rad]
-A_CRANK_ANGLE = A_DRIVE_TORQUE + 13  # [rad]
-A_CRANK_SPEED = A_DRIVE_TORQUE + 14  # [rad/s]
+#: Bearing forces, displacements and per-bearing results come in series over
+#: ``BEARING_NAMES`` (``A_BEARING_FORCE + 3 * i + k``, k = X, Y, Z).
+OUTPUTS = Layout("mechanism outputs")
+_a = OUTPUTS.add
+_XYZ = tuple(f"{b}_{ax}" for b in BEARING_NAMES for ax in "xyz")
+A_BEARING_FORCE = OUTPUTS.add_series(
+    "bearing_force_{}",
+    _XYZ,
+    "N",
+    "force on the journal-side body (rotor for 1, 2, 3; piston for 4, 5, 6) from the other "
+    "body, inertial X, Y, Z",
+)
+A_BEARING_DISPLACEMENT = OUTPUTS.add_series(
+    "bearing_displacement_{}",
+    _XYZ,
+    "m",
+    "journal marker minus bushing marker, inertial X, Y, Z, only the components normal to "
+    "the bearing axis (others 0): rotor, eccentric and pin (x, y, 0); piston (0, y, 0)",
+)
+A_DRIVE_TORQUE = _a("drive_torque", "N m", "driving torque about the rotor axis")
+A_GAS_FORCE = _a("gas_force", "N", "-(p - p_shell) A_p, along the piston axis")
+A_KINETIC_ENERGY_ROTOR = _a("kinetic_energy_rotor", "J", "kinetic energy of the rotor")
+A_KINETIC_ENERGY_ROD = _a("kinetic_energy_rod", "J", "kinetic energy of the rod")
+A_KINETIC_ENERGY_PISTON = _a("kinetic_energy_piston", "J", "kinetic energy of the piston")
+A_SPRING_ENERGY = _a("spring_energy", "J", "elastic energy of the linear bearings")
+A_BEARING_POWER = _a("bearing_power_loss", "W", "power absorbed by all bearings, -sum F.de/dt")
+A_DRIVE_POWER = _a("drive_power", "W", "torque x spin rate about the rotor axis")
+A_GAS_POWER = _a("gas_power", "W", "power of the gas force on the piston")
+A_PISTON_DISPLACEMENT = _a("piston_displacement", "m", "crown axial displacement from rigid TDC")
+A_PISTON_SPEED = _a("piston_speed", "m/s", "its time derivative (dV/dt = A_p * this)")
+A_PISTON_LATERAL = _a("piston_lateral_displacement", "m", "piston centre of mass, Y")
+A_PISTON_TILT = _a("piston_tilt", "rad", "piston tilt about Z")
+A_CRANK_ANGLE = _a("crank_angle", "rad", "crank angle")
+A_CRANK_SPEED = _a("crank_speed", "rad/s", "crank speed")
 #: Per bearing i: friction torque about the bearing axis on the journal-side body at
-#: ``A_BEARING_TORQUE + 2 i`` and on the bushing-side body at ``+ 2 i + 1`` [N m]
-#: (zero for the linear law and the piston film).
-A_BEARING_TORQUE = A_DRIVE_TORQUE + 15
-#: Per bearing i: power dissipated in its film and contact, ``-(F.de/dt + T_j w_j +
-#: T_b w_b)`` [W] (the linear law: its damper's power).
-A_BEARING_DISSIPATION = A_BEARING_TORQUE + 2 * N_BEARINGS
-#: Per bearing i: asperity contact normal force [N] (0 while the film carries the load).
-A_BEARING_CONTACT = A_BEARING_DISSIPATION + N_BEARINGS
-A_PISTON_FRICTION = A_BEARING_CONTACT + N_BEARINGS  # axial film force on the piston [N]
-A_PISTON_FRICTION_POWER = A_PISTON_FRICTION + 1  # power it dissipates [W]
-#: Per bearing i: largest film pressure [Pa], only when ``par[P_DETAILED_OUTPUTS]`` is
-#: set (post-processing), else 0. The skirt film reports at ``piston_skirt``.
-A_BEARING_PEAK_PRESSURE = A_PISTON_FRICTION_POWER + 1
-N_AUX = A_BEARING_PEAK_PRESSURE + N_BEARINGS
+#: ``A_BEARING_TORQUE + 2 i`` and on the bushing-side body at ``+ 2 i + 1``.
+A_BEARING_TORQUE = OUTPUTS.add_series(
+    "friction_torque_{}",
+    tuple(f"{b}{side}" for b in BEARING_NAMES for side in ("", "_bushing")),
+    "N m",
+    "friction torque about the bearing axis on the journal-side (name) or bushing-side "
+    "(name_bushing) body; zero for the linear law and the piston film",
+)
+A_BEARING_DISSIPATION = OUTPUTS.add_series(
+    "bearing_power_loss_{}",
+    BEARING_NAMES,
+    "W",
+    "power dissipated in the film and contact, -(F.de/dt + T_j w_j + T_b w_b) (the linear "
+    "law: its damper's power)",
+)
+A_BEARING_CONTACT = OUTPUTS.add_series(
+    "contact_force_{}",
+    BEARING_NAMES,
+    "N",
+    "asperity contact normal force (0 while the film carries the load)",
+)
+A_PISTON_FRICTION = _a("piston_friction_force", "N", "axial film force on the piston")
+A_PISTON_FRICTION_POWER = _a("piston_friction_power", "W", "power the axial film force dissipates")
+#: Per bearing i: only when ``par[P_DETAILED_OUTPUTS]`` is set (post-processing), else 0.
+A_BEARING_PEAK_PRESSURE = OUTPUTS.add_series(
+    "film_peak_pressure_{}",
+    BEARING_NAMES,
+    "Pa",
+    "largest film pressure (with P_DETAILED_OUTPUTS, else 0; the skirt film reports at "
+    "piston_skirt)",
+)
+N_AUX = OUTPUTS.size

@@ -1,5 +1,7 @@
-"""Layout of the cylinder on a rigid crank at constant speed: states, modes, events,
-integer and float parameters and outputs, as index constants.
+"""Layout of the cylinder on a rigid crank at constant speed: states, integer and float
+parameters and outputs, each declared once in a table
+(:class:`~recipsim.physics.layout_table.Layout`: name, unit, meaning) that hands out the
+index constants the compiled code reads.
 
 States (time is the independent variable, ``theta = theta0 + omega t``):
 gas temperature T [K] and density rho [kg/m3] (CoolProp's equations of state are
@@ -11,48 +13,59 @@ error control.
 Modes (``mode[0]`` suction, ``mode[1]`` discharge): ideal 0 closed / 1 open; reed
 0 seated / 1 free / 2 at the stop.
 
+Tables: :data:`STATES`, :data:`IPAR` (integer parameters), :data:`PAR` (float
+parameters; :data:`VALVE` is one valve's row of it), :data:`OUTPUTS` (the auxiliary
+outputs; their names and units are the report's cycle columns where it writes them).
+Option codes (``VALVES_REED``, ``LEAK_ISOTHERMAL``, ...) are plain constants.
+
 The compiled right-hand side is :mod:`recipsim.physics.thermo.cylinder_rhs`, the valve
 events and impacts :mod:`recipsim.physics.thermo.cylinder_events`.
 """
 
 from __future__ import annotations
 
+from recipsim.physics.layout_table import Layout
+
 # ---- states -----------------------------------------------------------------------
-Y_T = 0
-Y_RHO = 1
-Y_XS = 2
-Y_VS = 3
-Y_XD = 4
-Y_VD = 5
-N_ERR = 6
-Q_MSUC_IN = 6  # mass in through the suction valve [kg]
-Q_MSUC_OUT = 7  # back-flow out through the suction valve [kg]
-Q_MDIS_OUT = 8
-Q_MDIS_IN = 9
-Q_MLEAK_OUT = 10
-Q_MLEAK_IN = 11
-Q_HSUC_IN = 12  # enthalpy carried [J]
-Q_HSUC_OUT = 13
-Q_HDIS_OUT = 14
-Q_HDIS_IN = 15
-Q_HLEAK_OUT = 16
-Q_HLEAK_IN = 17
-Q_HEAT = 18  # heat into the gas [J]
-Q_WORK = 19  # work on the gas, -int p dV [J]
-Q_SHAFT = 20  # shaft work, int tau omega dt [J]
-N_STATE = 21
+STATES = Layout("cylinder states")
+_s = STATES.add
+Y_T = _s("gas_temperature", "K", "gas temperature in the cylinder")
+Y_RHO = _s("gas_density", "kg/m3", "gas density in the cylinder")
+Y_XS = _s("suction_valve_lift", "m", "suction reed lift")
+Y_VS = _s("suction_valve_velocity", "m/s", "suction reed velocity")
+Y_XD = _s("discharge_valve_lift", "m", "discharge reed lift")
+Y_VD = _s("discharge_valve_velocity", "m/s", "discharge reed velocity")
+#: States under error control: those above; the quadratures below are not.
+N_ERR = STATES.size
+Q_MSUC_IN = _s("suction_mass_in", "kg", "mass in through the suction valve")
+Q_MSUC_OUT = _s("suction_mass_out", "kg", "back-flow out through the suction valve")
+Q_MDIS_OUT = _s("discharge_mass_out", "kg", "mass out through the discharge valve")
+Q_MDIS_IN = _s("discharge_mass_in", "kg", "back-flow in through the discharge valve")
+Q_MLEAK_OUT = _s("leakage_mass_out", "kg", "mass out through the piston gap")
+Q_MLEAK_IN = _s("leakage_mass_in", "kg", "mass in from the shell through the piston gap")
+Q_HSUC_IN = _s("suction_enthalpy_in", "J", "enthalpy carried in through the suction valve")
+Q_HSUC_OUT = _s("suction_enthalpy_out", "J", "enthalpy carried out through the suction valve")
+Q_HDIS_OUT = _s("discharge_enthalpy_out", "J", "enthalpy carried out through the discharge valve")
+Q_HDIS_IN = _s("discharge_enthalpy_in", "J", "enthalpy carried in through the discharge valve")
+Q_HLEAK_OUT = _s("leakage_enthalpy_out", "J", "enthalpy carried out through the piston gap")
+Q_HLEAK_IN = _s("leakage_enthalpy_in", "J", "enthalpy carried in through the piston gap")
+Q_HEAT = _s("heat_to_gas", "J", "heat into the gas")
+Q_WORK = _s("work_on_gas", "J", "work on the gas, -int p dV")
+Q_SHAFT = _s("shaft_work", "J", "shaft work, int tau omega dt (0 on the rigid crank)")
+N_STATE = STATES.size
 N_MODES = 2
 N_EVENTS = 4
 
 # ---- integer parameters --------------------------------------------------------------
-I_SCENE = 0
-I_VALVES = 1
-I_FLOW = 2
-I_HT = 3
-I_LEAK = 4
-I_PROPS = 5  # property backend: PROPS_HEOS (the ``props`` callback) or PROPS_TABLE
-N_IPAR = 6
-PROPS_HEOS = 0
+IPAR = Layout("cylinder integer parameters")
+I_SCENE = IPAR.add("scene", "code", "scene code (recipsim.model.scenes.SCENE_*)")
+I_VALVES = IPAR.add("valves", "code", "valve model (VALVES_*)")
+I_FLOW = IPAR.add("flow", "code", "valve flow model (FLOW_*)")
+I_HT = IPAR.add("heat_transfer", "code", "heat-transfer correlation (heat_transfer.HT_*)")
+I_LEAK = IPAR.add("leakage", "code", "piston-gap leakage model (LEAK_*)")
+I_PROPS = IPAR.add("properties", "code", "property backend (PROPS_*)")
+N_IPAR = IPAR.size
+PROPS_HEOS = 0  # the ``props`` callback
 PROPS_TABLE = 1  # table in pbuf after the outputs (property_table); HEOS where it has no data
 VALVES_IDEAL = 0
 VALVES_QUASI_STATIC = 1
@@ -64,86 +77,100 @@ LEAK_INCOMPRESSIBLE = 1
 LEAK_ISOTHERMAL = 2
 
 # ---- float parameters ----------------------------------------------------------------
-C_OMEGA = 0
-C_THETA0 = 1
-C_R = 2
-C_L = 3
-C_AP = 4
-C_VC = 5
-C_BORE = 6
-C_STROKE = 7
-C_PISTON_LEN = 8
-C_LINER_LEN = 9
-C_PS = 10
-C_RHOS = 11
-C_HS = 12
-C_KAPPAS = 13
-C_K0S = 14
-C_TS = 15
-C_PD = 16
-C_RHOD = 17
-C_HD = 18
-C_KAPPAD = 19
-C_K0D = 20
-C_TD = 21
-C_PSHELL = 22
-C_RHOSHELL = 23
-C_HSHELL = 24
-C_MUSHELL = 25
-C_RGAS = 26
-C_DPLAM = 27
-C_VSTICK = 28
-C_LEAK_DELTA = 29
-C_LEAK_ECC = 30
-C_HT_COEF = 31
-C_TWALL = 32
-C_MPISTON = 33
-C_MROD = 34
-C_AROD = 35
-C_IROD = 36
-C_BAUMGARTE = 37
-C_VALVE0 = 40  # first valve block; valve i starts at C_VALVE0 + i * VALVE_BLOCK
-VALVE_BLOCK = 11
-V_PORT_D = 0
-V_CFLOW = 1
-V_AFORCE = 2
-V_MASS = 3
-V_STIFF = 4
-V_DAMP = 5
-V_STOP = 6
-V_REST = 7
-V_PRELOAD = 8
-V_CURTAIN_D = 9  # diameter of the curtain flow area [m]
-V_MOMENTUM = 10  # 1.0: the jet's momentum pushes on the reed
-N_PAR = C_VALVE0 + 2 * VALVE_BLOCK
+#: One valve's row of parameters (offsets within the row).
+VALVE = Layout("valve parameters")
+V_PORT_D = VALVE.add("port_diameter", "m", "port diameter")
+V_CFLOW = VALVE.add("flow_coefficient", "-", "flow (discharge) coefficient of the port")
+V_AFORCE = VALVE.add("force_area", "m2", "force coefficient times port area")
+V_MASS = VALVE.add("mass", "kg", "effective reed mass")
+V_STIFF = VALVE.add("stiffness", "N/m", "reed stiffness")
+V_DAMP = VALVE.add("damping", "N s/m", "reed damping coefficient")
+V_STOP = VALVE.add("stop_height", "m", "lift at the stop")
+V_REST = VALVE.add("restitution", "-", "coefficient of restitution at seat and stop")
+V_PRELOAD = VALVE.add("preload", "N", "preload holding the reed on its seat")
+V_CURTAIN_D = VALVE.add("curtain_diameter", "m", "diameter of the curtain flow area")
+V_MOMENTUM = VALVE.add("momentum_force", "-", "1.0: the jet's momentum pushes on the reed")
+VALVE_BLOCK = VALVE.size
+
+PAR = Layout("cylinder float parameters")
+_p = PAR.add
+C_OMEGA = _p("shaft_speed", "rad/s", "crank speed")
+C_THETA0 = _p("start_angle", "rad", "crank angle at t = 0 of a revolution")
+C_R = _p("crank_radius", "m", "crank radius")
+C_L = _p("rod_length", "m", "connecting-rod length")
+C_AP = _p("piston_area", "m2", "piston crown area")
+C_VC = _p("clearance_volume", "m3", "cylinder volume at top dead centre")
+C_BORE = _p("bore", "m", "cylinder bore")
+C_STROKE = _p("stroke", "m", "piston stroke")
+C_PISTON_LEN = _p("piston_length", "m", "piston length")
+C_LINER_LEN = _p("liner_length", "m", "cylinder liner length")
+C_PS = _p("suction_pressure", "Pa", "suction plenum pressure")
+C_RHOS = _p("suction_density", "kg/m3", "suction plenum density")
+C_HS = _p("suction_enthalpy", "J/kg", "suction plenum specific enthalpy")
+C_KAPPAS = _p("suction_kappa", "-", "suction plenum isentropic exponent")
+C_K0S = _p("suction_k0", "-", "suction plenum ideal-gas isentropic exponent")
+C_TS = _p("suction_temperature", "K", "suction plenum temperature")
+C_PD = _p("discharge_pressure", "Pa", "discharge plenum pressure")
+C_RHOD = _p("discharge_density", "kg/m3", "discharge plenum density")
+C_HD = _p("discharge_enthalpy", "J/kg", "discharge plenum specific enthalpy")
+C_KAPPAD = _p("discharge_kappa", "-", "discharge plenum isentropic exponent")
+C_K0D = _p("discharge_k0", "-", "discharge plenum ideal-gas isentropic exponent")
+C_TD = _p("discharge_temperature", "K", "discharge plenum temperature")
+C_PSHELL = _p("shell_pressure", "Pa", "shell pressure (under the piston)")
+C_RHOSHELL = _p("shell_density", "kg/m3", "shell gas density")
+C_HSHELL = _p("shell_enthalpy", "J/kg", "shell gas specific enthalpy")
+C_MUSHELL = _p("shell_viscosity", "Pa s", "shell gas dynamic viscosity")
+C_RGAS = _p("gas_constant", "J/(kg K)", "specific gas constant (ideal-gas flow)")
+C_DPLAM = _p("laminar_pressure_difference", "Pa", "valve flow turns laminar below it")
+C_VSTICK = _p("stick_velocity", "m/s", "a slower reed impact against a closing force sticks")
+C_LEAK_DELTA = _p("leakage_clearance", "m", "radial piston-cylinder clearance of the leak")
+C_LEAK_ECC = _p("leakage_eccentricity", "-", "eccentricity ratio of the piston in the bore")
+C_HT_COEF = _p("heat_transfer_coefficient", "-", "coefficient of the heat-transfer correlation")
+C_TWALL = _p("wall_temperature", "K", "cylinder wall temperature")
+C_MPISTON = _p("piston_mass", "kg", "piston mass")
+C_MROD = _p("rod_mass", "kg", "connecting-rod mass")
+C_AROD = _p("rod_com_fraction", "-", "rod centre of mass from the big end / rod length")
+C_IROD = _p("rod_inertia", "kg m2", "rod moment of inertia about its centre of mass")
+C_BAUMGARTE = _p("baumgarte_rate", "1/s", "decay rate of the ideal valves' pressure drift")
+#: First valve row; valve i (0 suction, 1 discharge) starts at C_VALVE0 + i * VALVE_BLOCK.
+C_VALVE0 = PAR.add_rows(VALVE, ("suction_valve", "discharge_valve"))
+N_PAR = PAR.size
 
 # ---- auxiliary outputs --------------------------------------------------------------
-A_THETA = 0
-A_VOLUME = 1
-A_DVDT = 2
-A_PRESSURE = 3
-A_TEMPERATURE = 4
-A_DENSITY = 5
-A_MASS = 6
-A_ENTHALPY = 7
-A_QUALITY = 8
-A_MDOT_SUC = 9  # into the cylinder through the suction valve [kg/s]
-A_MDOT_DIS = 10  # out of the cylinder through the discharge valve [kg/s]
-A_MDOT_LEAK = 11  # out of the cylinder through the piston gap [kg/s]
-A_QDOT = 12  # heat into the gas [W]
-A_HTC = 13
-A_LIFT_S = 14
-A_LIFT_D = 15
-A_VEL_S = 16
-A_VEL_D = 17
-A_FORCE_GAS = 18  # (p - p_shell) A_p on the piston, towards the crank [N]
-A_TORQUE_GAS = 19  # (p - p_shell) A_p dx/dtheta [N m]
-A_TORQUE_INERTIA = 20
-A_TORQUE_SHAFT = 21  # driving torque for constant speed [N m]
-A_DISPLACEMENT = 22  # piston displacement from TDC [m]
-A_PISTON_VELOCITY = 23  # dx/dt [m/s]
-A_FORCE_REED_S = 24  # net opening force on the suction reed (spring excluded) [N]
-A_FORCE_REED_D = 25
-A_STATUS = 26
-A_LEAK_ECC = 27  # eccentricity ratio of the piston in the bore seen by the leak [-]
-N_AUX = 28
+OUTPUTS = Layout("cylinder outputs")
+_a = OUTPUTS.add
+A_THETA = _a("crank_angle", "rad", "crank angle (not wrapped)")
+A_VOLUME = _a("cylinder_volume", "m3", "cylinder volume")
+A_DVDT = _a("volume_rate", "m3/s", "dV/dt")
+A_PRESSURE = _a("cylinder_pressure", "Pa", "gas pressure in the cylinder")
+A_TEMPERATURE = _a("gas_temperature", "K", "gas temperature in the cylinder")
+A_DENSITY = _a("gas_density", "kg/m3", "gas density in the cylinder")
+A_MASS = _a("gas_mass", "kg", "gas mass in the cylinder")
+A_ENTHALPY = _a("gas_specific_enthalpy", "J/kg", "specific enthalpy of the gas")
+A_QUALITY = _a("vapour_quality", "-", "vapour quality (-1: single phase or no gas state)")
+A_MDOT_SUC = _a("suction_mass_flow", "kg/s", "into the cylinder through the suction valve")
+A_MDOT_DIS = _a("discharge_mass_flow", "kg/s", "out of the cylinder through the discharge valve")
+A_MDOT_LEAK = _a("leakage_mass_flow", "kg/s", "out of the cylinder through the piston gap")
+A_QDOT = _a("heat_flow_to_gas", "W", "heat into the gas")
+A_HTC = _a("heat_transfer_coefficient", "W/(m2 K)", "gas-wall heat-transfer coefficient")
+A_LIFT_S = _a("suction_valve_lift", "m", "suction reed lift")
+A_LIFT_D = _a("discharge_valve_lift", "m", "discharge reed lift")
+A_VEL_S = _a("suction_valve_velocity", "m/s", "suction reed velocity")
+A_VEL_D = _a("discharge_valve_velocity", "m/s", "discharge reed velocity")
+A_FORCE_GAS = _a("gas_force", "N", "(p - p_shell) A_p on the piston, towards the crank")
+A_TORQUE_GAS = _a("gas_torque", "N m", "(p - p_shell) A_p dx/dtheta")
+A_TORQUE_INERTIA = _a("inertia_torque", "N m", "driving torque + gas torque")
+A_TORQUE_SHAFT = _a("shaft_torque", "N m", "driving torque for constant speed")
+A_DISPLACEMENT = _a("piston_displacement", "m", "piston displacement from TDC")
+A_PISTON_VELOCITY = _a("piston_velocity", "m/s", "dx/dt")
+A_FORCE_REED_S = _a(
+    "suction_reed_force", "N", "net opening force on the suction reed (spring excluded)"
+)
+A_FORCE_REED_D = _a(
+    "discharge_reed_force", "N", "net opening force on the discharge reed (spring excluded)"
+)
+A_STATUS = _a("property_status", "code", "status of the property call (property_slots.STATUS_*)")
+A_LEAK_ECC = _a(
+    "leakage_eccentricity", "-", "eccentricity ratio of the piston in the bore seen by the leak"
+)
+N_AUX = OUTPUTS.size
