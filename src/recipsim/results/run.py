@@ -46,6 +46,15 @@ class CaseRun:
     startup: StartupRun | None = None
 
 
+def solver_entry(case: Case) -> str | None:
+    """The compiled integrator (:mod:`recipsim.solve.integrator`) that ``case`` runs, by
+    name; None when nothing is integrated (pinned mechanism, tabulated pressure)."""
+    opts = case.options
+    if opts.pressure == "tabulated":
+        return "integrate_mechanism" if opts.mechanics == "flexible" else None
+    return "integrate_cylinder" if opts.mechanics == "pinned" else "integrate_coupled"
+
+
 def simulate_case(case: Case, argv: list[str] | None = None) -> CaseRun:
     """Solve ``case`` to its periodic steady state and tabulate the converged revolution
     (from rest first, through the start-up transient, with ``solver.start = "rest"``).
@@ -69,8 +78,9 @@ def simulate_case(case: Case, argv: list[str] | None = None) -> CaseRun:
     from recipsim.solve.motor_speed import solve_at_motor_speed
     from recipsim.solve.periodic import solve_periodic
 
-    if numba_cache_lacks("integrator"):
-        logger.info("compiling the solver (once per installation: about 30-45 s)")
+    entry = solver_entry(case)
+    if entry is not None and numba_cache_lacks("integrator", entry):
+        logger.info("compiling the solver for this scene (once per installation: about 15-25 s)")
     check_envelope(case)  # refuse a point outside the refrigerant's envelope up front
     solution = startup = None
     if case.options.pressure == "tabulated" and case.options.mechanics == "pinned":
