@@ -18,6 +18,11 @@ if TYPE_CHECKING:
 
 logger = logging.getLogger(__name__)
 
+#: The integrators (:func:`solver_entry`) this process has run: compiled or loaded from
+#: numba's cache, so their first-run note is not looked for again (a sweep point would
+#: otherwise search the cache directory, about 1 ms).
+_COMPILED: set[str] = set()
+
 
 @dataclass
 class CaseRun:
@@ -128,7 +133,7 @@ def _solve(case: Case) -> tuple[Case, PeriodicSolution | None, StartupRun | None
     from recipsim.solve.periodic import solve_periodic
 
     entry = solver_entry(case)
-    if entry is not None and numba_cache_lacks("integrator", entry):
+    if entry is not None and entry not in _COMPILED and numba_cache_lacks("integrator", entry):
         logger.info("compiling the solver for this scene (once per installation: about 15-25 s)")
     check_envelope(case)  # refuse a point outside the refrigerant's envelope up front
     if case.options.pressure == "tabulated" and case.options.mechanics == "pinned":
@@ -149,4 +154,6 @@ def _solve(case: Case) -> tuple[Case, PeriodicSolution | None, StartupRun | None
         model = build_model_for(case)
     with explained("integrating the periodic state"):
         solution = solve_periodic(model)
+    if entry is not None:
+        _COMPILED.add(entry)
     return case, solution, None
