@@ -332,19 +332,21 @@ def _scene_function(kind: str, code: Any) -> Any:
     return _BY_SCENE[kind][code.literal_value]
 
 
+# The plain-Python bodies run only without the JIT (``NUMBA_DISABLE_JIT=1``: the
+# pure-Python baseline); compiled code gets the overloads below.
 def rhs_for(code, t, y, mode, par, ipar, props, pbuf, dydt, aux):  # type: ignore[no-untyped-def]
-    """Right-hand side of scene ``code`` (compiled code only, see above)."""
-    raise NotImplementedError("rhs_for is called from compiled code only")
+    """Right-hand side of scene ``code`` (a compile-time constant in compiled code)."""
+    return _BY_SCENE["rhs"][code](t, y, mode, par, ipar, props, pbuf, dydt, aux)
 
 
 def event_values_for(code, y, mode, par, ipar, aux, g):  # type: ignore[no-untyped-def]
-    """Event functions of scene ``code`` (compiled code only)."""
-    raise NotImplementedError("event_values_for is called from compiled code only")
+    """Event functions of scene ``code`` (a compile-time constant in compiled code)."""
+    return _BY_SCENE["event_values"][code](y, mode, par, ipar, aux, g)
 
 
 def event_action_for(code, k, y, mode, par, ipar, aux):  # type: ignore[no-untyped-def]
-    """Action of event ``k`` of scene ``code`` (compiled code only)."""
-    raise NotImplementedError("event_action_for is called from compiled code only")
+    """Action of event ``k`` of scene ``code`` (a compile-time constant in compiled code)."""
+    return _BY_SCENE["event_action"][code](k, y, mode, par, ipar, aux)
 
 
 @overload(rhs_for)
