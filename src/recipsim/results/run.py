@@ -127,11 +127,13 @@ def _solve(case: Case) -> tuple[Case, PeriodicSolution | None, StartupRun | None
     periodic solution (None for the pinned mechanism under a tabulated pressure: nothing
     to integrate) and the start-up run before it, if any."""
     from recipsim.case.envelope import check_envelope
+    from recipsim.results.compile_ahead import wait_for_compile_ahead
     from recipsim.results.outcome import explained
     from recipsim.solve.drive import build_model_for
     from recipsim.solve.motor_speed import solve_at_motor_speed
     from recipsim.solve.periodic import solve_periodic
 
+    wait_for_compile_ahead()  # a child compiling the solver on a fresh machine
     entry = solver_entry(case)
     if entry is not None and entry not in _COMPILED and numba_cache_lacks("integrator", entry):
         logger.info("compiling the solver for this scene (once per installation: about 15-25 s)")
