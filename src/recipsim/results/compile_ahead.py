@@ -7,8 +7,13 @@ build) and solves one revolution of it, which compiles the case's scene and the 
 compiled code into numba's cache: the property callback has the same numba type with
 either property source, so the parent then loads what the child compiled. The parent
 builds the property table meanwhile and waits for the child before it integrates
-(:func:`wait_for_compile_ahead`). On a machine with one core, when any scene is
-already cached, or with ``RECIPSIM_COMPILE_AHEAD=0``, nothing is started. A child that
+(:func:`wait_for_compile_ahead`). The child only pays where it has a core to itself:
+it starts when the machine has two cores that other work leaves idle (usable cores less
+the one-minute load average, as for the figure processes), nothing of the solver is
+cached and ``RECIPSIM_COMPILE_AHEAD`` is not ``0`` (``1`` starts it whatever the load).
+Forced on at a load average of 2 on 2 cores (no idle core) it saved no wall time and
+cost 8 s of CPU; on an idle machine it can save at most the parent's case loading and
+table build (a few seconds): not measured, no idle machine was at hand. A child that
 fails changes nothing: the parent then compiles as it would have.
 """
 
@@ -37,16 +42,27 @@ _pending: list[subprocess.Popen[bytes]] = []
 
 def start_compile_ahead(path: str | Path, overrides: list[str], allow_external: bool) -> bool:
     """Start the compiling child for the case ``path`` with ``overrides`` if the solver
-    is not in numba's cache at all and a second core exists; returns whether it did."""
-    if _pending or os.environ.get("RECIPSIM_COMPILE_AHEAD") == "0":
+    is not in numba's cache at all and two cores are idle (see the module docstring);
+    returns whether it did."""
+    setting = os.environ.get("RECIPSIM_COMPILE_AHEAD")
+    if _pending or setting == "0" or not numba_cache_lacks("integrator"):
         return False
-    if (os.cpu_count() or 1) < 2 or not numba_cache_lacks("integrator"):
+    if setting != "1" and _idle_cores() < 2:
         return False
     argv = [sys.executable, "-c", _CHILD, str(path), json.dumps(list(overrides))]
     argv.append("1" if allow_external else "0")
     quiet = subprocess.DEVNULL
     _pending.append(subprocess.Popen(argv, stdin=quiet, stdout=quiet, stderr=quiet))
     return True
+
+
+def _idle_cores() -> float:
+    """Usable cores less the one-minute load average (0 where it is unknown)."""
+    cores = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count()
+    try:
+        return (cores or 1) - os.getloadavg()[0]
+    except (AttributeError, OSError):
+        return 0.0
 
 
 def wait_for_compile_ahead() -> None:

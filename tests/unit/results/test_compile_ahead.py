@@ -17,7 +17,7 @@ def fresh_cache(tmp_path, monkeypatch):
     monkeypatch.setenv("NUMBA_CACHE_DIR", str(tmp_path / "numba"))
     monkeypatch.delenv("NUMBA_DISABLE_JIT", raising=False)
     monkeypatch.delenv("RECIPSIM_COMPILE_AHEAD", raising=False)
-    monkeypatch.setattr(compile_ahead.os, "cpu_count", lambda: 2)
+    monkeypatch.setattr(compile_ahead, "_idle_cores", lambda: 2.0)
     yield tmp_path / "numba"
     compile_ahead.wait_for_compile_ahead()
 
@@ -29,7 +29,9 @@ def test_nothing_starts_when_the_solver_is_cached_or_switched_off(fresh_cache, m
     (fresh_cache / "x").mkdir(parents=True)
     (fresh_cache / "x" / "integrator.integrate_coupled-381.py311.nbi").write_text("")
     assert not compile_ahead.start_compile_ahead("reference_r134a_lbp", [], False)
-    monkeypatch.setattr(compile_ahead.os, "cpu_count", lambda: 1)
+    for f in fresh_cache.rglob("*.nbi"):
+        f.unlink()
+    monkeypatch.setattr(compile_ahead, "_idle_cores", lambda: 1.2)  # a busy machine
     assert not compile_ahead.start_compile_ahead("reference_r134a_lbp", [], False)
 
 
