@@ -12,7 +12,7 @@ it starts when the machine has two cores that other work leaves idle (usable cor
 the one-minute load average, as for the figure processes), nothing of the solver is
 cached and ``RECIPSIM_COMPILE_AHEAD`` is not ``0`` (``1`` starts it whatever the load).
 Forced on at a load average of 2 on 2 cores (no idle core) it saved no wall time and
-cost 8 s of CPU; on an idle machine it can save at most the parent's case loading and
+cost up to 8 s of CPU; on an idle machine it can save at most the case loading and
 table build (a few seconds): not measured, no idle machine was at hand. A child that
 fails changes nothing: the parent then compiles as it would have.
 """
