@@ -19,15 +19,16 @@ from pathlib import Path
 _warned: set[str] = set()
 
 
-def numba_cache_lacks(module: str) -> bool:
+def numba_cache_lacks(module: str, function: str | None = None) -> bool:
     """Whether numba's cache for this version of the compiled sources holds nothing yet of
-    ``module`` (e.g. ``"integrator"``: the first run then compiles the solver, about
-    30-45 s)."""
+    ``module`` (e.g. ``"integrator"``: the first run then compiles the solver), or of its
+    ``function`` if given (``"integrate_coupled"``: each scene compiles on its own)."""
     directory = os.environ.get("NUMBA_CACHE_DIR")
     if not directory or os.environ.get("NUMBA_DISABLE_JIT") == "1":
         return False
     path = Path(directory)
-    return not path.is_dir() or next(path.rglob(f"{module}.*.nbi"), None) is None
+    pattern = f"{module}.{function}-*.nbi" if function else f"{module}.*.nbi"
+    return not path.is_dir() or next(path.rglob(pattern), None) is None
 
 
 def cache_dir() -> Path:

@@ -152,8 +152,23 @@ def find_refrigerant_file(name: str, search: list[Path] | None = None) -> Path |
     return None
 
 
+#: Refrigerant files read by this process, by path: (modification time [ns], size, spec).
+_READ: dict[str, tuple[int, int, RefrigerantSpec]] = {}
+
+
 def read_refrigerant_file(path: Path) -> RefrigerantSpec:
-    """Read and validate one refrigerant file."""
+    """Read and validate one refrigerant file (once per process while the file is
+    unchanged: a sweep loads its refrigerant at every point)."""
+    stat = Path(path).stat()
+    known = _READ.get(str(path))
+    if known is not None and known[:2] == (stat.st_mtime_ns, stat.st_size):
+        return known[2]
+    spec = _read_refrigerant_file(path)
+    _READ[str(path)] = (stat.st_mtime_ns, stat.st_size, spec)
+    return spec
+
+
+def _read_refrigerant_file(path: Path) -> RefrigerantSpec:
     file = str(path)
     raw, _ = read_toml(path, "refrigerant")
     check_keys(raw, {*REFRIGERANT_SPEC, *REFRIGERANT_TABLES}, file, "")

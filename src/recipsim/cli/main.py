@@ -109,6 +109,10 @@ def run_case(
     library's).
     """
     figures = None
+    if fork_figures:  # the command line: on a fresh machine, compile while the table builds
+        from recipsim.results.compile_ahead import start_compile_ahead
+
+        start_compile_ahead(path, overrides, allow_external_paths)
     if fork_figures and plots:
         from recipsim.report.figure_process import start_figure_processes
 

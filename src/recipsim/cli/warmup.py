@@ -4,10 +4,10 @@ A first run compiles the solver (numba's cache) and builds the property table of
 refrigerant; both are kept in recipsim's cache directory (``$RECIPSIM_CACHE``, see
 ``docs/caches.md``). ``warmup`` does that work now, with a line per step, so that a
 long sweep, a cluster's workers sharing the cache or a timed run do not pay for it:
-each CASE (default the reference case) is solved for one revolution, which compiles
-the code of its scene (cylinder on the rigid crank, flexible crank, oil films,
-tabulated pressure) and only that; each refrigerant of ``--refrigerants`` gets its
-property table.
+each CASE is solved for one revolution, which compiles the code of its scene
+(cylinder on the rigid crank, cylinder on the flexible crank, flexible crank under a
+tabulated pressure: each scene compiles on its own) and only that; by default one case
+of each scene. Each refrigerant of ``--refrigerants`` gets its property table.
 """
 
 from __future__ import annotations
@@ -21,6 +21,9 @@ from recipsim.cli.options import exit_status
 
 #: One revolution is enough to call, and so compile, every kernel of a scene.
 _ONE_REVOLUTION = {"solver.min_revolutions": 1, "solver.max_revolutions": 1}
+#: One shipped case of each scene (rigid crank, coupled, tabulated pressure on the
+#: flexible crank): the default of ``warmup``, which then compiles every scene.
+EVERY_SCENE = ["reference_r134a_lbp", "reference_r134a_lbp_coupled", "paper_tabulated"]
 
 
 def add_warmup_parser(sub: Any) -> argparse.ArgumentParser:
@@ -33,8 +36,8 @@ def add_warmup_parser(sub: Any) -> argparse.ArgumentParser:
     parser.add_argument(
         "cases",
         nargs="*",
-        default=["reference_r134a_lbp"],
-        help="cases whose scenes to compile (default: reference_r134a_lbp)",
+        default=EVERY_SCENE,
+        help=f"cases whose scenes to compile (default: {', '.join(EVERY_SCENE)})",
     )
     parser.add_argument(
         "--refrigerants",

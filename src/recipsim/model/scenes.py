@@ -31,8 +31,11 @@ free).
 from __future__ import annotations
 
 import math
+from typing import Any
 
-from numba import njit
+from numba import njit, types
+from numba.core.errors import TypingError
+from numba.extending import overload
 
 from recipsim.physics.layout_table import Layout
 from recipsim.physics.mechanics import layout as lay
@@ -244,7 +247,8 @@ def coupled_rhs(t, y, mode, par, ipar, props, pbuf, dydt, aux) -> int:
 
 @njit(cache=True)
 def scene_rhs(t, y, mode, par, ipar, props, pbuf, dydt, aux) -> int:
-    """Dispatch to the right-hand side of the scene in ``ipar[I_SCENE]``."""
+    """Dispatch to the right-hand side of the scene in ``ipar[I_SCENE]`` (compiles every
+    scene; the integrator calls :func:`rhs_for` instead)."""
     scene = ipar[cyl.I_SCENE]
     if scene == SCENE_MECHANISM:
         return mechanism_rhs(t, y, mode, par, ipar, props, pbuf, dydt, aux)
@@ -254,29 +258,131 @@ def scene_rhs(t, y, mode, par, ipar, props, pbuf, dydt, aux) -> int:
 
 
 @njit(cache=True)
+def _cylinder_event_values(y, mode, par, ipar, aux, g) -> None:
+    cylinder_event_values(y, mode, par, ipar, aux, g)
+    g[EV_THETA_END] = -1.0
+
+
+@njit(cache=True)
+def _mechanism_event_values(y, mode, par, ipar, aux, g) -> None:
+    for k in range(cyl.N_EVENTS):
+        g[k] = -1.0
+    g[EV_THETA_END] = -1.0
+    if ipar[I_STOP_ON_ANGLE] != 0:
+        g[EV_THETA_END] = y[MECH_Y[SCENE_MECHANISM] + lay.Y_CRANK_ANGLE] - par[P_THETA_END]
+
+
+@njit(cache=True)
+def _coupled_event_values(y, mode, par, ipar, aux, g) -> None:
+    cylinder_event_values(y[: cyl.N_STATE], mode, par, ipar, aux, g)
+    g[EV_THETA_END] = -1.0
+    if ipar[I_STOP_ON_ANGLE] != 0:
+        g[EV_THETA_END] = y[MECH_Y[SCENE_COUPLED] + lay.Y_CRANK_ANGLE] - par[P_THETA_END]
+
+
+@njit(cache=True)
 def scene_event_values(y, mode, par, ipar, aux, g) -> None:
-    """Event functions of the scene; an event fires when g goes from <= 0 to > 0."""
+    """Event functions of the scene in ``ipar[I_SCENE]``; an event fires when g goes
+    from <= 0 to > 0 (compiles every scene; the integrator calls
+    :func:`event_values_for`)."""
     scene = ipar[cyl.I_SCENE]
     if scene == SCENE_MECHANISM:
-        for k in range(cyl.N_EVENTS):
-            g[k] = -1.0
+        _mechanism_event_values(y, mode, par, ipar, aux, g)
     elif scene == SCENE_COUPLED:
-        cylinder_event_values(y[: cyl.N_STATE], mode, par, ipar, aux, g)
+        _coupled_event_values(y, mode, par, ipar, aux, g)
     else:
-        cylinder_event_values(y, mode, par, ipar, aux, g)
-    g[EV_THETA_END] = -1.0
-    if ipar[I_STOP_ON_ANGLE] != 0 and scene != SCENE_CYLINDER:
-        g[EV_THETA_END] = y[MECH_Y[scene] + lay.Y_CRANK_ANGLE] - par[P_THETA_END]
+        _cylinder_event_values(y, mode, par, ipar, aux, g)
+
+
+@njit(cache=True)
+def _cylinder_event_action(k, y, mode, par, ipar, aux) -> bool:
+    if k == EV_THETA_END:
+        return True
+    cylinder_event_action(k, y, mode, par, ipar, aux)
+    return False
+
+
+@njit(cache=True)
+def _mechanism_event_action(k, y, mode, par, ipar, aux) -> bool:
+    # the cylinder's events never fire in this scene (their functions stay at -1)
+    return k == EV_THETA_END
+
+
+@njit(cache=True)
+def _coupled_event_action(k, y, mode, par, ipar, aux) -> bool:
+    if k == EV_THETA_END:
+        return True
+    cylinder_event_action(k, y[: cyl.N_STATE], mode, par, ipar, aux)
+    return False
 
 
 @njit(cache=True)
 def scene_event_action(k, y, mode, par, ipar, aux) -> bool:
-    """Apply event ``k``; returns True when the event ends the integration."""
-    if k == EV_THETA_END:
-        return True
+    """Apply event ``k`` of the scene in ``ipar[I_SCENE]``; returns True when the event
+    ends the integration (compiles every scene; the integrator calls
+    :func:`event_action_for`)."""
     scene = ipar[cyl.I_SCENE]
+    if scene == SCENE_MECHANISM:
+        return _mechanism_event_action(k, y, mode, par, ipar, aux)
     if scene == SCENE_COUPLED:
-        cylinder_event_action(k, y[: cyl.N_STATE], mode, par, ipar, aux)
-    else:
-        cylinder_event_action(k, y, mode, par, ipar, aux)
-    return False
+        return _coupled_event_action(k, y, mode, par, ipar, aux)
+    return _cylinder_event_action(k, y, mode, par, ipar, aux)
+
+
+# ---- one scene at a time ---------------------------------------------------------------
+# ``rhs_for(code, ...)``, ``event_values_for(code, ...)`` and ``event_action_for(code,
+# ...)`` take the scene as a compile-time constant (numba's ``Literal[int]``: a global
+# such as ``SCENE_CYLINDER`` passed down from a compiled entry point) and resolve to that
+# scene's function while numba types the caller, so a compiled integrator contains, and
+# compiles, only its own scene's code (the cylinder scene alone needs about half the
+# functions of all three).
+_BY_SCENE = {
+    "rhs": (cylinder_rhs, mechanism_rhs, coupled_rhs),
+    "event_values": (_cylinder_event_values, _mechanism_event_values, _coupled_event_values),
+    "event_action": (_cylinder_event_action, _mechanism_event_action, _coupled_event_action),
+}
+
+
+def _scene_function(kind: str, code: Any) -> Any:
+    """The compiled ``kind`` function of the scene whose code is the literal type
+    ``code`` (a typing error for a scene not known at compile time)."""
+    if not isinstance(code, types.IntegerLiteral):
+        raise TypingError(f"the scene of {kind}_for must be a compile-time constant")
+    return _BY_SCENE[kind][code.literal_value]
+
+
+# The plain-Python bodies run only without the JIT (``NUMBA_DISABLE_JIT=1``: the
+# pure-Python baseline); compiled code gets the overloads below.
+def rhs_for(code, t, y, mode, par, ipar, props, pbuf, dydt, aux):  # type: ignore[no-untyped-def]
+    """Right-hand side of scene ``code`` (a compile-time constant in compiled code)."""
+    return _BY_SCENE["rhs"][code](t, y, mode, par, ipar, props, pbuf, dydt, aux)
+
+
+def event_values_for(code, y, mode, par, ipar, aux, g):  # type: ignore[no-untyped-def]
+    """Event functions of scene ``code`` (a compile-time constant in compiled code)."""
+    return _BY_SCENE["event_values"][code](y, mode, par, ipar, aux, g)
+
+
+def event_action_for(code, k, y, mode, par, ipar, aux):  # type: ignore[no-untyped-def]
+    """Action of event ``k`` of scene ``code`` (a compile-time constant in compiled code)."""
+    return _BY_SCENE["event_action"][code](k, y, mode, par, ipar, aux)
+
+
+@overload(rhs_for)
+def _rhs_for(code, t, y, mode, par, ipar, props, pbuf, dydt, aux):  # type: ignore[no-untyped-def]
+    fn = _scene_function("rhs", code)
+    return lambda code, t, y, mode, par, ipar, props, pbuf, dydt, aux: fn(
+        t, y, mode, par, ipar, props, pbuf, dydt, aux
+    )
+
+
+@overload(event_values_for)
+def _event_values_for(code, y, mode, par, ipar, aux, g):  # type: ignore[no-untyped-def]
+    fn = _scene_function("event_values", code)
+    return lambda code, y, mode, par, ipar, aux, g: fn(y, mode, par, ipar, aux, g)
+
+
+@overload(event_action_for)
+def _event_action_for(code, k, y, mode, par, ipar, aux):  # type: ignore[no-untyped-def]
+    fn = _scene_function("event_action", code)
+    return lambda code, k, y, mode, par, ipar, aux: fn(k, y, mode, par, ipar, aux)

@@ -15,10 +15,10 @@ import math
 from typing import Any
 
 import numpy as np
-import pandas as pd
 
 from recipsim.physics.mechanics import layout as lay
 from recipsim.physics.mechanics.pinned import N_PIN_OUT, PIN_DRIVE_TORQUE, pinned_reactions_array
+from recipsim.results.columns import CycleLike
 
 #: Displacement components reported for every bearing (normal to the Z journal axis;
 #: the piston bearings, axis X, report X as 0).
@@ -87,7 +87,7 @@ def _time_mean(values: np.ndarray, speed: np.ndarray) -> float:
     return float(np.sum(values / speed) / np.sum(1.0 / speed))
 
 
-def film_summary(cycle: pd.DataFrame) -> dict[str, Any]:
+def film_summary(cycle: CycleLike) -> dict[str, Any]:
     """Per film bearing: smallest film, largest eccentricity ratio, film pressure and
     contact force, friction power; the piston film's friction power."""
     row: dict[str, Any] = {}
@@ -133,7 +133,7 @@ def pinned_columns(
     return cols, out[:, PIN_DRIVE_TORQUE].copy()
 
 
-def mechanism_summary(cycle: pd.DataFrame) -> dict[str, Any]:
+def mechanism_summary(cycle: CycleLike) -> dict[str, Any]:
     """Per-bearing RMS and peak load, largest orbit radius; crank speed and its ripple.
 
     Statistics over the uniform crank-angle samples of the cycle table (an RMS over

@@ -35,7 +35,6 @@ import warnings
 from typing import Any
 
 import numpy as np
-import pandas as pd
 
 from recipsim.case.case import Case
 from recipsim.case.rating import SATURATED_LIQUID_BAND
@@ -43,6 +42,7 @@ from recipsim.case.sections import OperatingPoint
 from recipsim.model.loss_sources import mean_friction_powers, motor_point
 from recipsim.physics.mean_friction import time_mean
 from recipsim.physics.thermo.table_states import TableFluid
+from recipsim.results.columns import CycleLike
 
 #: Loss columns of the motor and the operating-point attribute each one reads.
 MOTOR_LOSSES = {
@@ -72,7 +72,7 @@ def rating_enthalpies(fluid: Any, op: OperatingPoint) -> tuple[float, float]:
     return h_gas, float(fluid.liquid_enthalpy(p, op.liquid_temperature))
 
 
-def _film_friction(cycle: pd.DataFrame) -> float:
+def _film_friction(cycle: CycleLike) -> float:
     """Total friction of the film scenes' bearings and piston [W] (time means)."""
     speed = cycle["crank_speed [rad/s]"].to_numpy()
     names = [c for c in cycle.columns if c.startswith("bearing_power_loss_")]
@@ -81,7 +81,7 @@ def _film_friction(cycle: pd.DataFrame) -> float:
     return sum(time_mean(cycle[c].to_numpy(), speed) for c in names)
 
 
-def mean_friction_columns(case: Case, cycle: pd.DataFrame) -> dict[str, float]:
+def mean_friction_columns(case: Case, cycle: CycleLike) -> dict[str, float]:
     """Petroff journals and the viscous skirt over the cycle's samples [W] (time means,
     :func:`recipsim.model.loss_sources.mean_friction_powers`)."""
     return mean_friction_powers(
@@ -93,7 +93,7 @@ def mean_friction_columns(case: Case, cycle: pd.DataFrame) -> dict[str, float]:
     )
 
 
-def friction_columns(case: Case, cycle: pd.DataFrame) -> dict[str, float]:
+def friction_columns(case: Case, cycle: CycleLike) -> dict[str, float]:
     """``friction_power [W]`` (and, for ``mean``, per bearing) of ``options.friction``."""
     option = case.options.friction
     if option == "mean":
@@ -150,9 +150,7 @@ def motor_columns(case: Case, shaft_power: float, mean_speed: float) -> dict[str
     return row
 
 
-def loss_columns(
-    case: Case, cycle: pd.DataFrame, drive_power: float, freq: float
-) -> dict[str, Any]:
+def loss_columns(case: Case, cycle: CycleLike, drive_power: float, freq: float) -> dict[str, Any]:
     """The case's options, friction and motor columns, and ``shaft_power [W]``.
 
     Parameters

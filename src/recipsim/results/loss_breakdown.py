@@ -37,9 +37,9 @@ import math
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
-import pandas as pd
 
 from recipsim.model.plenum import isentropic_state
+from recipsim.results.columns import CycleLike
 
 if TYPE_CHECKING:  # the figure processes read LOSS_COLUMNS without importing the solver
     from recipsim.solve.periodic import PeriodicSolution
@@ -57,7 +57,7 @@ LOSS_COLUMNS = (
 )
 
 
-def _valve_areas(cycle: pd.DataFrame, p_suction: float, p_discharge: float) -> tuple[float, float]:
+def _valve_areas(cycle: CycleLike, p_suction: float, p_discharge: float) -> tuple[float, float]:
     """p-V areas of one revolution [J]: below ``p_suction`` while the suction valve
     flows, above ``p_discharge`` while the discharge valve flows (trapezoids)."""
     p = cycle["cylinder_pressure [Pa]"].to_numpy()
@@ -74,7 +74,7 @@ def _valve_areas(cycle: pd.DataFrame, p_suction: float, p_discharge: float) -> t
 
 
 def loss_breakdown(
-    row: dict[str, Any], cycle: pd.DataFrame, solution: PeriodicSolution | None
+    row: dict[str, Any], cycle: CycleLike, solution: PeriodicSolution | None
 ) -> dict[str, float]:
     """The breakdown columns (NaN where the scene has no gas model).
 

@@ -31,8 +31,7 @@ from typing import TYPE_CHECKING, Any
 from recipsim.errors import SolverError
 
 if TYPE_CHECKING:
-    import pandas as pd
-
+    from recipsim.results.columns import CycleLike
     from recipsim.solve.revolution import PeriodicSolution
 
 OK = "ok"
@@ -131,7 +130,7 @@ def discharge_valve_never_opens(solution: PeriodicSolution) -> bool:
     return delivered_mass(solution) <= NO_DELIVERY_FRACTION * swept
 
 
-def no_delivery_closures(solution: PeriodicSolution, cycle: pd.DataFrame) -> dict[str, float]:
+def no_delivery_closures(solution: PeriodicSolution, cycle: CycleLike) -> dict[str, float]:
     """Mass and energy closures of a revolution without delivery.
 
     Mass: net suction mass less leakage, relative to the largest of the gross suction
@@ -209,7 +208,7 @@ def _state_names(model: Any) -> list[str]:
 
 
 def classify(
-    solution: PeriodicSolution | None, cycle: pd.DataFrame, row: dict[str, Any]
+    solution: PeriodicSolution | None, cycle: CycleLike, row: dict[str, Any]
 ) -> tuple[str, str]:
     """Status and message of a finished run; fixes the row of a ``no_delivery`` run.
 

@@ -18,6 +18,11 @@ if TYPE_CHECKING:
 
 logger = logging.getLogger(__name__)
 
+#: The integrators (:func:`solver_entry`) this process has run: compiled or loaded from
+#: numba's cache, so their first-run note is not looked for again (a sweep point would
+#: otherwise search the cache directory, about 1 ms).
+_COMPILED: set[str] = set()
+
 
 @dataclass
 class CaseRun:
@@ -46,6 +51,15 @@ class CaseRun:
     startup: StartupRun | None = None
 
 
+def solver_entry(case: Case) -> str | None:
+    """The compiled integrator (:mod:`recipsim.solve.integrator`) that ``case`` runs, by
+    name; None when nothing is integrated (pinned mechanism, tabulated pressure)."""
+    opts = case.options
+    if opts.pressure == "tabulated":
+        return "integrate_mechanism" if opts.mechanics == "flexible" else None
+    return "integrate_cylinder" if opts.mechanics == "pinned" else "integrate_coupled"
+
+
 def simulate_case(case: Case, argv: list[str] | None = None) -> CaseRun:
     """Solve ``case`` to its periodic steady state and tabulate the converged revolution
     (from rest first, through the start-up transient, with ``solver.start = "rest"``).
@@ -61,46 +75,87 @@ def simulate_case(case: Case, argv: list[str] | None = None) -> CaseRun:
         Naming the crank angle and the state where the integration failed, or the
         quantity and state of a failed property evaluation (never a raw library error).
     """
-    from recipsim.case.envelope import check_envelope
     from recipsim.results.outcome import classify, explained
     from recipsim.results.provenance import case_provenance, provenance
     from recipsim.results.tables import cycle_table, pinned_tabulated_cycle, summary
-    from recipsim.solve.drive import build_model_for
-    from recipsim.solve.motor_speed import solve_at_motor_speed
-    from recipsim.solve.periodic import solve_periodic
 
-    if numba_cache_lacks("integrator"):
-        logger.info("compiling the solver (once per installation: about 30-45 s)")
-    check_envelope(case)  # refuse a point outside the refrigerant's envelope up front
-    solution = startup = None
-    if case.options.pressure == "tabulated" and case.options.mechanics == "pinned":
-        cycle = pinned_tabulated_cycle(case)  # inverse dynamics only, nothing to integrate
+    case, solution, startup = _solve(case)
+    if solution is None:  # pinned mechanism, tabulated pressure: inverse dynamics only
+        cycle = pinned_tabulated_cycle(case)
         meta = case_provenance(case, argv)
     else:
-        if case.solver.start == "rest":  # the start-up transient, then the periodic solve
-            from recipsim.solve.startup import solve_from_rest
-
-            with explained("building the model"):
-                model = build_model_for(case)
-            with explained("integrating the start-up from rest"):
-                startup = solve_from_rest(model)
-            solution = startup.solution
-        elif case.options.speed == "motor_slip":
-            with explained("integrating the periodic state at the motor's slip speed"):
-                at_speed = solve_at_motor_speed(case)
-            case, solution = at_speed.case, at_speed.solution
-        else:
-            with explained("building the model"):
-                model = build_model_for(case)
-            with explained("integrating the periodic state"):
-                solution = solve_periodic(model)
         cycle = cycle_table(solution)
         meta = provenance(solution, argv)
     with explained("post-processing the converged revolution"):
         row = summary(solution, cycle, case)
-        if startup is not None:
-            from recipsim.results.startup import startup_summary
-
-            row |= startup_summary(startup)
+        _add_startup(row, startup)
     row["status"], row["status_message"] = classify(solution, cycle, row)
     return CaseRun(case, solution, cycle, row, meta, startup)
+
+
+def simulate_row(case: Case) -> dict[str, Any]:
+    """The summary row of :func:`simulate_case` (the same values), without building the
+    cycle table's DataFrame or the provenance: what a sweep point keeps.
+
+    Raises
+    ------
+    OutsideEnvelopeError, SolverError
+        As :func:`simulate_case`.
+    """
+    from recipsim.results.outcome import classify, explained
+    from recipsim.results.tables import summary_row
+
+    _, solution, startup = _solve(case)
+    if solution is None:  # nothing integrated: the table is the summary's input
+        return simulate_case(case).row
+    with explained("post-processing the converged revolution"):
+        row, cycle = summary_row(solution)
+        _add_startup(row, startup)
+    row["status"], row["status_message"] = classify(solution, cycle, row)
+    return row
+
+
+def _add_startup(row: dict[str, Any], startup: StartupRun | None) -> None:
+    if startup is not None:
+        from recipsim.results.startup import startup_summary
+
+        row |= startup_summary(startup)
+
+
+def _solve(case: Case) -> tuple[Case, PeriodicSolution | None, StartupRun | None]:
+    """The case as solved (at the motor's slip speed it is the case at that speed), its
+    periodic solution (None for the pinned mechanism under a tabulated pressure: nothing
+    to integrate) and the start-up run before it, if any."""
+    from recipsim.case.envelope import check_envelope
+    from recipsim.results.compile_ahead import wait_for_compile_ahead
+    from recipsim.results.outcome import explained
+    from recipsim.solve.drive import build_model_for
+    from recipsim.solve.motor_speed import solve_at_motor_speed
+    from recipsim.solve.periodic import solve_periodic
+
+    wait_for_compile_ahead()  # a child compiling the solver on a fresh machine
+    entry = solver_entry(case)
+    if entry is not None and entry not in _COMPILED and numba_cache_lacks("integrator", entry):
+        logger.info("compiling the solver for this scene (once per installation: about 15-25 s)")
+    check_envelope(case)  # refuse a point outside the refrigerant's envelope up front
+    if case.options.pressure == "tabulated" and case.options.mechanics == "pinned":
+        return case, None, None
+    if case.solver.start == "rest":  # the start-up transient, then the periodic solve
+        from recipsim.solve.startup import solve_from_rest
+
+        with explained("building the model"):
+            model = build_model_for(case)
+        with explained("integrating the start-up from rest"):
+            startup = solve_from_rest(model)
+        return case, startup.solution, startup
+    if case.options.speed == "motor_slip":
+        with explained("integrating the periodic state at the motor's slip speed"):
+            at_speed = solve_at_motor_speed(case)
+        return at_speed.case, at_speed.solution, None
+    with explained("building the model"):
+        model = build_model_for(case)
+    with explained("integrating the periodic state"):
+        solution = solve_periodic(model)
+    if entry is not None:
+        _COMPILED.add(entry)
+    return case, solution, None

@@ -1,7 +1,10 @@
-"""Per-revolution tables and summary metrics of a converged cycle.
+"""Summary metrics of a converged cycle (the cycle table itself: :mod:`.cycle`, whose
+names this module re-exports).
 
-Every column name carries its unit (``cylinder_pressure [Pa]``); the meaning of each
-column is documented in ``reports/README.md``.
+Every key carries its unit (``cooling_capacity [W]``); the meaning of each is documented
+in ``reports/README.md``. The summary reads the cycle table through
+:class:`~recipsim.results.columns.CycleLike`: a DataFrame or, where the table is not kept
+(a sweep point), its columns as arrays (:func:`summary_row`), with the same values.
 
 Definitions (per converged revolution, f = shaft speed in revolutions per second):
 
@@ -27,20 +30,20 @@ import math
 from typing import Any
 
 import numpy as np
-import pandas as pd
 
 from recipsim.case.load import Case
-from recipsim.model.build import case_mechanism_parameters, scenes
+from recipsim.model.build import scenes
 from recipsim.model.plenum import isentropic_state
-from recipsim.physics.kinematics import piston_displacement
 from recipsim.physics.mechanics import layout as mlay
-from recipsim.physics.mechanics.tabulated import tabulated_pressure
 from recipsim.physics.thermo import cylinder as cyl
-from recipsim.results.bearings import (
-    film_summary,
-    flexible_columns,
-    mechanism_summary,
-    pinned_columns,
+from recipsim.results.bearings import film_summary, mechanism_summary
+from recipsim.results.columns import Columns, CycleLike
+from recipsim.results.cycle import (  # re-exported (__all__): the cycle table is in .cycle
+    CYCLE_COLUMNS,
+    GAS_COLUMNS,
+    cycle_columns,
+    cycle_table,
+    pinned_tabulated_cycle,
 )
 from recipsim.results.electrical import loss_columns, rating_enthalpies
 from recipsim.results.loss_breakdown import loss_breakdown
@@ -51,147 +54,19 @@ from recipsim.results.outcome import (
 )
 from recipsim.results.thermal import thermal_columns
 from recipsim.results.valve_metrics import valve_summary
-from recipsim.solve.periodic import PeriodicSolution, sample_outputs
+from recipsim.solve.periodic import PeriodicSolution
 from recipsim.solve.residual import closures
 
-CYCLE_COLUMNS: list[tuple[str, int]] = [
-    ("cylinder_volume [m3]", cyl.A_VOLUME),
-    ("cylinder_pressure [Pa]", cyl.A_PRESSURE),
-    ("gas_temperature [K]", cyl.A_TEMPERATURE),
-    ("gas_density [kg/m3]", cyl.A_DENSITY),
-    ("gas_mass [kg]", cyl.A_MASS),
-    ("gas_specific_enthalpy [J/kg]", cyl.A_ENTHALPY),
-    ("vapour_quality [-]", cyl.A_QUALITY),
-    ("suction_valve_lift [m]", cyl.A_LIFT_S),
-    ("discharge_valve_lift [m]", cyl.A_LIFT_D),
-    ("suction_valve_velocity [m/s]", cyl.A_VEL_S),
-    ("discharge_valve_velocity [m/s]", cyl.A_VEL_D),
-    ("suction_mass_flow [kg/s]", cyl.A_MDOT_SUC),
-    ("discharge_mass_flow [kg/s]", cyl.A_MDOT_DIS),
-    ("leakage_mass_flow [kg/s]", cyl.A_MDOT_LEAK),
-    ("leakage_eccentricity [-]", cyl.A_LEAK_ECC),
-    ("heat_flow_to_gas [W]", cyl.A_QDOT),
-    ("heat_transfer_coefficient [W/(m2 K)]", cyl.A_HTC),
-    ("piston_displacement [m]", cyl.A_DISPLACEMENT),
-    ("piston_velocity [m/s]", cyl.A_PISTON_VELOCITY),
-    ("gas_force [N]", cyl.A_FORCE_GAS),
-    ("gas_torque [N m]", cyl.A_TORQUE_GAS),
-    ("inertia_torque [N m]", cyl.A_TORQUE_INERTIA),
-    ("shaft_torque [N m]", cyl.A_TORQUE_SHAFT),
+__all__ = [
+    "CYCLE_COLUMNS",
+    "GAS_COLUMNS",
+    "GAS_SUMMARY",
+    "cycle_columns",
+    "cycle_table",
+    "pinned_tabulated_cycle",
+    "summary",
+    "summary_row",
 ]
-
-
-#: Cycle columns that need the gas state (absent when the pressure is tabulated).
-GAS_COLUMNS = {
-    "gas_temperature [K]",
-    "gas_density [kg/m3]",
-    "gas_mass [kg]",
-    "gas_specific_enthalpy [J/kg]",
-    "vapour_quality [-]",
-    "suction_valve_lift [m]",
-    "discharge_valve_lift [m]",
-    "suction_valve_velocity [m/s]",
-    "discharge_valve_velocity [m/s]",
-    "suction_mass_flow [kg/s]",
-    "discharge_mass_flow [kg/s]",
-    "leakage_mass_flow [kg/s]",
-    "leakage_eccentricity [-]",
-    "heat_flow_to_gas [W]",
-    "heat_transfer_coefficient [W/(m2 K)]",
-}
-
-
-def _uniform_angles(n: int) -> np.ndarray:
-    return 2.0 * math.pi * np.arange(n) / n
-
-
-def _periodic_resample(theta: np.ndarray, values: np.ndarray, grid: np.ndarray) -> np.ndarray:
-    """Columns of ``values`` (samples at crank angles ``theta``) at the angles ``grid``."""
-    order = np.argsort(theta, kind="stable")
-    th = theta[order]
-    out = np.empty((grid.shape[0], values.shape[1]))
-    for j in range(values.shape[1]):
-        out[:, j] = np.interp(grid, th, values[order, j], period=2.0 * math.pi)
-    return out
-
-
-def _time_from_tdc(grid: np.ndarray, speed: np.ndarray) -> np.ndarray:
-    """Time since top dead centre at each crank angle of ``grid`` [s] (trapezoid on 1/omega)."""
-    inv = 1.0 / speed
-    steps = 0.5 * (inv[1:] + inv[:-1]) * np.diff(grid)
-    return np.concatenate([[0.0], np.cumsum(steps)])
-
-
-def cycle_table(solution: PeriodicSolution) -> pd.DataFrame:
-    """One row per uniform crank-angle sample of the converged revolution, from TDC."""
-    model = solution.model
-    rev = solution.final
-    out = sample_outputs(model, rev)
-    theta = np.mod(out[:, cyl.A_THETA], 2.0 * math.pi)
-    # the TDC sample can land a round-off below 2 pi (then it would sort last as 360 deg)
-    theta = np.where(theta > 2.0 * math.pi - 1e-9, 0.0, theta)
-    if model.free_speed:
-        grid = _uniform_angles(model.case.solver.samples_per_revolution)
-        values = _periodic_resample(theta, out, grid)
-        modes = np.rint(_periodic_resample(theta, rev.sample_modes.astype(float), grid))
-    else:
-        order = np.argsort(theta, kind="stable")
-        grid = theta[order]
-        values = out[order]
-        modes = rev.sample_modes[order]
-    data: dict[str, Any] = {"crank_angle [deg]": np.degrees(grid)}
-    for name, idx in CYCLE_COLUMNS:
-        if model.has_gas or name not in GAS_COLUMNS:
-            data[name] = values[:, idx]
-    if model.has_gas:
-        data["suction_valve_state [-]"] = modes[:, 0].astype(np.int64)
-        data["discharge_valve_state [-]"] = modes[:, 1].astype(np.int64)
-    omega = model.case.operating_point.shaft_speed
-    if model.scene == scenes.SCENE_CYLINDER:
-        par = case_mechanism_parameters(model.case)
-        mech, _ = pinned_columns(grid, data["cylinder_pressure [Pa]"], omega, par)
-    else:
-        mech = flexible_columns(values[:, scenes.A_MECH :], model.mechanism_par)
-    data.update(mech)
-    data["time [s]"] = _time_from_tdc(grid, np.asarray(data["crank_speed [rad/s]"]))
-    frame = pd.DataFrame(data)
-    frame.insert(1, "time [s]", frame.pop("time [s]"))
-    frame["crank_angle [deg]"] = np.round(frame["crank_angle [deg]"].to_numpy(), 9)
-    return frame
-
-
-def pinned_tabulated_cycle(case: Case) -> pd.DataFrame:
-    """Cycle table of the pinned mechanism under the case's tabulated pressure.
-
-    Nothing is integrated: inverse dynamics at every uniform crank angle.
-    """
-    assert case.pressure_curve is not None
-    op = case.operating_point
-    geo = case.geometry
-    omega = op.shaft_speed
-    grid = _uniform_angles(case.solver.samples_per_revolution)
-    curve = case.pressure_curve
-    p = np.array([tabulated_pressure(t, curve.crank_angle, curve.pressure) for t in grid])
-    mech, torque = pinned_columns(grid, p, omega, case_mechanism_parameters(case))
-    kin = np.array(
-        [piston_displacement(t, geo.crank_radius, geo.connecting_rod_length)[:2] for t in grid]
-    )
-    x, dxdth = kin[:, 0], kin[:, 1]
-    force = (p - op.shell_pressure) * geo.piston_area
-    data: dict[str, Any] = {
-        "crank_angle [deg]": np.round(np.degrees(grid), 9),
-        "time [s]": grid / omega,
-        "cylinder_volume [m3]": geo.clearance_volume + geo.piston_area * x,
-        "cylinder_pressure [Pa]": p,
-        "piston_displacement [m]": x,
-        "piston_velocity [m/s]": dxdth * omega,
-        "gas_force [N]": force,
-        "gas_torque [N m]": force * dxdth,
-        "inertia_torque [N m]": torque + force * dxdth,
-        "shaft_torque [N m]": torque,
-    }
-    data.update(mech)
-    return pd.DataFrame(data)
 
 
 def _open_interval(angles: np.ndarray, flowing: np.ndarray) -> tuple[float, float]:
@@ -323,7 +198,7 @@ def _gas_metrics(
     }
 
 
-def _loop_work(cycle: pd.DataFrame) -> float:
+def _loop_work(cycle: CycleLike) -> float:
     """-closed integral of p dV over the cycle table [J] (trapezoid, periodic)."""
     p = cycle["cylinder_pressure [Pa]"].to_numpy()
     v = cycle["cylinder_volume [m3]"].to_numpy()
@@ -331,18 +206,26 @@ def _loop_work(cycle: pd.DataFrame) -> float:
     return float(-np.sum(0.5 * (p + np.roll(p, -1)) * dv))
 
 
+def summary_row(solution: PeriodicSolution) -> tuple[dict[str, Any], Columns]:
+    """:func:`summary` of ``solution`` read from its cycle table's columns as arrays, no
+    DataFrame built (the same values); returns the row and those columns."""
+    cycle = Columns(cycle_columns(solution))
+    return summary(solution, cycle), cycle
+
+
 def summary(
-    solution: PeriodicSolution | None, cycle: pd.DataFrame | None = None, case: Case | None = None
+    solution: PeriodicSolution | None, cycle: CycleLike | None = None, case: Case | None = None
 ) -> dict[str, Any]:
     """Summary metrics of the converged revolution (units in the keys).
 
-    ``solution`` is None for the pinned mechanism under a tabulated pressure (nothing
-    integrated); ``cycle`` and ``case`` are then required.
+    ``cycle`` is its cycle table (a DataFrame, or :class:`~recipsim.results.columns.Columns`;
+    built here if left out). ``solution`` is None for the pinned mechanism under a
+    tabulated pressure (nothing integrated); ``cycle`` and ``case`` are then required.
     """
     if solution is not None:
         case = solution.model.case
         if cycle is None:
-            cycle = cycle_table(solution)
+            cycle = Columns(cycle_columns(solution))
     assert case is not None and cycle is not None
     op = case.operating_point
     row = _operating_columns(case)
@@ -430,7 +313,7 @@ def summary(
 MOTOR_SUMMARY = ("motor_input_power [W]", "motor_rotor_loss_power [W]", "motor_slip [-]")
 
 
-def _motor_metrics(case: Case, cycle: pd.DataFrame, freq: float, p_shaft: float) -> dict[str, Any]:
+def _motor_metrics(case: Case, cycle: CycleLike, freq: float, p_shaft: float) -> dict[str, Any]:
     """Air-gap power, rotor copper loss and slip of the induction motor drive (NaN for
     other drives). The air-gap power ``omega_s * mean(T)`` (time mean) is the motor's
     input less its stator losses, which are not modelled."""

@@ -13,7 +13,7 @@ import math
 
 from numba import njit
 
-from recipsim.model.scenes import scene_rhs
+from recipsim.model.scenes import rhs_for
 
 # Dormand-Prince 5(4) tableau
 _C2, _C3, _C4, _C5 = 0.2, 0.3, 0.8, 8.0 / 9.0
@@ -40,11 +40,13 @@ _E1, _E3, _E4, _E5, _E6, _E7 = (
 
 
 @njit(cache=True, inline="always")
-def dopri5_step(t, h, y, ynew, scene, tol, work):
+def dopri5_step(code, t, h, y, ynew, scene, tol, work):
     """One Dormand-Prince step of ``h`` [s] from (t [s], y).
 
     Parameters
     ----------
+    code : int
+        The scene's code, a compile-time constant (:func:`recipsim.model.scenes.rhs_for`).
     t, h : float
         Start time and step [s].
     y : ndarray
@@ -83,34 +85,34 @@ def dopri5_step(t, h, y, ynew, scene, tol, work):
     )
     for i in range(n):
         ytmp[i] = y[i] + h * _A21 * k1[i]
-    st = scene_rhs(t + _C2 * h, ytmp, mode, par, ipar, props, pbuf, k2, aux)
+    st = rhs_for(code, t + _C2 * h, ytmp, mode, par, ipar, props, pbuf, k2, aux)
     if st != 0:
         return st, math.inf
     for i in range(n):
         ytmp[i] = y[i] + h * (_A31 * k1[i] + _A32 * k2[i])
-    st = scene_rhs(t + _C3 * h, ytmp, mode, par, ipar, props, pbuf, k3, aux)
+    st = rhs_for(code, t + _C3 * h, ytmp, mode, par, ipar, props, pbuf, k3, aux)
     if st != 0:
         return st, math.inf
     for i in range(n):
         ytmp[i] = y[i] + h * (_A41 * k1[i] + _A42 * k2[i] + _A43 * k3[i])
-    st = scene_rhs(t + _C4 * h, ytmp, mode, par, ipar, props, pbuf, k4, aux)
+    st = rhs_for(code, t + _C4 * h, ytmp, mode, par, ipar, props, pbuf, k4, aux)
     if st != 0:
         return st, math.inf
     for i in range(n):
         ytmp[i] = y[i] + h * (_A51 * k1[i] + _A52 * k2[i] + _A53 * k3[i] + _A54 * k4[i])
-    st = scene_rhs(t + _C5 * h, ytmp, mode, par, ipar, props, pbuf, k5, aux)
+    st = rhs_for(code, t + _C5 * h, ytmp, mode, par, ipar, props, pbuf, k5, aux)
     if st != 0:
         return st, math.inf
     for i in range(n):
         ytmp[i] = y[i] + h * (
             _A61 * k1[i] + _A62 * k2[i] + _A63 * k3[i] + _A64 * k4[i] + _A65 * k5[i]
         )
-    st = scene_rhs(t + h, ytmp, mode, par, ipar, props, pbuf, k6, aux)
+    st = rhs_for(code, t + h, ytmp, mode, par, ipar, props, pbuf, k6, aux)
     if st != 0:
         return st, math.inf
     for i in range(n):
         ynew[i] = y[i] + h * (_B1 * k1[i] + _B3 * k3[i] + _B4 * k4[i] + _B5 * k5[i] + _B6 * k6[i])
-    st = scene_rhs(t + h, ynew, mode, par, ipar, props, pbuf, k7, aux)
+    st = rhs_for(code, t + h, ynew, mode, par, ipar, props, pbuf, k7, aux)
     if st != 0:
         return st, math.inf
     scale = tol.scale

@@ -7,7 +7,7 @@ from __future__ import annotations
 
 from numba import njit
 
-from recipsim.model.scenes import N_EVENTS, scene_event_values, scene_rhs
+from recipsim.model.scenes import N_EVENTS, event_values_for, rhs_for
 from recipsim.solve.dense_output import hermite
 
 #: Illinois iterations per event at most (the bracket shrinks below 1e-13 s long before)
@@ -25,9 +25,10 @@ def any_crossing(g_old, g_new) -> bool:
 
 
 @njit(cache=True)
-def locate_first_event(t, h, y, ynew, scene, work):
+def locate_first_event(code, t, h, y, ynew, scene, work):
     """The earliest event crossing in the accepted step of ``h`` [s] from (t [s], y) to
-    ``ynew``.
+    ``ynew`` of scene ``code`` (a compile-time constant, see
+    :func:`recipsim.model.scenes.rhs_for`).
 
     ``work.g_old`` and ``work.g_new`` hold the event values at both ends of the step,
     ``work.stages[0]`` and ``work.stages[6]`` the derivatives there; ``work.yint``,
@@ -65,14 +66,14 @@ def locate_first_event(t, h, y, ynew, scene, work):
                 if not (ta < tm < tb):
                     tm = 0.5 * (ta + tb)
                 hermite(t, h, y, k1, ynew, k7, tm, yint)
-                st2 = scene_rhs(tm, yint, mode, par, ipar, props, pbuf, ftmp, aux)
+                st2 = rhs_for(code, tm, yint, mode, par, ipar, props, pbuf, ftmp, aux)
                 nfev += 1
                 if st2 != 0:
                     tm = 0.5 * (ta + tb)
                     hermite(t, h, y, k1, ynew, k7, tm, yint)
-                    st2 = scene_rhs(tm, yint, mode, par, ipar, props, pbuf, ftmp, aux)
+                    st2 = rhs_for(code, tm, yint, mode, par, ipar, props, pbuf, ftmp, aux)
                     nfev += 1
-                scene_event_values(yint, mode, par, ipar, aux, g_int)
+                event_values_for(code, yint, mode, par, ipar, aux, g_int)
                 gm = g_int[k]
                 if gm > 0.0:
                     tb, gb = tm, gm

@@ -1,6 +1,7 @@
 """Compiled adaptive Dormand-Prince 5(4) integrator with events and discrete modes.
 
-One call integrates a scene from ``t0`` to ``t1`` without returning to Python:
+One call integrates a scene from ``t0`` to ``t1`` without returning to Python (each scene
+has its own compiled entry, so a case compiles only its own scene's code):
 
 - error control on the first ``n_err`` states except those of zero scale (the others
   are quadratures),
@@ -46,11 +47,21 @@ instant (chattering).
 
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
 from numba import njit
 
-from recipsim.model.scenes import scene_event_action, scene_event_values
-from recipsim.model.scenes import scene_rhs as scene_rhs  # also re-exported: revolution.py uses it
+from recipsim.model.scenes import (
+    SCENE_COUPLED,
+    SCENE_CYLINDER,
+    SCENE_MECHANISM,
+    event_action_for,
+    event_values_for,
+    rhs_for,
+)
+from recipsim.model.scenes import scene_rhs as scene_rhs  # re-exported (every scene)
+from recipsim.physics.thermo.cylinder import I_SCENE
 from recipsim.solve.dense_output import hermite, record_samples
 from recipsim.solve.dopri5 import dopri5_step, stiffness_estimate
 from recipsim.solve.events import any_crossing, locate_first_event
@@ -91,26 +102,26 @@ MAX_EVENTS_AT_ONE_INSTANT = 50
 
 
 @njit(cache=True, inline="always")
-def _step(use_w, t, h, y, ynew, scene, tol, work):
+def _step(use_w, code, t, h, y, ynew, scene, tol, work):
     """One DOPRI5 or Rosenbrock-W step: ``(status, error_norm, evaluations)``."""
     if use_w:
-        st, err = w_step(t, h, y, ynew, scene, tol, work)
+        st, err = w_step(code, t, h, y, ynew, scene, tol, work)
         return st, err, 4
-    st, err = dopri5_step(t, h, y, ynew, scene, tol, work)
+    st, err = dopri5_step(code, t, h, y, ynew, scene, tol, work)
     return st, err, 6
 
 
 @njit(cache=True)
-def _refresh_jacobian(t, y, scene, tol, work):
+def _refresh_jacobian(code, t, y, scene, tol, work):
     """Build the W-method's Jacobian at (t [s], y): ``(status, evaluations, accepted
     steps to keep it, bound on its spectral radius [1/s])``."""
-    stj, nj = jacobian_fd(t, y, work.stages[0], scene, tol, work)
+    stj, nj = jacobian_fd(code, t, y, work.stages[0], scene, tol, work)
     jac_life = max(1, nj // JAC_STAGES_PER_STEP)
     return stj, nj, jac_life, spectral_bound(work.jac, tol.scale, tol.n_err)
 
 
 @njit(cache=True)
-def _land_on_event(use_w, t, h, t_event, k_event, y, scene, tol, work):
+def _land_on_event(use_w, code, t, h, t_event, k_event, y, scene, tol, work):
     """Move ``y`` from ``t`` to the event at ``t_event`` [s] and apply its action.
 
     The step is re-taken exactly to the event, so the states and quadratures see a
@@ -124,7 +135,7 @@ def _land_on_event(use_w, t, h, t_event, k_event, y, scene, tol, work):
     nfev = 0
     h_event = t_event - t
     if h_event > 0.0:
-        st, err, ne = _step(use_w, t, h_event, y, work.ystep, scene, tol, work)
+        st, err, ne = _step(use_w, code, t, h_event, y, work.ystep, scene, tol, work)
         nfev += ne
         if st == 0:
             for i in range(n):
@@ -132,9 +143,9 @@ def _land_on_event(use_w, t, h, t_event, k_event, y, scene, tol, work):
     for i in range(n):
         y[i] = yint[i]
     mode, par, ipar, props, pbuf = scene
-    scene_rhs(t_event, y, mode, par, ipar, props, pbuf, work.ftmp, work.aux)
+    rhs_for(code, t_event, y, mode, par, ipar, props, pbuf, work.ftmp, work.aux)
     nfev += 1
-    terminal = scene_event_action(k_event, y, mode, par, ipar, work.aux)
+    terminal = event_action_for(code, k_event, y, mode, par, ipar, work.aux)
     return terminal, nfev
 
 
@@ -168,7 +179,8 @@ def _write_stats(stats, result, t, h, i_sample, counts) -> None:
 
 
 @njit(cache=True)
-def integrate(
+def integrate_scene(
+    code,
     t0,
     t1,
     y,
@@ -187,12 +199,15 @@ def integrate(
     samples,
     sample_modes,
     stats,
-    method=METHOD_DOPRI5,
+    method,
 ):
-    """Integrate a scene from ``t0`` to ``t1`` in place.
+    """Integrate scene ``code`` from ``t0`` to ``t1`` in place (compiled code only:
+    ``code`` must be a compile-time constant, see :func:`integrate`).
 
     Parameters
     ----------
+    code : int
+        The scene (``SCENE_*`` of :mod:`recipsim.model.scenes`), ``ipar[I_SCENE]``.
     t0, t1 : float
         Start and end time [s].
     y : ndarray
@@ -244,13 +259,13 @@ def integrate(
     t = t0
     h = min(h_init, h_max)
     h_min = 1e-14 * max(1.0, abs(t1))
-    status = scene_rhs(t, y, mode, par, ipar, props, pbuf, k1, aux)
+    status = rhs_for(code, t, y, mode, par, ipar, props, pbuf, k1, aux)
     counts[0] += 1
     if status != 0:
         stats[ST_STATUS] = PROPERTY_FAILURE
         stats[ST_T] = t
         return
-    scene_event_values(y, mode, par, ipar, aux, g_old)
+    event_values_for(code, y, mode, par, ipar, aux, g_old)
     events_here = 0
     t_last_event = -1e300
     result = DONE
@@ -270,14 +285,14 @@ def integrate(
             h = t1 - t
             last = True
         if use_w and (jac_age < 0 or jac_age >= jac_life):
-            stj, nj, jac_life, rho_jac = _refresh_jacobian(t, y, scene, tol, work)
+            stj, nj, jac_life, rho_jac = _refresh_jacobian(code, t, y, scene, tol, work)
             counts[0] += nj
             counts[5] += 1
             jac_age = 0
             if stj != 0:
                 result = PROPERTY_FAILURE
                 break
-        st, err, ne = _step(use_w, t, h, y, ynew, scene, tol, work)
+        st, err, ne = _step(use_w, code, t, h, y, ynew, scene, tol, work)
         counts[0] += ne
         property_failed = st > 0
         if st != 0 or not (err <= 1.0):  # also catches NaN
@@ -290,11 +305,11 @@ def integrate(
             stiff_step = stiffness_estimate(h, y, ynew, ytmp, k6, k7, tol) > STIFF_LIMIT
             n_stiff, n_nonstiff = count_stiff_step(stiff_step, n_stiff, n_nonstiff)
 
-        scene_event_values(ynew, mode, par, ipar, aux, g_new)
+        event_values_for(code, ynew, mode, par, ipar, aux, g_new)
         k_event = -1
         t_event = t + h
         if any_crossing(g_old, g_new):
-            k_event, t_event, ne = locate_first_event(t, h, y, ynew, scene, work)
+            k_event, t_event, ne = locate_first_event(code, t, h, y, ynew, scene, work)
             counts[0] += ne
         t_end = t + h if k_event < 0 else t_event
         i_sample = record_samples(
@@ -308,7 +323,7 @@ def integrate(
         if k_event < 0:
             t = _advance(t, h, last, t1, y, ynew, k1, k7, g_old, g_new)
         else:
-            terminal, ne = _land_on_event(use_w, t, h, t_event, k_event, y, scene, tol, work)
+            terminal, ne = _land_on_event(use_w, code, t, h, t_event, k_event, y, scene, tol, work)
             counts[0] += ne
             counts[3] += 1
             jac_age = -1  # new mode or impact: the Jacobian is rebuilt if needed
@@ -322,13 +337,13 @@ def integrate(
                 events_here = 0
             t_last_event = t_event
             t = t_event
-            st = scene_rhs(t, y, mode, par, ipar, props, pbuf, k1, aux)
+            st = rhs_for(code, t, y, mode, par, ipar, props, pbuf, k1, aux)
             counts[0] += 1
             if st != 0:
                 result = PROPERTY_FAILURE
                 break
             # a new mode's events fire only on a fresh crossing from <= 0 to > 0
-            scene_event_values(y, mode, par, ipar, aux, g_old)
+            event_values_for(code, y, mode, par, ipar, aux, g_old)
             if t >= t1 or terminal:
                 break
             continue
@@ -340,3 +355,46 @@ def integrate(
             jac_age = -1
 
     _write_stats(stats, result, t, h, i_sample, counts)
+
+
+# ---- one compiled entry per scene ------------------------------------------------------
+# Each passes its scene to integrate_scene as a compile-time constant, so it compiles (and
+# numba caches, in its own file) the code of that scene only: a case on the rigid crank
+# never compiles the flexible crank train.
+# fmt: off
+@njit(cache=True)
+def integrate_cylinder(t0, t1, y, mode, par, ipar, props, pbuf, rtol, atol, scale, n_err,
+                       h_init, h_max, sample_times, samples, sample_modes, stats, method):
+    """:func:`integrate_scene` of the cylinder on the rigid crank."""
+    integrate_scene(SCENE_CYLINDER, t0, t1, y, mode, par, ipar, props, pbuf, rtol, atol, scale,
+                    n_err, h_init, h_max, sample_times, samples, sample_modes, stats, method)
+
+
+@njit(cache=True)
+def integrate_mechanism(t0, t1, y, mode, par, ipar, props, pbuf, rtol, atol, scale, n_err,
+                        h_init, h_max, sample_times, samples, sample_modes, stats, method):
+    """:func:`integrate_scene` of the flexible crank train under a tabulated pressure."""
+    integrate_scene(SCENE_MECHANISM, t0, t1, y, mode, par, ipar, props, pbuf, rtol, atol, scale,
+                    n_err, h_init, h_max, sample_times, samples, sample_modes, stats, method)
+
+
+@njit(cache=True)
+def integrate_coupled(t0, t1, y, mode, par, ipar, props, pbuf, rtol, atol, scale, n_err,
+                      h_init, h_max, sample_times, samples, sample_modes, stats, method):
+    """:func:`integrate_scene` of the cylinder coupled to the flexible crank train."""
+    integrate_scene(SCENE_COUPLED, t0, t1, y, mode, par, ipar, props, pbuf, rtol, atol, scale,
+                    n_err, h_init, h_max, sample_times, samples, sample_modes, stats, method)
+# fmt: on
+
+
+#: The compiled entry of each scene, indexed by its code.
+SCENE_INTEGRATORS = (integrate_cylinder, integrate_mechanism, integrate_coupled)
+
+
+def integrate(*args: Any, method: int = METHOD_DOPRI5) -> None:
+    """Integrate the scene in ``ipar[I_SCENE]`` in place: the arguments of
+    :func:`integrate_scene` but the scene's code, which this picks the compiled entry
+    for (the first call for a scene compiles that scene only)."""
+    if len(args) == 18:  # method left out
+        args = (*args, method)
+    SCENE_INTEGRATORS[int(args[5][I_SCENE])](*args)  # args[5]: ipar

@@ -11,7 +11,6 @@ import math
 from dataclasses import dataclass, field
 
 import numpy as np
-from numba import njit
 
 from recipsim.errors import SolverError
 from recipsim.model.build import Model, scenes
@@ -35,13 +34,13 @@ from recipsim.solve.integrator import (
     ST_T,
     STEP_UNDERFLOW,
     integrate,
-    scene_rhs,
 )
 from recipsim.solve.residual import (  # noqa: F401  (re-exported: callers import them here)
     cycle_residual,
     residual_reference,
     state_change,
 )
+from recipsim.solve.scene_outputs import evaluate_samples
 
 _FAILURES = {
     STEP_UNDERFLOW: "the step size fell below its floor",
@@ -316,18 +315,6 @@ class _Tally:
             setattr(self, name, total + count if total >= 0 and count >= 0 else -1)
 
 
-@njit(cache=True)
-def _evaluate_samples(times, samples, sample_modes, par, ipar, props, pbuf, out):
-    n = samples.shape[1]
-    dydt = np.empty(n)
-    aux = np.empty(out.shape[1])
-    for k in range(times.shape[0]):
-        mode = sample_modes[k]
-        scene_rhs(times[k], samples[k], mode, par, ipar, props, pbuf, dydt, aux)
-        for j in range(aux.shape[0]):
-            out[k, j] = aux[j]
-
-
 def sample_outputs(model: Model, rev: Revolution) -> np.ndarray:
     """Auxiliary outputs (layout ``A_*`` of the scene) at every sample, in time order,
     with the post-processing outputs (peak film pressures) switched on."""
@@ -336,7 +323,7 @@ def sample_outputs(model: Model, rev: Revolution) -> np.ndarray:
     if model.scene != scenes.SCENE_CYLINDER:
         par = par.copy()
         par[scenes.P_MECH + mlay.P_DETAILED_OUTPUTS] = 1.0
-    _evaluate_samples(
+    evaluate_samples(
         rev.times,
         rev.samples,
         rev.sample_modes,

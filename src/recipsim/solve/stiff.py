@@ -37,7 +37,7 @@ import math
 import numpy as np
 from numba import njit
 
-from recipsim.model.scenes import scene_rhs
+from recipsim.model.scenes import rhs_for
 
 # ---- ROS34PW2: alpha (stage abscissae), Gamma (lower triangular, gamma on the diagonal),
 # ---- b (order 3) and bhat (order 2)
@@ -91,12 +91,14 @@ _FD_REL = 1e-7
 
 
 @njit(cache=True)
-def jacobian_fd(t, y, f0, scene, tol, work):
+def jacobian_fd(code, t, y, f0, scene, tol, work):
     """Forward-difference Jacobian ``work.jac[i, j]`` of every derivative ``i`` with
     respect to the first ``tol.n_err`` states ``j`` (columns of zero scale, quadratures,
     stay zero).
 
-    ``f0`` is f(t [s], y); ``scene`` a :class:`recipsim.solve.step_args.SceneArgs`,
+    ``code`` is the scene's code, a compile-time constant
+    (:func:`recipsim.model.scenes.rhs_for`); ``f0`` is f(t [s], y); ``scene`` a
+    :class:`recipsim.solve.step_args.SceneArgs`,
     ``tol`` a :class:`~recipsim.solve.step_args.Tolerance`, ``work`` a
     :class:`~recipsim.solve.step_args.Workspace` (``ytmp``, ``ftmp`` and ``aux`` are
     overwritten). Returns ``(status, evaluations)``; status != 0 if a perturbed state
@@ -121,12 +123,12 @@ def jacobian_fd(t, y, f0, scene, tol, work):
             continue
         d = _FD_REL * max(abs(y[j]), scale[j])
         ytmp[j] = y[j] + d
-        st = scene_rhs(t, ytmp, mode, par, ipar, props, pbuf, ftmp, aux)
+        st = rhs_for(code, t, ytmp, mode, par, ipar, props, pbuf, ftmp, aux)
         nfev += 1
         if st != 0:
             d = -d
             ytmp[j] = y[j] + d
-            st = scene_rhs(t, ytmp, mode, par, ipar, props, pbuf, ftmp, aux)
+            st = rhs_for(code, t, ytmp, mode, par, ipar, props, pbuf, ftmp, aux)
             nfev += 1
             if st != 0:
                 ytmp[j] = y[j]
@@ -217,11 +219,12 @@ def _solve_stage(lu, piv, jac, n_err, hg, u) -> None:
 
 
 @njit(cache=True)
-def w_step(t, h, y, ynew, scene, tol, work):
+def w_step(code, t, h, y, ynew, scene, tol, work):
     """One ROS34PW2 step of ``h`` [s] from (t [s], y) with the Jacobian ``work.jac``;
     ``work.stages[0]`` holds f(t, y) on entry.
 
-    ``scene``, ``tol`` and ``work`` are the bundles of :mod:`recipsim.solve.step_args`;
+    ``code`` is the scene's code (a compile-time constant); ``scene``, ``tol`` and
+    ``work`` are the bundles of :mod:`recipsim.solve.step_args`;
     uses ``work.stages[1:6]``, ``work.lu`` and ``work.piv`` as work space. Returns
     ``(status, error_norm)``; on success ``ynew`` holds the state at ``t + h`` and
     ``work.stages[6] = f(t + h, ynew)`` (status -1: singular iteration matrix).
@@ -259,7 +262,7 @@ def w_step(t, h, y, ynew, scene, tol, work):
     # stage 2
     for i in range(n):
         ytmp[i] = y[i] + _A21 * u1[i]
-    st = scene_rhs(t + _AL2 * h, ytmp, mode, par, ipar, props, pbuf, fs, aux)
+    st = rhs_for(code, t + _AL2 * h, ytmp, mode, par, ipar, props, pbuf, fs, aux)
     if st != 0:
         return st, math.inf
     for i in range(n):
@@ -268,7 +271,7 @@ def w_step(t, h, y, ynew, scene, tol, work):
     # stage 3
     for i in range(n):
         ytmp[i] = y[i] + _A31 * u1[i] + _A32 * u2[i]
-    st = scene_rhs(t + _AL3 * h, ytmp, mode, par, ipar, props, pbuf, fs, aux)
+    st = rhs_for(code, t + _AL3 * h, ytmp, mode, par, ipar, props, pbuf, fs, aux)
     if st != 0:
         return st, math.inf
     for i in range(n):
@@ -277,7 +280,7 @@ def w_step(t, h, y, ynew, scene, tol, work):
     # stage 4
     for i in range(n):
         ytmp[i] = y[i] + _A41 * u1[i] + _A42 * u2[i] + _A43 * u3[i]
-    st = scene_rhs(t + _AL4 * h, ytmp, mode, par, ipar, props, pbuf, fs, aux)
+    st = rhs_for(code, t + _AL4 * h, ytmp, mode, par, ipar, props, pbuf, fs, aux)
     if st != 0:
         return st, math.inf
     for i in range(n):
@@ -285,7 +288,7 @@ def w_step(t, h, y, ynew, scene, tol, work):
     _solve_stage(lu, piv, jac, n_err, hg, u4)
     for i in range(n):
         ynew[i] = y[i] + _M1 * u1[i] + _M2 * u2[i] + _M3 * u3[i] + _M4 * u4[i]
-    st = scene_rhs(t + h, ynew, mode, par, ipar, props, pbuf, k7, aux)
+    st = rhs_for(code, t + h, ynew, mode, par, ipar, props, pbuf, k7, aux)
     if st != 0:
         return st, math.inf
     err = 0.0

@@ -108,14 +108,16 @@ def run_point(task: PointTask) -> dict[str, Any]:
     from recipsim.case.envelope import OutsideEnvelopeError
     from recipsim.errors import CaseError, RecipsimError
     from recipsim.report.case_report import write_case_report
-    from recipsim.results.run import simulate_case
+    from recipsim.results.run import simulate_case, simulate_row
 
     try:
         argv = ["recipsim", "sweep", f"point {task.point_id}"]
         case = point_case(task.case, task.overrides, task.allow_external_paths)
-        run = simulate_case(case, argv)
-        row = {k: _plain(v) for k, v in run.row.items()}
-        if task.report_dir is not None:
+        if task.report_dir is None:  # only the summary row is kept: no cycle table
+            row = {k: _plain(v) for k, v in simulate_row(case).items()}
+        else:
+            run = simulate_case(case, argv)
+            row = {k: _plain(v) for k, v in run.row.items()}
             write_case_report(run, Path(task.report_dir), list(task.overrides), task.plots)
     except OutsideEnvelopeError as exc:
         return {"status": OUTSIDE_ENVELOPE, "message": exc.message, "summary": {}}

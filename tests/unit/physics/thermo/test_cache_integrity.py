@@ -165,3 +165,16 @@ def test_the_first_run_is_announced_once_per_cache(tmp_path, monkeypatch):
     assert numba_cache_lacks("integrator")  # other modules' code is not the solver's
     (tmp_path / "numba" / "solve_x" / "integrator._step-175.py311.nbi").write_text("")
     assert not numba_cache_lacks("integrator")
+
+
+def test_each_scene_announces_its_own_first_compilation(tmp_path, monkeypatch):
+    """The solver compiles per scene: the cylinder scene's cache does not hold the
+    coupled scene's integrator."""
+    from recipsim.cache_dirs import numba_cache_lacks
+
+    monkeypatch.setenv("NUMBA_CACHE_DIR", str(tmp_path / "numba"))
+    monkeypatch.delenv("NUMBA_DISABLE_JIT", raising=False)
+    (tmp_path / "numba" / "solve_x").mkdir(parents=True)
+    (tmp_path / "numba" / "solve_x" / "integrator.integrate_cylinder-368.py311.nbi").write_text("")
+    assert not numba_cache_lacks("integrator", "integrate_cylinder")
+    assert numba_cache_lacks("integrator", "integrate_coupled")

@@ -1,0 +1,94 @@
+"""First run on a fresh machine: compile the solver in a second process while this one
+loads the case and builds its refrigerant's property table.
+
+With nothing of the solver in numba's cache, the command line (``recipsim run``) starts
+one child process that loads the same case with the CoolProp properties (no table to
+build) and solves one revolution of it, which compiles the case's scene and the tables'
+compiled code into numba's cache: the property callback has the same numba type with
+either property source, so the parent then loads what the child compiled. The parent
+builds the property table meanwhile and waits for the child before it integrates
+(:func:`wait_for_compile_ahead`). The child only pays where it has a core to itself:
+it starts when the machine has two cores that other work leaves idle (usable cores less
+the one-minute load average, as for the figure processes), nothing of the solver is
+cached and ``RECIPSIM_COMPILE_AHEAD`` is not ``0`` (``1`` starts it whatever the load).
+Forced on at a load average of 2 on 2 cores (no idle core) it saved no wall time and
+cost up to 8 s of CPU; on an idle machine it can save at most the case loading and
+table build (a few seconds): not measured, no idle machine was at hand. A child that
+fails changes nothing: the parent then compiles as it would have.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+from recipsim.cache_dirs import numba_cache_lacks
+
+#: The child's overrides on top of the case's own: CoolProp properties, one revolution.
+_CHILD_OVERRIDES = [
+    "options.properties=heos",
+    "solver.min_revolutions=1",
+    "solver.max_revolutions=1",
+]
+#: Longest wait for the child [s]; it is then stopped and the parent compiles itself.
+WAIT_LIMIT = 600.0
+_CHILD = "from recipsim.results.compile_ahead import compile_in_child; compile_in_child()"
+
+_pending: list[subprocess.Popen[bytes]] = []
+
+
+def start_compile_ahead(path: str | Path, overrides: list[str], allow_external: bool) -> bool:
+    """Start the compiling child for the case ``path`` with ``overrides`` if the solver
+    is not in numba's cache at all and two cores are idle (see the module docstring);
+    returns whether it did."""
+    setting = os.environ.get("RECIPSIM_COMPILE_AHEAD")
+    if _pending or setting == "0" or not numba_cache_lacks("integrator"):
+        return False
+    if setting != "1" and _idle_cores() < 2:
+        return False
+    argv = [sys.executable, "-c", _CHILD, str(path), json.dumps(list(overrides))]
+    argv.append("1" if allow_external else "0")
+    quiet = subprocess.DEVNULL
+    _pending.append(subprocess.Popen(argv, stdin=quiet, stdout=quiet, stderr=quiet))
+    return True
+
+
+def _idle_cores() -> float:
+    """Usable cores less the one-minute load average (0 where it is unknown)."""
+    cores = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count()
+    try:
+        return (cores or 1) - os.getloadavg()[0]
+    except (AttributeError, OSError):
+        return 0.0
+
+
+def wait_for_compile_ahead() -> None:
+    """Wait for the compiling child, if one was started (at most :data:`WAIT_LIMIT`)."""
+    while _pending:
+        child = _pending.pop()
+        try:
+            child.wait(timeout=WAIT_LIMIT)
+        except subprocess.TimeoutExpired:
+            child.kill()
+            child.wait()
+
+
+def compile_in_child() -> None:
+    """The child's work (``sys.argv``: case, JSON list of overrides, ``1`` to allow
+    external paths); any failure ends it quietly (the parent compiles then)."""
+    # the solve and the cycle table, as simulate_case runs them (importing
+    # recipsim.results.run here would close an import cycle: it imports this module)
+    from recipsim.case.load import load_case
+    from recipsim.results.cycle import cycle_table
+    from recipsim.solve.drive import build_model_for
+    from recipsim.solve.periodic import solve_periodic
+
+    try:
+        overrides = json.loads(sys.argv[2]) + _CHILD_OVERRIDES
+        case = load_case(sys.argv[1], overrides, allow_external_paths=sys.argv[3] == "1")
+        cycle_table(solve_periodic(build_model_for(case)))
+    except Exception:
+        sys.exit(1)

@@ -1,0 +1,53 @@
+"""The first run's compiling child (:mod:`recipsim.results.compile_ahead`): started only
+on a fresh numba cache, waited for before the solve, and it fills the cache with the
+case's scene."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+
+import pytest
+
+from recipsim.results import compile_ahead
+
+
+@pytest.fixture
+def fresh_cache(tmp_path, monkeypatch):
+    monkeypatch.setenv("NUMBA_CACHE_DIR", str(tmp_path / "numba"))
+    monkeypatch.delenv("NUMBA_DISABLE_JIT", raising=False)
+    monkeypatch.delenv("RECIPSIM_COMPILE_AHEAD", raising=False)
+    monkeypatch.setattr(compile_ahead, "_idle_cores", lambda: 2.0)
+    yield tmp_path / "numba"
+    compile_ahead.wait_for_compile_ahead()
+
+
+def test_nothing_starts_when_the_solver_is_cached_or_switched_off(fresh_cache, monkeypatch):
+    monkeypatch.setenv("RECIPSIM_COMPILE_AHEAD", "0")
+    assert not compile_ahead.start_compile_ahead("reference_r134a_lbp", [], False)
+    monkeypatch.delenv("RECIPSIM_COMPILE_AHEAD")
+    (fresh_cache / "x").mkdir(parents=True)
+    (fresh_cache / "x" / "integrator.integrate_coupled-381.py311.nbi").write_text("")
+    assert not compile_ahead.start_compile_ahead("reference_r134a_lbp", [], False)
+    for f in fresh_cache.rglob("*.nbi"):
+        f.unlink()
+    monkeypatch.setattr(compile_ahead, "_idle_cores", lambda: 1.2)  # a busy machine
+    assert not compile_ahead.start_compile_ahead("reference_r134a_lbp", [], False)
+
+
+def test_the_wait_ends_every_started_child() -> None:
+    child = subprocess.Popen([sys.executable, "-c", "pass"])
+    compile_ahead._pending.append(child)
+    compile_ahead.wait_for_compile_ahead()
+    assert child.returncode == 0 and not compile_ahead._pending
+    compile_ahead.wait_for_compile_ahead()  # nothing pending: returns at once
+
+
+@pytest.mark.slow
+def test_the_child_compiles_the_cases_scene_into_the_cache(fresh_cache) -> None:
+    assert compile_ahead.start_compile_ahead("reference_r134a_lbp", [], False)
+    assert not compile_ahead.start_compile_ahead("reference_r134a_lbp", [], False)  # one
+    compile_ahead.wait_for_compile_ahead()
+    names = {p.name.split("-")[0] for p in fresh_cache.rglob("*.nbi")}
+    assert "integrator.integrate_cylinder" in names
+    assert "scene_outputs._cylinder_outputs" in names

@@ -1,0 +1,69 @@
+"""Each scene compiles on its own: the scene reaches the integrator as a compile-time
+constant, a pinned case compiles no flexible crank train, and a second process loads
+the compiled integrator from numba's cache instead of compiling it again."""
+
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+
+import pytest
+from numba import types
+from numba.core.errors import TypingError
+
+from recipsim.model import scenes
+from recipsim.solve import integrator
+
+_CHILD = r"""
+import json
+from recipsim.case.load import load_case
+from recipsim.results.run import simulate_case
+from recipsim.solve import integrator
+from recipsim.model import scenes
+case = load_case("reference_r134a_lbp").with_(
+    {"solver.min_revolutions": 1, "solver.max_revolutions": 1})
+simulate_case(case)
+entry = integrator.integrate_cylinder
+print(json.dumps({
+    "hits": sum(entry.stats.cache_hits.values()),
+    "misses": sum(entry.stats.cache_misses.values()),
+    "compiled": {f.__name__: len(f.signatures) for f in (
+        integrator.integrate_mechanism, integrator.integrate_coupled,
+        scenes.mechanism_rhs, scenes.coupled_rhs)},
+}))
+"""
+
+
+def test_the_scene_function_is_chosen_at_compile_time() -> None:
+    """A literal scene code resolves to that scene's function; a runtime one is refused."""
+    for code, rhs in enumerate((scenes.cylinder_rhs, scenes.mechanism_rhs, scenes.coupled_rhs)):
+        assert scenes._scene_function("rhs", types.IntegerLiteral(code)) is rhs
+    with pytest.raises(TypingError, match="compile-time constant"):
+        scenes._scene_function("rhs", types.int64)
+    assert integrator.SCENE_INTEGRATORS[scenes.SCENE_COUPLED] is integrator.integrate_coupled
+
+
+@pytest.mark.slow
+def test_a_pinned_case_compiles_its_scene_only_and_a_second_process_loads_it(tmp_path) -> None:
+    """Fresh numba cache: the first process compiles the cylinder scene (no flexible crank
+    train, no coupled or tabulated-pressure integrator), the second loads it."""
+    import json
+
+    env = dict(os.environ, NUMBA_CACHE_DIR=str(tmp_path / "numba"))
+    env.pop("NUMBA_DISABLE_JIT", None)
+    runs = []
+    for _ in range(2):
+        out = subprocess.run(
+            [sys.executable, "-c", _CHILD], env=env, capture_output=True, text=True, check=True
+        )
+        runs.append(json.loads(out.stdout.splitlines()[-1]))
+    first, second = runs
+    assert first["misses"] == 1 and first["hits"] == 0
+    assert set(first["compiled"].values()) == {0}
+    assert second["hits"] == 1 and second["misses"] == 0
+    names = {p.name.split("-")[0] for p in (tmp_path / "numba").rglob("*.nbi")}
+    assert "integrator.integrate_cylinder" in names
+    other_scenes = {"integrator.integrate_coupled", "scenes.mechanism_rhs", "scenes.coupled_rhs"}
+    assert not other_scenes & names
+    assert not any(name.startswith("flexible.") for name in names)
