@@ -9,7 +9,8 @@ Statuses (the summary's ``status`` column; a sweep row's ``status``):
   the closures are defined on what does flow (:func:`no_delivery_closures`) and the
   volumetric efficiency is 0;
 - ``subharmonic``: the valve dynamics settle on a period of n > 1 revolutions
-  (:mod:`recipsim.solve.periodic`); the flows, powers and closures are the averages over
+  (:mod:`recipsim.solve.periodic`, found by shooting on the n-revolution map in
+  :mod:`recipsim.solve.subharmonic`); the flows, powers and closures are the averages over
   the n revolutions, the cycle table shows the last one;
 - ``not_converged``: ``solver.max_revolutions`` spent; the message holds the diagnosis
   (:func:`not_converged_diagnosis`: residual history and the states that drift);

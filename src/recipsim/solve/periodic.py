@@ -7,12 +7,18 @@ error-controlled states over the revolution (T and rho relative, reed lift and
 velocity relative to their scales, mechanism states relative to their largest value
 over the revolution) and the relative change of the revolution's suction mass,
 indicated work, mass-weighted discharge enthalpy and drive work from the
-previous revolution. Undamped flexible bearings never settle this way (their free
+previous revolution, and the revolution's mass and energy closures over 10
+(:mod:`recipsim.solve.residual`: near zero delivery the cylinder keeps many times the
+gas it passes, and a state change within tolerance can leave a closure of 2e-3).
+Undamped flexible bearings never settle this way (their free
 vibration does not decay) and lightly damped ones settle slowly: ``"auto"`` hands
 such runs over to shooting (see :func:`solve_periodic`), as it does any run whose
 residual stalls (:func:`stalled`: no halving over ``STALL_WINDOW`` revolutions), e.g. the
 slow settling near zero delivery; ``"revolutions"`` ends them at ``max_revolutions``
-unconverged. A stalled run whose end states repeat after n = 2..4 revolutions
+unconverged. A period-1 orbit that one-revolution shooting finds on the cylinder scene
+is rejected when it repels (a real Floquet multiplier below -1.05: past a period
+doubling, :func:`repels`), and revolution iteration goes on from where it handed over.
+A stalled run whose end states repeat after n = 2..4 revolutions
 (:func:`subharmonic_period`: valve dynamics locked on a subharmonic) ends there, converged
 with ``period_revolutions = n`` and the quadratures averaged over the period.
 Back-flow through the discharge valve comes from a plenum at
@@ -27,11 +33,11 @@ from __future__ import annotations
 
 import math
 import time
-from collections.abc import Callable
 
 import numpy as np
 
 from recipsim.model.build import Model
+from recipsim.model.scenes import SCENE_CYLINDER
 from recipsim.solve.residual import cycle_residual, residual_reference, state_change
 from recipsim.solve.revolution import (
     INTEGRATOR_METHODS,
@@ -46,11 +52,14 @@ from recipsim.solve.revolution import (
     sample_times,
 )
 from recipsim.solve.shooting import shooting_cost, solve_shooting
-
-#: ``integrate(model, y, mode, h, samples) -> (revolution, next first step [s])``
-RevolutionIntegrator = Callable[
-    [Model, np.ndarray, np.ndarray, float, int], tuple[Revolution, float]
-]
+from recipsim.solve.subharmonic import (
+    SUBHARMONIC_PERIODS,
+    RevolutionIntegrator,
+    candidate_period,
+    period_average,
+    solve_subharmonic,
+    subharmonic_period,
+)
 
 #: The revolution machinery is defined in :mod:`.revolution`; the names are re-exported
 #: here, where callers look for a periodic solution.
@@ -70,6 +79,7 @@ __all__ = [
     "predicted_revolutions",
     "stalled",
     "subharmonic_period",
+    "SUBHARMONIC_PERIODS",
     "solve_periodic",
     "solve_revolutions",
 ]
@@ -85,8 +95,6 @@ _AUTO_MIN_REVOLUTIONS = 4
 #: no better than ``STALL_GAIN`` times its best before them.
 STALL_WINDOW = 8
 STALL_GAIN = 0.5
-#: Periods (in revolutions) looked for when the iteration stalls.
-SUBHARMONIC_PERIODS = (2, 3, 4)
 
 
 def stalled(history: list[float]) -> bool:
@@ -94,58 +102,6 @@ def stalled(history: list[float]) -> bool:
     if len(history) <= STALL_WINDOW:
         return False
     return min(history[-STALL_WINDOW:]) >= STALL_GAIN * min(history[:-STALL_WINDOW])
-
-
-def subharmonic_period(ends: list[np.ndarray], reference: np.ndarray, tolerance: float) -> int:
-    """Smallest n in :data:`SUBHARMONIC_PERIODS` with which the end states repeat.
-
-    Parameters
-    ----------
-    ends : list of ndarray
-        Error-controlled states at the end of each revolution, oldest first.
-    reference : ndarray
-        Size against which a change is judged (0 for states not judged).
-    tolerance : float
-        Largest relative change of a repeating state [-].
-
-    Returns
-    -------
-    int
-        n if the states after n revolutions repeat within ``tolerance`` (checked over
-        the last two periods) while one revolution changes them by more; 1 otherwise.
-    """
-    judged = reference > 0.0
-
-    def change(a: np.ndarray, b: np.ndarray) -> float:
-        return float(np.max(np.abs(a[judged] - b[judged]) / reference[judged]))
-
-    if len(ends) < 2 or change(ends[-1], ends[-2]) < tolerance:
-        return 1
-    for n in SUBHARMONIC_PERIODS:
-        if len(ends) < 2 * n + 1:
-            break
-        if all(change(ends[-1 - k], ends[-1 - k - n]) < tolerance for k in range(n + 1)):
-            return n
-    return 1
-
-
-def _period_average(revs: list[Revolution], n_err: int) -> Revolution:
-    """The last revolution with its quadratures averaged over ``revs`` (one period)."""
-    last = revs[-1]
-    y_end = last.y_end.copy()
-    y_end[n_err:] = np.mean([r.y_end[n_err:] for r in revs], axis=0)
-    rev = Revolution(
-        last.y_start,
-        y_end,
-        last.mode_start,
-        last.mode_end,
-        last.times,
-        last.samples,
-        last.sample_modes,
-        last.stats,
-    )
-    rev.duration = float(np.mean([r.duration for r in revs]))
-    return rev
 
 
 def predicted_revolutions(history: list[float], tolerance: float) -> float:
@@ -225,7 +181,10 @@ def solve_revolutions(
     residual = math.inf
     converged = False
     period = 1
+    tried: set[int] = set()  # hand-overs tried: 1 (one-revolution shooting) or n
     for count in range(1, s.max_revolutions + 1):
+        if tally.revolutions >= s.max_revolutions:
+            break  # spent, shooting's revolutions included
         rev, h = integrate(model, y, mode, h, s.samples_per_revolution)
         tally.add(rev)
         enthalpy = discharge_enthalpy(model, rev)
@@ -250,26 +209,85 @@ def solve_revolutions(
             ends = [r.y_end[: model.n_err] for r in recent]
             period = subharmonic_period(ends, ref, s.cycle_tolerance)
             if period > 1:  # a period of n revolutions: report its average
-                rev = _period_average(recent[-period:], model.n_err)
+                rev = period_average(recent[-period:], model.n_err)
                 converged = True
                 break
         if hand_over and count >= _AUTO_MIN_REVOLUTIONS:
-            cost = shooting_cost(model, mode)
-            slow = predicted_revolutions(history, s.cycle_tolerance) > cost or stalled(history)
-            if cost < s.max_revolutions - count and slow:
-                return solve_shooting(model, start=(rev, h), history=history, tally=tally, t0=start)
+            handed = _hand_over(model, recent, (rev, h), history, tally, start, integrate, tried)
+            if handed is not None:
+                return handed
     assert rev is not None
-    return PeriodicSolution(
-        period_revolutions=period,
-        model=model,
-        final=rev,
-        revolutions=tally.revolutions,
-        residual=residual,
-        converged=converged,
-        residual_history=history,
-        nfev=tally.nfev,
-        steps=tally.steps,
-        rejected=tally.rejected,
-        events=tally.events,
-        wall_time=time.perf_counter() - start,
-    )
+    method = "revolutions, shooting's period-1 orbit repels" if 1 in tried else "revolutions"
+    solution = PeriodicSolution(model, rev, tally.revolutions, residual, converged, history)
+    return _tallied(solution, tally, start, method, period)
+
+
+def _tallied(
+    solution: PeriodicSolution, tally: _Tally, t0: float, method: str, period: int
+) -> PeriodicSolution:
+    """``solution`` with the counters of ``tally``, its wall time, method and period."""
+    solution.nfev, solution.steps = tally.nfev, tally.steps
+    solution.rejected, solution.events = tally.rejected, tally.events
+    solution.wall_time = time.perf_counter() - t0
+    solution.method, solution.period_revolutions = method, period
+    return solution
+
+
+def _hand_over(
+    model: Model,
+    recent: list[Revolution],
+    start: tuple[Revolution, float],
+    history: list[float],
+    tally: _Tally,
+    t0: float,
+    integrate: RevolutionIntegrator,
+    tried: set[int],
+) -> PeriodicSolution | None:
+    """Shooting from the revolution iteration's state, if it converges slowly: on the
+    n-revolution map when the end states approach a period of n revolutions
+    (:mod:`.subharmonic`), else (or if that finds no period-n orbit) on the one-revolution
+    map. None (revolution iteration goes on) if it is not slow, if each kind of shooting
+    was tried, or if the one-revolution orbit found repels (:func:`repels`)."""
+    s = model.case.solver
+    rev, _ = start
+    cost = shooting_cost(model, rev.mode_end)
+    slow = predicted_revolutions(history, s.cycle_tolerance) > cost or stalled(history)
+    if not (slow and cost < s.max_revolutions - tally.revolutions):
+        return None
+    ref = residual_reference(model, rev) * (model.scale[: model.n_err] > 0.0)
+    n = candidate_period([r.y_end[: model.n_err] for r in recent], ref)
+    if n > 1 and n not in tried:
+        tried.add(n)
+        solution = solve_subharmonic(model, n, start, history, tally, t0, integrate)
+        if solution is not None:
+            return solution
+    if 1 in tried:
+        return None
+    tried.add(1)
+    solution = solve_shooting(model, start=start, history=history, tally=tally, t0=t0)
+    if not repels(model, solution):
+        return solution
+    enthalpy = discharge_enthalpy(model, rev)  # back to the iteration's plenum
+    if enthalpy is not None:
+        model.set_discharge_enthalpy(enthalpy)
+    return None
+
+
+#: A real Floquet multiplier below ``-REPEL`` makes a period-1 orbit repel (period
+#: doubling): the response settles elsewhere, e.g. on a period of two revolutions.
+REPEL = 1.05
+
+
+def repels(model: Model, solution: PeriodicSolution) -> bool:
+    """Whether the converged one-revolution orbit of ``solution`` repels: a real
+    multiplier (:attr:`PeriodicSolution.multipliers`) below ``-REPEL``. Judged on the
+    cylinder scene with a fixed wall only (the multipliers of a mechanism's vibration lie
+    on or near the unit circle and their estimate is noisy; the shell's network is held
+    fixed over a Newton solve)."""
+    mu = solution.multipliers
+    if not solution.converged or mu is None or model.scene != SCENE_CYLINDER:
+        return False
+    if model.thermal is not None:
+        return False
+    real = np.abs(mu.imag) <= 1e-3 * np.abs(mu)
+    return bool(np.any(real & (mu.real < -REPEL)))

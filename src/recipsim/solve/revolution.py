@@ -35,6 +35,11 @@ from recipsim.solve.integrator import (
     STEP_UNDERFLOW,
     integrate,
 )
+from recipsim.solve.residual import (  # noqa: F401  (re-exported: callers import them here)
+    cycle_residual,
+    residual_reference,
+    state_change,
+)
 from recipsim.solve.scene_outputs import evaluate_samples
 
 _FAILURES = {
@@ -106,6 +111,9 @@ class PeriodicSolution:
     #: revolutions per period: > 1 for a subharmonic response (``final`` then holds the
     #: quadratures averaged over the period, :mod:`recipsim.solve.periodic`)
     period_revolutions: int = 1
+    #: shooting only: eigenvalues of the one-revolution map's Jacobian at the solution
+    #: (Floquet multipliers; from the last finite-difference or Broyden Jacobian)
+    multipliers: np.ndarray | None = None
 
 
 def sample_times(model: Model, n: int) -> tuple[np.ndarray, np.ndarray]:

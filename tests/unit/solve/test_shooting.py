@@ -26,6 +26,7 @@ from recipsim.model.build import build_model
 from recipsim.physics.mechanics import layout as mlay
 from recipsim.physics.mechanics.layout import BEARING_NAMES
 from recipsim.results.tables import cycle_table, summary
+from recipsim.solve.newton import newton_fixed_point
 from recipsim.solve.periodic import (
     cycle_residual,
     integrate_revolution,
@@ -33,7 +34,7 @@ from recipsim.solve.periodic import (
     solve_periodic,
     state_change,
 )
-from recipsim.solve.shooting import newton_fixed_point, shooting_unknowns
+from recipsim.solve.shooting import shooting_unknowns
 
 PAPER = CASES / "paper_tabulated.toml"
 CONSTANT = ['options.drive="constant_speed"']

@@ -12,10 +12,10 @@ compressor would take in per revolution) and ``dh_s = h(p_d, s_suction) - h_suct
   energy balance: drive work = gas work + bearing dissipation; 0 for the rigid crank).
 
 The summary's own ``mass_balance_residual`` divides the same imbalance by the suction
-mass, which tends to zero with the delivery: its error is the revolution's
-non-periodicity (about the cycle tolerance times the trapped gas mass), so near zero
-delivery it grows as 1/(volumetric efficiency) although nothing is wrong (5e-3 at a
-volumetric efficiency of 1.6 %). Normalised by the swept mass the closures measure the
+mass, which tends to zero with the delivery: the revolution's non-periodicity (the
+change of the trapped gas mass) weighs 1/(volumetric efficiency) more there; the cycle
+residual includes those closures (:mod:`recipsim.solve.residual`), so a converged run
+has them below 10 cycle tolerances. Normalised by the swept mass the closures measure the
 integration and periodicity error on the scale of what the cylinder handles, the same
 for every operating point. Tolerances (defaults, ``expectations.toml`` may change them
 per case): mass 1e-3 and energy 5e-3, the project's closure tolerances (README's
