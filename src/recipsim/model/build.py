@@ -5,10 +5,13 @@
 side, the property callback, the plenum states, the initial state and the state
 scales used by the error control.
 
-Size (over the project's 400 lines): the packing of the parameter arrays and the
+The cylinder scene's own arrays and property callback are packed by
+:mod:`recipsim.model.cylinder_parameters`.
+
+Size (over the project's 400 lines): the scenes' layout with the mechanism and the
 plenum setters that the thermal network and shooting call between revolutions share the
-model's layout; moving the setters and the drive table into modules of their own is
-listed on issue 13.
+model; moving the setters and the drive table into modules of their own is listed on
+issue 13.
 """
 
 from __future__ import annotations
@@ -23,6 +26,11 @@ from recipsim.case.load import Case
 from recipsim.case.mechanism import CrankGeometry
 from recipsim.case.refrigerant import case_fluid
 from recipsim.model import scenes
+from recipsim.model.cylinder_parameters import (
+    START_ANGLE,
+    cylinder_parameters,
+    property_callback,
+)
 from recipsim.model.loss_sources import NetworkLossSources, constant_speed_mean_friction
 from recipsim.model.mechanism_parameters import bearing_tables, mechanism_parameters
 from recipsim.model.pinned import pinned_torque_profile
@@ -33,27 +41,10 @@ from recipsim.physics.mechanics import layout as mlay
 from recipsim.physics.mechanics.flexible_setup import initial_state, state_scales
 from recipsim.physics.mechanics.tabulated import tabulated_pressure
 from recipsim.physics.thermo import cylinder as cyl
-from recipsim.physics.thermo.heat_transfer import (
-    DEFAULT_COEFFICIENT,
-    HT_ADAIR,
-    HT_ADIABATIC,
-    HT_ANNAND,
-)
 from recipsim.physics.thermo.properties import HeosProperties
-from recipsim.physics.thermo.table_states import TableFluid
 
 if TYPE_CHECKING:
     from recipsim.case.refrigerant import AnyFluid
-
-START_ANGLE = 1.5 * math.pi  # crank angle at which every revolution starts [rad]
-
-_VALVE_CODES = {
-    "ideal": cyl.VALVES_IDEAL,
-    "quasi_static": cyl.VALVES_QUASI_STATIC,
-    "reed": cyl.VALVES_REED,
-}
-_HT_CODES = {"adiabatic": HT_ADIABATIC, "annand": HT_ANNAND, "adair": HT_ADAIR}
-_FLOW_CODES = {"real_gas": cyl.FLOW_REAL_GAS, "ideal_gas": cyl.FLOW_IDEAL_GAS}
 
 
 @dataclass
@@ -201,9 +192,21 @@ class Model:
 
 
 def cylinder_model(case: Case) -> Model:
-    """Lay out the compiled cylinder-on-rigid-crank scene for ``case``."""
+    """Lay out the compiled cylinder-on-rigid-crank scene for ``case``.
+
+    Parameters
+    ----------
+    case : Case
+        The case.
+
+    Returns
+    -------
+    Model
+        Plenum states, parameter arrays (:func:`cylinder_parameters`), property
+        callback, initial state and scales; with the thermal network, coupled to it
+        (:func:`_attach_network`).
+    """
     op = case.operating_point
-    geo = case.geometry
     opts = case.options
     fluid = case_fluid(case.refrigerant, opts.properties)
     suction = plenum_state(fluid, op.suction_pressure, temperature=op.suction_temperature)
@@ -211,74 +214,9 @@ def cylinder_model(case: Case) -> Model:
     discharge = plenum_state(fluid, op.discharge_pressure, enthalpy=isentropic["h"])
     shell = plenum_state(fluid, op.shell_pressure, temperature=op.suction_temperature)
 
-    par = np.zeros(scenes.P_TABLES)
-    ipar = np.zeros(scenes.N_IPAR, dtype=np.int64)
-    omega = op.shaft_speed
-    par[cyl.C_OMEGA] = omega
-    # revolutions start a quarter turn before top dead centre, where both valves are shut
-    par[cyl.C_THETA0] = START_ANGLE
-    par[cyl.C_R] = geo.crank_radius
-    par[cyl.C_L] = geo.connecting_rod_length
-    par[cyl.C_AP] = geo.piston_area
-    par[cyl.C_VC] = geo.clearance_volume
-    par[cyl.C_BORE] = geo.bore
-    par[cyl.C_STROKE] = geo.stroke
-    par[cyl.C_PISTON_LEN] = case.mechanism.piston.length
-    par[cyl.C_LINER_LEN] = geo.liner_length
-    write_plenum(par, suction, cyl.C_PS, cyl.C_RHOS, cyl.C_HS, cyl.C_KAPPAS, cyl.C_K0S, cyl.C_TS)
-    write_plenum(par, discharge, cyl.C_PD, cyl.C_RHOD, cyl.C_HD, cyl.C_KAPPAD, cyl.C_K0D, cyl.C_TD)
-    par[cyl.C_PSHELL] = shell.pressure
-    par[cyl.C_RHOSHELL] = shell.density
-    par[cyl.C_HSHELL] = shell.enthalpy
-    par[cyl.C_MUSHELL] = shell.viscosity
-    par[cyl.C_RGAS] = fluid.gas_constant
-    par[cyl.C_DPLAM] = case.valves.laminar_pressure_difference
-    par[cyl.C_VSTICK] = case.valves.stick_velocity
-    par[cyl.C_LEAK_DELTA] = case.leakage.radial_clearance
-    par[cyl.C_LEAK_ECC] = case.leakage.eccentricity_ratio
-    ht_code = _HT_CODES[opts.heat_transfer]
-    coef = case.heat_transfer.coefficient
-    par[cyl.C_HT_COEF] = DEFAULT_COEFFICIENT[ht_code] if math.isnan(coef) else coef
-    par[cyl.C_TWALL] = case.heat_transfer.wall_temperature
-    mech = case.mechanism
-    par[cyl.C_MPISTON] = mech.piston.mass
-    par[cyl.C_MROD] = mech.connecting_rod.mass
-    par[cyl.C_AROD] = mech.connecting_rod.centre_of_mass_fraction
-    par[cyl.C_IROD] = mech.connecting_rod.inertia
-    par[cyl.C_BAUMGARTE] = 200.0 * omega  # pressure drift of the ideal valves decays in ~1 deg
-    for i, valve in enumerate((case.valves.suction, case.valves.discharge)):
-        base = cyl.C_VALVE0 + i * cyl.VALVE_BLOCK
-        par[base + cyl.V_PORT_D] = valve.port_diameter
-        par[base + cyl.V_CFLOW] = valve.flow_coefficient
-        par[base + cyl.V_AFORCE] = valve.force_coefficient * valve.port_area
-        par[base + cyl.V_MASS] = valve.mass
-        par[base + cyl.V_STIFF] = valve.stiffness
-        par[base + cyl.V_DAMP] = 2.0 * valve.damping_ratio * math.sqrt(valve.stiffness * valve.mass)
-        par[base + cyl.V_STOP] = valve.stop_height
-        par[base + cyl.V_REST] = valve.restitution
-        par[base + cyl.V_PRELOAD] = valve.preload
-        par[base + cyl.V_CURTAIN_D] = valve.curtain_diameter
-        par[base + cyl.V_MOMENTUM] = 1.0 if valve.momentum_force else 0.0
-    ipar[cyl.I_SCENE] = 0
-    ipar[cyl.I_VALVES] = _VALVE_CODES[opts.valves]
-    ipar[cyl.I_FLOW] = _FLOW_CODES[case.valves.flow_model]
-    ipar[cyl.I_HT] = ht_code
-    ipar[cyl.I_LEAK] = _leak_code(opts.leakage, case.leakage.model)
-
-    transport = opts.heat_transfer != "adiabatic" or opts.leakage != "none"
-    ref = case.refrigerant
-    # properties = "table": the compiled code interpolates a cached table that follows the
-    # outputs in the callback's buffer, and calls HEOS only where the table has no data
-    table = fluid.table if isinstance(fluid, TableFluid) else None
-    props = HeosProperties(
-        ref.coolprop_name,
-        transport=transport,
-        t_min=ref.min_temperature,
-        t_max=ref.max_temperature,
-        buffer=None if table is None else table.property_buffer(transport),
-    )
-    props.table = table
-    ipar[cyl.I_PROPS] = cyl.PROPS_HEOS if table is None else cyl.PROPS_TABLE
+    par, ipar = cylinder_parameters(case, fluid, suction, discharge, shell)
+    props = property_callback(case, fluid)
+    ipar[cyl.I_PROPS] = cyl.PROPS_HEOS if props.table is None else cyl.PROPS_TABLE
     network = opts.thermal == "network"
     # with the network, the initial state follows from the predicted suction plenum (below)
     y0, scale = (
@@ -295,19 +233,38 @@ def cylinder_model(case: Case) -> Model:
         y0=y0,
         mode0=np.zeros(cyl.N_MODES, dtype=np.int64),
         scale=scale,
-        period=2.0 * math.pi / omega,
+        period=2.0 * math.pi / op.shaft_speed,
         suction=suction,
         discharge=discharge,
         shell=shell,
     )
     if network:
-        model.inlet = suction
-        model.thermal = ThermalCoupling(case)
-        friction = constant_speed_mean_friction(case) if opts.friction == "mean" else 0.0
-        model.thermal.loss_sources = NetworkLossSources(friction)
-        model.thermal.predict(model)
-        model.y0, model.scale = _initial_gas_state(case, fluid, model.suction)
+        _attach_network(model, case, fluid, suction)
     return model
+
+
+def _attach_network(model: Model, case: Case, fluid: AnyFluid, suction: PlenumState) -> None:
+    """Couple the thermal network to ``model``: predict the suction plenum and start the
+    gas from it.
+
+    Parameters
+    ----------
+    model : Model
+        The cylinder scene, changed in place (inlet, thermal coupling, initial state
+        and scales).
+    case : Case
+        The case (its ``options.friction`` feeds the network's loss sources).
+    fluid : AnyFluid
+        The refrigerant's property backend.
+    suction : PlenumState
+        The suction plenum of the operating point (the network's inlet).
+    """
+    model.inlet = suction
+    model.thermal = ThermalCoupling(case)
+    friction = constant_speed_mean_friction(case) if case.options.friction == "mean" else 0.0
+    model.thermal.loss_sources = NetworkLossSources(friction)
+    model.thermal.predict(model)
+    model.y0, model.scale = _initial_gas_state(case, fluid, model.suction)
 
 
 #: Largest initial cylinder pressure, a fraction of the discharge pressure.
@@ -342,13 +299,6 @@ def _initial_gas_state(
         scale[cyl.Y_XS + 2 * i] = valve.stop_height
         scale[cyl.Y_VS + 2 * i] = valve.stop_height * w_n
     return y0, scale
-
-
-def _leak_code(option: str, law: str) -> int:
-    """Compiled code of the piston-gap leakage: none, incompressible or isothermal."""
-    if option == "none":
-        return cyl.LEAK_NONE
-    return cyl.LEAK_ISOTHERMAL if law == "isothermal" else cyl.LEAK_INCOMPRESSIBLE
 
 
 def crank_geometry(case: Case) -> CrankGeometry:
@@ -398,21 +348,12 @@ def build_model(case: Case, drive_pressure: tuple[np.ndarray, np.ndarray] | None
     opts = case.options
     if opts.mechanics == "pinned" and opts.pressure == "cylinder":
         return model
-    op = case.operating_point
-    omega = op.shaft_speed
     mpar = case_mechanism_parameters(case)
-    if opts.pressure == "tabulated":
-        assert case.pressure_curve is not None
-        p_angles, p_values = case.pressure_curve.crank_angle, case.pressure_curve.pressure
-        scene = scenes.SCENE_MECHANISM
-    else:
-        p_angles, p_values = np.zeros(1), np.zeros(1)
-        scene = scenes.SCENE_COUPLED
+    scene, p_angles, p_values = _pressure_table(case)
     if opts.drive == "torque_profile":
         d_angles, d_torques = _drive_table(case, p_angles, p_values, drive_pressure)
     else:
         d_angles, d_torques = np.zeros(1), np.zeros(1)
-
     b_tables = bearing_tables(case.mechanism)
     par = np.concatenate(
         [model.par[: scenes.P_TABLES], p_angles, p_values, d_angles, d_torques, b_tables]
@@ -429,7 +370,66 @@ def build_model(case: Case, drive_pressure: tuple[np.ndarray, np.ndarray] | None
     ipar[scenes.I_BTAB_N] = b_tables.size
     free = opts.drive != "constant_speed"
     ipar[scenes.I_STOP_ON_ANGLE] = 1 if free else 0
+    y0, scale, quads = _scene_state(model, scene, mpar, p_angles, p_values)
+    model.par = par
+    model.ipar = ipar
+    model.y0 = y0
+    model.scale = scale
+    model.n_err = scenes.state_size(scene)
+    model.scene = scene
+    model.quadratures = quads
+    model.free_speed = free
+    return model
 
+
+def _pressure_table(case: Case) -> tuple[int, np.ndarray, np.ndarray]:
+    """The scene of a flexible mechanism and the pressure table it reads.
+
+    Parameters
+    ----------
+    case : Case
+        A case whose mechanics are flexible or whose pressure is tabulated.
+
+    Returns
+    -------
+    scene : int
+        ``scenes.SCENE_MECHANISM`` under a tabulated pressure, else
+        ``scenes.SCENE_COUPLED``.
+    angles, pressures : numpy.ndarray
+        The tabulated crank angles [rad] and pressures [Pa] (a single zero each when the
+        cylinder gives the pressure).
+    """
+    if case.options.pressure == "tabulated":
+        assert case.pressure_curve is not None
+        curve = case.pressure_curve
+        return scenes.SCENE_MECHANISM, curve.crank_angle, curve.pressure
+    return scenes.SCENE_COUPLED, np.zeros(1), np.zeros(1)
+
+
+def _scene_state(
+    model: Model, scene: int, mpar: np.ndarray, p_angles: np.ndarray, p_values: np.ndarray
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Initial state, state scales and quadrature slots of a scene with the mechanism.
+
+    Parameters
+    ----------
+    model : Model
+        The cylinder scene of the case (its initial gas state and scales; its property
+        callback gives the starting pressure of the coupled scene).
+    scene : int
+        ``scenes.SCENE_COUPLED`` or ``scenes.SCENE_MECHANISM``.
+    mpar : numpy.ndarray
+        The mechanism's parameters.
+    p_angles, p_values : numpy.ndarray
+        The tabulated pressure (read by ``scenes.SCENE_MECHANISM``).
+
+    Returns
+    -------
+    y0, scale : numpy.ndarray
+        Initial state and scales (zero scale: a quadrature, outside error control).
+    quads : numpy.ndarray
+        Indices of the quadrature states.
+    """
     m0 = scenes.mechanism_state_offset(scene)
     n = scenes.state_size(scene)
     y0 = np.zeros(n)
@@ -443,17 +443,10 @@ def build_model(case: Case, drive_pressure: tuple[np.ndarray, np.ndarray] | None
     else:
         p_start = tabulated_pressure(START_ANGLE, p_angles, p_values)
         quads = _mech_quads(m0)
+    omega = model.case.operating_point.shaft_speed
     y0[m0 : m0 + mlay.N_STATE] = initial_state(mpar, START_ANGLE, omega, p_start)
     scale[m0 : m0 + mlay.N_STATE] = state_scales(mpar)
-    model.par = par
-    model.ipar = ipar
-    model.y0 = y0
-    model.scale = scale
-    model.n_err = n
-    model.scene = scene
-    model.quadratures = quads
-    model.free_speed = free
-    return model
+    return y0, scale, quads
 
 
 def _mech_quads(m0: int) -> np.ndarray:

@@ -47,6 +47,34 @@ def mechanism_parameters(
     if drive not in lay.DRIVE_CODES:
         raise ValueError(f"unknown drive {drive!r}; allowed: {', '.join(lay.DRIVE_CODES)}")
     par = np.zeros(lay.N_PAR)
+    _write_crank_and_drive(par, geometry, shell_pressure, speed, drive, motor)
+    _write_bodies(par, spec)
+    _write_bearings(par, spec)
+    return par
+
+
+def _write_crank_and_drive(
+    par: np.ndarray,
+    geometry: CrankGeometry,
+    shell_pressure: float,
+    speed: float,
+    drive: str,
+    motor: MotorSpec | None,
+) -> None:
+    """Write the crank geometry, the shell pressure and the drive into ``par``.
+
+    Parameters
+    ----------
+    par : numpy.ndarray
+        The parameter array (``layout.N_PAR``), written in place.
+    geometry, shell_pressure, speed, drive, motor
+        As in :func:`mechanism_parameters` (``drive`` already checked).
+
+    Raises
+    ------
+    ValueError
+        If the ``induction_motor`` drive has no motor.
+    """
     par[lay.P_CRANK_RADIUS] = geometry.crank_radius
     par[lay.P_ROD_LENGTH] = geometry.rod_length
     par[lay.P_PISTON_AREA] = geometry.piston_area
@@ -61,6 +89,22 @@ def mechanism_parameters(
         par[lay.P_MOTOR_BREAKDOWN_SLIP] = motor.breakdown_slip
         par[lay.P_MOTOR_BACKWARD_RATIO] = motor.backward_field_ratio
 
+
+def _write_bodies(par: np.ndarray, spec: MechanismSpec) -> None:
+    """Write the rotor, connecting rod and piston of ``spec`` into ``par``.
+
+    Parameters
+    ----------
+    par : numpy.ndarray
+        The parameter array (``layout.N_PAR``), written in place.
+    spec : MechanismSpec
+        The mechanism.
+
+    Raises
+    ------
+    ValueError
+        If the piston_top or piston_skirt bearing has no ``position_from_crown``.
+    """
     rotor = spec.rotor
     par[lay.P_ROTOR_MASS] = rotor.mass
     par[lay.P_ROTOR_POLAR_INERTIA] = rotor.polar_inertia
@@ -92,6 +136,22 @@ def mechanism_parameters(
     par[lay.P_PISTON_SKIRT_U] = com - skirt
     par[lay.P_PIN_FROM_CROWN] = piston.pin_offset_from_crown
 
+
+def _write_bearings(par: np.ndarray, spec: MechanismSpec) -> None:
+    """Write each bearing's row (law, axis, linear law, table offset, film) into ``par``.
+
+    Parameters
+    ----------
+    par : numpy.ndarray
+        The parameter array (``layout.N_PAR``), written in place.
+    spec : MechanismSpec
+        The mechanism.
+
+    Raises
+    ------
+    ValueError
+        If a bearing's law is unknown.
+    """
     offsets = _table_offsets(spec)
     for i, (bearing, axis) in enumerate(zip(spec.bearings, _BEARING_AXES, strict=True)):
         row = lay.P_BEARINGS + i * lay.N_BEARING_PAR
@@ -111,7 +171,6 @@ def mechanism_parameters(
             par[row + lay.BP_CONTACT_FILM] = film.contact_film
             par[row + lay.BP_CONTACT_STIFFNESS] = film.contact_stiffness
             par[row + lay.BP_CONTACT_FRICTION] = film.contact_friction
-    return par
 
 
 def _finite_tables(spec: MechanismSpec) -> list[np.ndarray | None]:

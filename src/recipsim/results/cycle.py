@@ -23,51 +23,65 @@ from recipsim.physics.thermo import cylinder as cyl
 from recipsim.results.bearings import flexible_columns, pinned_columns
 from recipsim.solve.periodic import PeriodicSolution, sample_outputs
 
-CYCLE_COLUMNS: list[tuple[str, int]] = [
-    ("cylinder_volume [m3]", cyl.A_VOLUME),
-    ("cylinder_pressure [Pa]", cyl.A_PRESSURE),
-    ("gas_temperature [K]", cyl.A_TEMPERATURE),
-    ("gas_density [kg/m3]", cyl.A_DENSITY),
-    ("gas_mass [kg]", cyl.A_MASS),
-    ("gas_specific_enthalpy [J/kg]", cyl.A_ENTHALPY),
-    ("vapour_quality [-]", cyl.A_QUALITY),
-    ("suction_valve_lift [m]", cyl.A_LIFT_S),
-    ("discharge_valve_lift [m]", cyl.A_LIFT_D),
-    ("suction_valve_velocity [m/s]", cyl.A_VEL_S),
-    ("discharge_valve_velocity [m/s]", cyl.A_VEL_D),
-    ("suction_mass_flow [kg/s]", cyl.A_MDOT_SUC),
-    ("discharge_mass_flow [kg/s]", cyl.A_MDOT_DIS),
-    ("leakage_mass_flow [kg/s]", cyl.A_MDOT_LEAK),
-    ("leakage_eccentricity [-]", cyl.A_LEAK_ECC),
-    ("heat_flow_to_gas [W]", cyl.A_QDOT),
-    ("heat_transfer_coefficient [W/(m2 K)]", cyl.A_HTC),
-    ("piston_displacement [m]", cyl.A_DISPLACEMENT),
-    ("piston_velocity [m/s]", cyl.A_PISTON_VELOCITY),
-    ("gas_force [N]", cyl.A_FORCE_GAS),
-    ("gas_torque [N m]", cyl.A_TORQUE_GAS),
-    ("inertia_torque [N m]", cyl.A_TORQUE_INERTIA),
-    ("shaft_torque [N m]", cyl.A_TORQUE_SHAFT),
-]
 
+def _column(index: int) -> str:
+    """Report column of cylinder output ``index``: ``"<name> [<unit>]"``."""
+    return cyl.OUTPUTS.column(index)
+
+
+#: Output slots the cycle table writes, in column order; each column's name and unit are
+#: its :data:`~recipsim.physics.thermo.cylinder.OUTPUTS` entry's (``"name [unit]"``).
+_CYCLE_OUTPUTS = (
+    cyl.A_VOLUME,
+    cyl.A_PRESSURE,
+    cyl.A_TEMPERATURE,
+    cyl.A_DENSITY,
+    cyl.A_MASS,
+    cyl.A_ENTHALPY,
+    cyl.A_QUALITY,
+    cyl.A_LIFT_S,
+    cyl.A_LIFT_D,
+    cyl.A_VEL_S,
+    cyl.A_VEL_D,
+    cyl.A_MDOT_SUC,
+    cyl.A_MDOT_DIS,
+    cyl.A_MDOT_LEAK,
+    cyl.A_LEAK_ECC,
+    cyl.A_QDOT,
+    cyl.A_HTC,
+    cyl.A_DISPLACEMENT,
+    cyl.A_PISTON_VELOCITY,
+    cyl.A_FORCE_GAS,
+    cyl.A_TORQUE_GAS,
+    cyl.A_TORQUE_INERTIA,
+    cyl.A_TORQUE_SHAFT,
+)
+
+#: Output slots that need the gas state (their columns are absent when the pressure is
+#: tabulated).
+_GAS_OUTPUTS = (
+    cyl.A_TEMPERATURE,
+    cyl.A_DENSITY,
+    cyl.A_MASS,
+    cyl.A_ENTHALPY,
+    cyl.A_QUALITY,
+    cyl.A_LIFT_S,
+    cyl.A_LIFT_D,
+    cyl.A_VEL_S,
+    cyl.A_VEL_D,
+    cyl.A_MDOT_SUC,
+    cyl.A_MDOT_DIS,
+    cyl.A_MDOT_LEAK,
+    cyl.A_LEAK_ECC,
+    cyl.A_QDOT,
+    cyl.A_HTC,
+)
+
+#: The cycle table's output columns: (``"name [unit]"`` from the layout, output index).
+CYCLE_COLUMNS: list[tuple[str, int]] = [(_column(i), i) for i in _CYCLE_OUTPUTS]
 
 #: Cycle columns that need the gas state (absent when the pressure is tabulated).
-GAS_COLUMNS = {
-    "gas_temperature [K]",
-    "gas_density [kg/m3]",
-    "gas_mass [kg]",
-    "gas_specific_enthalpy [J/kg]",
-    "vapour_quality [-]",
-    "suction_valve_lift [m]",
-    "discharge_valve_lift [m]",
-    "suction_valve_velocity [m/s]",
-    "discharge_valve_velocity [m/s]",
-    "suction_mass_flow [kg/s]",
-    "discharge_mass_flow [kg/s]",
-    "leakage_mass_flow [kg/s]",
-    "leakage_eccentricity [-]",
-    "heat_flow_to_gas [W]",
-    "heat_transfer_coefficient [W/(m2 K)]",
-}
+GAS_COLUMNS = {_column(i) for i in _GAS_OUTPUTS}
 
 
 def _uniform_angles(n: int) -> np.ndarray:
@@ -124,7 +138,7 @@ def cycle_columns(solution: PeriodicSolution) -> dict[str, np.ndarray]:
     omega = model.case.operating_point.shaft_speed
     if model.scene == scenes.SCENE_CYLINDER:
         par = case_mechanism_parameters(model.case)
-        mech, _ = pinned_columns(grid, data["cylinder_pressure [Pa]"], omega, par)
+        mech, _ = pinned_columns(grid, data[_column(cyl.A_PRESSURE)], omega, par)
     else:
         mech = flexible_columns(values[:, scenes.A_MECH :], model.mechanism_par)
     data.update(mech)
@@ -155,14 +169,14 @@ def pinned_tabulated_cycle(case: Case) -> pd.DataFrame:
     data: dict[str, Any] = {
         "crank_angle [deg]": np.round(np.degrees(grid), 9),
         "time [s]": grid / omega,
-        "cylinder_volume [m3]": geo.clearance_volume + geo.piston_area * x,
-        "cylinder_pressure [Pa]": p,
-        "piston_displacement [m]": x,
-        "piston_velocity [m/s]": dxdth * omega,
-        "gas_force [N]": force,
-        "gas_torque [N m]": force * dxdth,
-        "inertia_torque [N m]": torque + force * dxdth,
-        "shaft_torque [N m]": torque,
+        _column(cyl.A_VOLUME): geo.clearance_volume + geo.piston_area * x,
+        _column(cyl.A_PRESSURE): p,
+        _column(cyl.A_DISPLACEMENT): x,
+        _column(cyl.A_PISTON_VELOCITY): dxdth * omega,
+        _column(cyl.A_FORCE_GAS): force,
+        _column(cyl.A_TORQUE_GAS): force * dxdth,
+        _column(cyl.A_TORQUE_INERTIA): torque + force * dxdth,
+        _column(cyl.A_TORQUE_SHAFT): torque,
     }
     data.update(mech)
     return pd.DataFrame(data)

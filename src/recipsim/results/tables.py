@@ -45,6 +45,7 @@ from recipsim.results.cycle import (  # re-exported (__all__): the cycle table i
     cycle_table,
     pinned_tabulated_cycle,
 )
+from recipsim.results.cycle_metrics import pressure_and_torque, valve_timing
 from recipsim.results.electrical import loss_columns, rating_enthalpies
 from recipsim.results.loss_breakdown import loss_breakdown
 from recipsim.results.outcome import (
@@ -67,32 +68,6 @@ __all__ = [
     "summary",
     "summary_row",
 ]
-
-
-def _open_interval(angles: np.ndarray, flowing: np.ndarray) -> tuple[float, float]:
-    """Opening and closing crank angle [deg] of the longest circular run of ``flowing``."""
-    n = flowing.shape[0]
-    if not flowing.any():
-        return math.nan, math.nan
-    if flowing.all():
-        return 0.0, 360.0
-    start = int(np.argmin(flowing))  # a closed sample: unroll the circle from here
-    rolled = np.roll(flowing, -start)
-    best = (0, 0, 0)
-    i = 0
-    while i < n:
-        if rolled[i]:
-            j = i
-            while j < n and rolled[j]:
-                j += 1
-            if j - i > best[0]:
-                best = (j - i, i, j - 1)
-            i = j
-        else:
-            i += 1
-    first = angles[(best[1] + start) % n]
-    last = angles[(best[2] + start) % n]
-    return float(first), float(last)
 
 
 def _operating_columns(case: Case) -> dict[str, Any]:
@@ -227,43 +202,17 @@ def summary(
         if cycle is None:
             cycle = Columns(cycle_columns(solution))
     assert case is not None and cycle is not None
-    op = case.operating_point
     row = _operating_columns(case)
     mech = mechanism_summary(cycle)
-    # one revolution's frequency: the mean crank speed when the speed is free
-    freq = mech["mean_crank_speed [rpm]"] / 60.0
     model = solution.model if solution is not None else None
-    bearing_loss = drive_work = math.nan
-    if model is not None and model.scene != scenes.SCENE_CYLINDER:
-        q = model.mechanism_offset + mlay.N_STATE
-        drive_work = solution.final.y_end[q + scenes.MQ_DRIVE]  # type: ignore[union-attr]
-        bearing_loss = solution.final.y_end[q + scenes.MQ_BEARINGS]  # type: ignore[union-attr]
-        freq = 1.0 / solution.final.duration if model.free_speed else freq  # type: ignore[union-attr]
-    elif model is not None:
-        drive_work = solution.final.y_end[cyl.Q_SHAFT]  # type: ignore[union-attr]
-        bearing_loss = 0.0
-    else:
-        torque = cycle["shaft_torque [N m]"].to_numpy()
-        drive_work = float(np.mean(torque)) * 2.0 * math.pi
-        bearing_loss = 0.0
+    # one revolution's frequency: the mean crank speed when the speed is free
+    drive_work, bearing_loss, freq = _drive_work(
+        solution, cycle, mech["mean_crank_speed [rpm]"] / 60.0
+    )
     p_drive = drive_work * freq
     losses = loss_columns(case, cycle, p_drive, freq)
     p_shaft = losses.pop("shaft_power [W]")
-    if model is not None and model.has_gas:
-        gas = _gas_metrics(
-            solution,  # type: ignore[arg-type]
-            freq,
-            p_shaft,
-            losses["motor_electrical_power [W]"],
-        )
-    else:
-        gas = dict.fromkeys(GAS_SUMMARY, math.nan)
-        if model is not None:  # work of the gas on the piston, integrated with the motion
-            q = model.mechanism_offset + mlay.N_STATE + scenes.MQ_GAS
-            gas["indicated_power [W]"] = -solution.final.y_end[q] * freq  # type: ignore[union-attr]
-        else:
-            gas["indicated_power [W]"] = _loop_work(cycle) * freq
-    row.update(gas)
+    row.update(_gas_summary(solution, cycle, freq, p_shaft, losses["motor_electrical_power [W]"]))
     row.update(valve_summary(case.name, solution))
     row["shaft_power [W]"] = p_shaft
     row["bearing_dissipation_power [W]"] = bearing_loss * freq
@@ -280,34 +229,85 @@ def summary(
     row.update(_solver_metrics(solution))
     row.update(thermal_columns(solution, case))
     row.update(loss_breakdown(row, cycle, solution))
-
-    angles = cycle["crank_angle [deg]"].to_numpy()
-    p = cycle["cylinder_pressure [Pa]"].to_numpy()
-    torque = cycle["shaft_torque [N m]"].to_numpy()
-    for side in ("suction", "discharge"):
-        if model is None or not model.has_gas:
-            row[f"{side}_valve_opening_angle [deg]"] = math.nan
-            row[f"{side}_valve_closing_angle [deg]"] = math.nan
-            continue
-        flow = cycle[f"{side}_mass_flow [kg/s]"].to_numpy()
-        if case.options.valves == "reed":
-            flowing = cycle[f"{side}_valve_lift [m]"].to_numpy() > 0.0
-        else:
-            flowing = np.abs(flow) > 1e-12 * max(np.abs(flow).max(), 1e-300)
-        opening, closing = _open_interval(angles, flowing)
-        row[f"{side}_valve_opening_angle [deg]"] = opening
-        row[f"{side}_valve_closing_angle [deg]"] = closing
-    row["peak_cylinder_pressure [Pa]"] = float(p.max())
-    row["minimum_cylinder_pressure [Pa]"] = float(p.min())
-    row["discharge_overpressure [-]"] = float(p.max() / op.discharge_pressure - 1.0)
-    row["suction_underpressure [-]"] = float(1.0 - p.min() / op.suction_pressure)
-    # plus the mean friction's torque (options.friction = "mean"; else exactly 0)
-    row["mean_shaft_torque [N m]"] = float(
-        drive_work / (2.0 * math.pi) + (p_shaft - p_drive) / (2.0 * math.pi * freq)
-    )
-    row["peak_shaft_torque [N m]"] = float(torque.max())
-    row["minimum_shaft_torque [N m]"] = float(torque.min())
+    row.update(valve_timing(solution, case, cycle))
+    row.update(pressure_and_torque(case, cycle, drive_work, p_shaft, p_drive, freq))
     return row
+
+
+def _drive_work(
+    solution: PeriodicSolution | None, cycle: CycleLike, freq: float
+) -> tuple[float, float, float]:
+    """Work of the drive and of the bearings over the revolution, and its frequency.
+
+    Parameters
+    ----------
+    solution : PeriodicSolution or None
+        As in :func:`summary` (None: the pinned mechanism under a tabulated pressure).
+    cycle : CycleLike
+        The cycle table (its shaft torque is read when ``solution`` is None).
+    freq : float
+        Revolutions per second from the mean crank speed [1/s].
+
+    Returns
+    -------
+    drive_work, bearing_loss : float
+        Work of the drive and work dissipated in the bearings per revolution [J].
+    freq : float
+        Revolutions per second: ``freq``, or one over the revolution's duration when the
+        speed is free.
+    """
+    model = solution.model if solution is not None else None
+    if model is not None and model.scene != scenes.SCENE_CYLINDER:
+        q = model.mechanism_offset + mlay.N_STATE
+        drive_work = solution.final.y_end[q + scenes.MQ_DRIVE]  # type: ignore[union-attr]
+        bearing_loss = solution.final.y_end[q + scenes.MQ_BEARINGS]  # type: ignore[union-attr]
+        freq = 1.0 / solution.final.duration if model.free_speed else freq  # type: ignore[union-attr]
+    elif model is not None:
+        drive_work = solution.final.y_end[cyl.Q_SHAFT]  # type: ignore[union-attr]
+        bearing_loss = 0.0
+    else:
+        torque = cycle["shaft_torque [N m]"].to_numpy()
+        drive_work = float(np.mean(torque)) * 2.0 * math.pi
+        bearing_loss = 0.0
+    return drive_work, bearing_loss, freq
+
+
+def _gas_summary(
+    solution: PeriodicSolution | None,
+    cycle: CycleLike,
+    freq: float,
+    p_shaft: float,
+    p_electrical: float,
+) -> dict[str, Any]:
+    """The :data:`GAS_SUMMARY` columns; without a gas state, only the indicated power.
+
+    Parameters
+    ----------
+    solution : PeriodicSolution or None
+        As in :func:`summary`.
+    cycle : CycleLike
+        The cycle table (its p-V loop gives the indicated power when ``solution`` is
+        None).
+    freq : float
+        Revolutions per second [1/s].
+    p_shaft, p_electrical : float
+        Shaft power and motor electrical power [W].
+
+    Returns
+    -------
+    dict
+        Column name to value, in :data:`GAS_SUMMARY`'s order.
+    """
+    model = solution.model if solution is not None else None
+    if model is not None and model.has_gas:
+        return _gas_metrics(solution, freq, p_shaft, p_electrical)  # type: ignore[arg-type]
+    gas = dict.fromkeys(GAS_SUMMARY, math.nan)
+    if model is not None:  # work of the gas on the piston, integrated with the motion
+        q = model.mechanism_offset + mlay.N_STATE + scenes.MQ_GAS
+        gas["indicated_power [W]"] = -solution.final.y_end[q] * freq  # type: ignore[union-attr]
+    else:
+        gas["indicated_power [W]"] = _loop_work(cycle) * freq
+    return gas
 
 
 MOTOR_SUMMARY = ("motor_input_power [W]", "motor_rotor_loss_power [W]", "motor_slip [-]")

@@ -126,9 +126,7 @@ def newton_fixed_point(
     NewtonResult
     """
     g, payload = first
-    n = z.size
-    a = jacobian
-    fresh = False
+    a, fresh = jacobian, False
     out = NewtonResult(z, g, payload, False, jacobian=a)
     while True:
         out.z, out.g, out.payload, out.jacobian = z, g, payload, a
@@ -136,44 +134,136 @@ def newton_fixed_point(
             out.converged = True
             return out
         if a is None:
-            if out.evaluations + n + 1 > max_evaluations:
-                return out
-            try:
-                a = _jacobian(fun, z, g, payload, ref, fd_step, same_branch, failures, out)
-            except failures:
-                out.stalled = True
+            a = _fresh_jacobian(
+                fun, z, g, payload, ref, fd_step, same_branch, failures, out, max_evaluations
+            )
+            if a is None:
                 return out
             fresh = True
         f = (g - z) / ref
-        norm = float(np.max(np.abs(f)))
         dz = _newton_step(a, f)
-        found: tuple[np.ndarray, np.ndarray, Any, np.ndarray] | None = None
-        for _ in range(_BACKTRACK + 1):
-            if out.evaluations >= max_evaluations:
-                return out
-            z_new = z + dz * ref
-            out.evaluations += 1
-            out.iterations += 1
-            try:
-                g_new, payload_new = fun(z_new)
-            except failures:
-                dz = 0.5 * dz
-                continue
-            f_new = (g_new - z_new) / ref
-            if float(np.max(np.abs(f_new))) < norm:
-                found = (z_new, g_new, payload_new, f_new)
-                break
-            dz = 0.5 * dz
+        found, spent = _line_search(fun, z, dz, f, ref, failures, out, max_evaluations)
+        if spent or (found is None and fresh):
+            out.stalled = not spent  # no step helped even with a fresh Jacobian
+            return out
         if found is None:
-            if fresh:
-                out.stalled = True
-                return out
             a = None  # Broyden's Jacobian went stale: rebuild it here
             continue
-        z, g, payload, f_new = found
-        # Broyden's rank-one update of the scaled Jacobian of F
-        a = a + np.outer(f_new - f - a @ dz, dz) / float(dz @ dz)
-        fresh = False
+        z, g, payload, f_new, dz = found
+        a, fresh = _broyden(a, dz, f, f_new), False
+
+
+def _broyden(a: np.ndarray, dz: np.ndarray, f: np.ndarray, f_new: np.ndarray) -> np.ndarray:
+    """Broyden's rank-one update of the scaled Jacobian of ``F = G(z) - z``.
+
+    Parameters
+    ----------
+    a : numpy.ndarray
+        Scaled ``dG/dz - I`` before the step.
+    dz : numpy.ndarray
+        The scaled step taken.
+    f, f_new : numpy.ndarray
+        Scaled residual before and after the step.
+
+    Returns
+    -------
+    numpy.ndarray
+        The updated matrix.
+    """
+    return a + np.outer(f_new - f - a @ dz, dz) / float(dz @ dz)
+
+
+def _fresh_jacobian(
+    fun: Callable[[np.ndarray], tuple[np.ndarray, Any]],
+    z: np.ndarray,
+    g: np.ndarray,
+    payload: Any,
+    ref: np.ndarray,
+    fd_step: np.ndarray,
+    same_branch: Callable[[Any, Any], bool] | None,
+    failures: tuple[type[BaseException], ...],
+    out: NewtonResult,
+    max_evaluations: int,
+) -> np.ndarray | None:
+    """Build the Jacobian at ``z`` if the budget allows one (:func:`_jacobian`).
+
+    Parameters
+    ----------
+    fun, z, g, payload, ref, fd_step, same_branch, failures
+        As in :func:`newton_fixed_point` (``g``, ``payload``: ``fun(z)``).
+    out : NewtonResult
+        Counts the evaluations; ``stalled`` is set when a column's evaluation fails.
+    max_evaluations : int
+        Budget of map evaluations.
+
+    Returns
+    -------
+    numpy.ndarray or None
+        Scaled ``dG/dz - I``; None when the budget cannot pay for it or an evaluation
+        failed (the solve stops).
+    """
+    if out.evaluations + z.size + 1 > max_evaluations:
+        return None
+    try:
+        return _jacobian(fun, z, g, payload, ref, fd_step, same_branch, failures, out)
+    except failures:
+        out.stalled = True
+        return None
+
+
+def _line_search(
+    fun: Callable[[np.ndarray], tuple[np.ndarray, Any]],
+    z: np.ndarray,
+    dz: np.ndarray,
+    f: np.ndarray,
+    ref: np.ndarray,
+    failures: tuple[type[BaseException], ...],
+    out: NewtonResult,
+    max_evaluations: int,
+) -> tuple[tuple[np.ndarray, np.ndarray, Any, np.ndarray, np.ndarray] | None, bool]:
+    """Try the Newton step ``dz`` from ``z``, halved up to ``_BACKTRACK`` times while the
+    scaled residual does not drop (or the evaluation fails).
+
+    Parameters
+    ----------
+    fun, ref, failures
+        As in :func:`newton_fixed_point`.
+    z : numpy.ndarray
+        Current iterate.
+    dz : numpy.ndarray
+        Scaled Newton step.
+    f : numpy.ndarray
+        Scaled residual ``(G(z) - z) / ref`` at ``z``.
+    out : NewtonResult
+        Counts evaluations and iterations.
+    max_evaluations : int
+        Budget of map evaluations.
+
+    Returns
+    -------
+    found : tuple or None
+        ``(z_new, g_new, payload_new, f_new, dz)`` of the first trial whose residual's
+        infinity norm is below that of ``f`` (``dz`` the step taken); None if none was.
+    spent : bool
+        The budget ran out before a trial (the solve stops).
+    """
+    norm = float(np.max(np.abs(f)))
+    for _ in range(_BACKTRACK + 1):
+        if out.evaluations >= max_evaluations:
+            return None, True
+        z_new = z + dz * ref
+        out.evaluations += 1
+        out.iterations += 1
+        try:
+            g_new, payload_new = fun(z_new)
+        except failures:
+            dz = 0.5 * dz
+            continue
+        f_new = (g_new - z_new) / ref
+        if float(np.max(np.abs(f_new))) < norm:
+            return (z_new, g_new, payload_new, f_new, dz), False
+        dz = 0.5 * dz
+    return None, False
 
 
 def _jacobian(

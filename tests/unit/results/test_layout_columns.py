@@ -1,8 +1,8 @@
 """The report's columns that are layout outputs carry the name and unit their layout
 entry declares (issue 13, "the report's column registry reads the same table").
 
-``results/tables.py``'s ``CYCLE_COLUMNS`` still spells its columns out; this test holds
-each of them to the entry of the output slot it reads. The mechanism's columns
+``results/cycle.py`` builds ``CYCLE_COLUMNS`` from the output slots it reads; this test
+holds each column to its slot's entry. The mechanism's columns
 (``results/bearings.py``) are built from ``layout.OUTPUTS`` and checked to read their
 own slots.
 """

@@ -1,0 +1,127 @@
+"""Crank-angle metrics of a cycle table for the summary: when each valve opens and
+closes, the extremes of the cylinder pressure and of the shaft torque
+(:func:`recipsim.results.tables.summary` writes them).
+"""
+
+from __future__ import annotations
+
+import math
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from recipsim.case.load import Case
+from recipsim.results.columns import CycleLike
+
+if TYPE_CHECKING:
+    from recipsim.solve.periodic import PeriodicSolution
+
+
+def _open_interval(angles: np.ndarray, flowing: np.ndarray) -> tuple[float, float]:
+    """Opening and closing crank angle [deg] of the longest circular run of ``flowing``."""
+    n = flowing.shape[0]
+    if not flowing.any():
+        return math.nan, math.nan
+    if flowing.all():
+        return 0.0, 360.0
+    start = int(np.argmin(flowing))  # a closed sample: unroll the circle from here
+    rolled = np.roll(flowing, -start)
+    best = (0, 0, 0)
+    i = 0
+    while i < n:
+        if rolled[i]:
+            j = i
+            while j < n and rolled[j]:
+                j += 1
+            if j - i > best[0]:
+                best = (j - i, i, j - 1)
+            i = j
+        else:
+            i += 1
+    first = angles[(best[1] + start) % n]
+    last = angles[(best[2] + start) % n]
+    return float(first), float(last)
+
+
+def valve_timing(
+    solution: PeriodicSolution | None, case: Case, cycle: CycleLike
+) -> dict[str, float]:
+    """Opening and closing crank angle of each valve (NaN without a gas state).
+
+    Parameters
+    ----------
+    solution : PeriodicSolution or None
+        As in :func:`recipsim.results.tables.summary`.
+    case : Case
+        Its ``options.valves`` picks the test: reed lift above 0, else a mass flow.
+    cycle : CycleLike
+        The cycle table.
+
+    Returns
+    -------
+    dict
+        ``<side>_valve_opening_angle [deg]`` and ``..._closing_angle [deg]``, suction
+        then discharge.
+    """
+    model = solution.model if solution is not None else None
+    angles = cycle["crank_angle [deg]"].to_numpy()
+    row: dict[str, float] = {}
+    for side in ("suction", "discharge"):
+        if model is None or not model.has_gas:
+            row[f"{side}_valve_opening_angle [deg]"] = math.nan
+            row[f"{side}_valve_closing_angle [deg]"] = math.nan
+            continue
+        flow = cycle[f"{side}_mass_flow [kg/s]"].to_numpy()
+        if case.options.valves == "reed":
+            flowing = cycle[f"{side}_valve_lift [m]"].to_numpy() > 0.0
+        else:
+            flowing = np.abs(flow) > 1e-12 * max(np.abs(flow).max(), 1e-300)
+        opening, closing = _open_interval(angles, flowing)
+        row[f"{side}_valve_opening_angle [deg]"] = opening
+        row[f"{side}_valve_closing_angle [deg]"] = closing
+    return row
+
+
+def pressure_and_torque(
+    case: Case,
+    cycle: CycleLike,
+    drive_work: float,
+    p_shaft: float,
+    p_drive: float,
+    freq: float,
+) -> dict[str, float]:
+    """Extremes of the cylinder pressure and of the shaft torque, and the mean torque.
+
+    Parameters
+    ----------
+    case : Case
+        Its plenum pressures are the references of the over- and underpressure.
+    cycle : CycleLike
+        The cycle table.
+    drive_work : float
+        Work of the drive per revolution [J].
+    p_shaft, p_drive : float
+        Shaft power and drive power [W] (they differ by the mean friction).
+    freq : float
+        Revolutions per second [1/s].
+
+    Returns
+    -------
+    dict
+        Column name to value.
+    """
+    op = case.operating_point
+    p = cycle["cylinder_pressure [Pa]"].to_numpy()
+    torque = cycle["shaft_torque [N m]"].to_numpy()
+    return {
+        "peak_cylinder_pressure [Pa]": float(p.max()),
+        "minimum_cylinder_pressure [Pa]": float(p.min()),
+        "discharge_overpressure [-]": float(p.max() / op.discharge_pressure - 1.0),
+        "suction_underpressure [-]": float(1.0 - p.min() / op.suction_pressure),
+        # plus the mean friction's torque (options.friction = "mean"; else exactly 0)
+        "mean_shaft_torque [N m]": float(
+            drive_work / (2.0 * math.pi) + (p_shaft - p_drive) / (2.0 * math.pi * freq)
+        ),
+        "peak_shaft_torque [N m]": float(torque.max()),
+        "minimum_shaft_torque [N m]": float(torque.min()),
+    }
