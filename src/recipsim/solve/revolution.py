@@ -198,27 +198,28 @@ def integrate_revolution(
     mode_start = mode.copy()
     stats = np.zeros(N_STATS)
     omega = model.par[cyl.C_OMEGA]
-    integrate(
-        0.0,
-        t_end,
-        y_run,
-        mode_run,
-        model.par,
-        model.ipar,
-        model.props,
-        model.props.buffer,
-        s.rtol,
-        s.atol,
-        model.scale,
-        model.n_err,
-        h,
-        s.max_step / omega,
-        times,
-        samples,
-        sample_modes,
-        stats,
-        integrator_method(model),
-    )
+    with model.props.interrupts_deferred():
+        integrate(
+            0.0,
+            t_end,
+            y_run,
+            mode_run,
+            model.par,
+            model.ipar,
+            model.props,
+            model.props.buffer,
+            s.rtol,
+            s.atol,
+            model.scale,
+            model.n_err,
+            h,
+            s.max_step / omega,
+            times,
+            samples,
+            sample_modes,
+            stats,
+            integrator_method(model),
+        )
     model.props.raise_if_interrupted()  # a Ctrl-C caught inside the property callback
     status = int(stats[ST_STATUS])
     if status != 0:

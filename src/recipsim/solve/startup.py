@@ -205,11 +205,12 @@ def _window(
     mode_run = mode.copy()
     stats = np.zeros(N_STATS)
     model.par[scenes.P_THETA_END] = theta_end
-    integrate_scene(
-        0.0, t_limit, y_run, mode_run, model.par, model.ipar, model.props,
-        model.props.buffer, s.rtol, s.atol, model.scale, model.n_err, h, s.max_step / omega,
-        times, samples, sample_modes, stats, integrator_method(model),
-    )  # fmt: skip
+    with model.props.interrupts_deferred():
+        integrate_scene(
+            0.0, t_limit, y_run, mode_run, model.par, model.ipar, model.props,
+            model.props.buffer, s.rtol, s.atol, model.scale, model.n_err, h, s.max_step / omega,
+            times, samples, sample_modes, stats, integrator_method(model),
+        )  # fmt: skip
     model.props.raise_if_interrupted()
     status = int(stats[ST_STATUS])
     if status != 0:
