@@ -29,34 +29,6 @@ def _column(index: int) -> str:
     return cyl.OUTPUTS.column(index)
 
 
-#: Output slots the cycle table writes, in column order; each column's name and unit are
-#: its :data:`~recipsim.physics.thermo.cylinder.OUTPUTS` entry's (``"name [unit]"``).
-_CYCLE_OUTPUTS = (
-    cyl.A_VOLUME,
-    cyl.A_PRESSURE,
-    cyl.A_TEMPERATURE,
-    cyl.A_DENSITY,
-    cyl.A_MASS,
-    cyl.A_ENTHALPY,
-    cyl.A_QUALITY,
-    cyl.A_LIFT_S,
-    cyl.A_LIFT_D,
-    cyl.A_VEL_S,
-    cyl.A_VEL_D,
-    cyl.A_MDOT_SUC,
-    cyl.A_MDOT_DIS,
-    cyl.A_MDOT_LEAK,
-    cyl.A_LEAK_ECC,
-    cyl.A_QDOT,
-    cyl.A_HTC,
-    cyl.A_DISPLACEMENT,
-    cyl.A_PISTON_VELOCITY,
-    cyl.A_FORCE_GAS,
-    cyl.A_TORQUE_GAS,
-    cyl.A_TORQUE_INERTIA,
-    cyl.A_TORQUE_SHAFT,
-)
-
 #: Output slots that need the gas state (their columns are absent when the pressure is
 #: tabulated).
 _GAS_OUTPUTS = (
@@ -75,6 +47,20 @@ _GAS_OUTPUTS = (
     cyl.A_LEAK_ECC,
     cyl.A_QDOT,
     cyl.A_HTC,
+)
+
+#: Output slots the cycle table writes, in column order; each column's name and unit are
+#: its :data:`~recipsim.physics.thermo.cylinder.OUTPUTS` entry's (``"name [unit]"``).
+_CYCLE_OUTPUTS = (
+    cyl.A_VOLUME,
+    cyl.A_PRESSURE,
+    *_GAS_OUTPUTS,
+    cyl.A_DISPLACEMENT,
+    cyl.A_PISTON_VELOCITY,
+    cyl.A_FORCE_GAS,
+    cyl.A_TORQUE_GAS,
+    cyl.A_TORQUE_INERTIA,
+    cyl.A_TORQUE_SHAFT,
 )
 
 #: The cycle table's output columns: (``"name [unit]"`` from the layout, output index).
