@@ -191,7 +191,7 @@ def plot_bearing_loads(table: pd.DataFrame, x: str, groups: list[str]) -> Figure
     nrows = math.ceil(len(columns) / ncols)
     from matplotlib.figure import Figure
 
-    lines = _lines(table, x, groups)
+    lines = _lines(table[list(dict.fromkeys([*groups, x]))], x, groups)  # labels only
     if len(lines) > MAX_LEGEND_LINES:
         handles, labels = legend_entries(table, groups)
     else:
