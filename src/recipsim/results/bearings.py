@@ -33,10 +33,11 @@ def _column(index: int) -> str:
 def bearing_columns(forces: np.ndarray, displacements: np.ndarray) -> dict[str, np.ndarray]:
     """Report columns from (n, 6, 3) force [N] and displacement [m] arrays."""
     cols: dict[str, np.ndarray] = {}
+    magnitudes = np.sqrt((forces * forces).sum(axis=2))  # all bearings at once
     for i, name in enumerate(lay.BEARING_NAMES):
         for k in range(3):
             cols[_column(lay.A_BEARING_FORCE + 3 * i + k)] = forces[:, i, k]
-        cols[f"bearing_force_{name} [N]"] = np.linalg.norm(forces[:, i], axis=1)
+        cols[f"bearing_force_{name} [N]"] = magnitudes[:, i]
         for ax in _DISPLACEMENT_AXES:
             k = "xyz".index(ax)
             cols[_column(lay.A_BEARING_DISPLACEMENT + 3 * i + k)] = displacements[:, i, k]

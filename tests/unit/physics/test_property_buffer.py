@@ -1,6 +1,8 @@
 """Property buffers made by ``PropertyTable.property_buffer``: the same content as the
-concatenation they replace, their memory reused only once nothing else holds it, and
-freed by a dropped ``HeosProperties`` without waiting for the cyclic collector."""
+concatenation they replace, their memory reused only once nothing else holds it (the
+table's tail is not copied again: a solve writes only the outputs, checked here on a
+real solve), and freed by a dropped ``HeosProperties`` without waiting for the cyclic
+collector."""
 
 from __future__ import annotations
 
@@ -28,16 +30,34 @@ def test_buffer_is_the_concatenation_bit_for_bit() -> None:
         assert buf[N_PROPS + H_TRANSPORT] == (1.0 if transport else 0.0)
 
 
-def test_a_dropped_buffer_is_reused_and_rewritten_whole() -> None:
-    """The old owner's writes (outputs and tail alike) are gone from the reused buffer."""
+def test_a_dropped_buffer_is_reused_with_its_outputs_cleared() -> None:
+    """The old owner's outputs are gone from the reused buffer, which equals a new one."""
     table = _table()
     first = table.property_buffer(True)
     address = first.ctypes.data
-    first[:] = -7.0  # scribble over outputs and table
+    first[:N_PROPS] = -7.0  # outputs written by a solve
     del first
     again = table.property_buffer(False)
     assert again.ctypes.data == address  # the same memory
     assert again.tobytes() == _concatenated(table, False).tobytes()
+
+
+def test_a_solve_writes_only_the_outputs_of_its_buffer() -> None:
+    """The contract that lets a reused buffer keep its tail: after a periodic solve of
+    the reference case (table interpolation, HEOS fallbacks and the Python side's state
+    calls all through the buffer), its tail is still the table, bit for bit."""
+    from recipsim.case.load import load_case
+    from recipsim.model.build import build_model
+    from recipsim.solve.periodic import solve_periodic
+
+    model = build_model(load_case("reference_r134a_lbp"))
+    table = model.props.table
+    assert table is not None
+    solution = solve_periodic(model)
+    assert solution.converged
+    tail = model.props.buffer[N_PROPS:]
+    transport = bool(model.props.buffer[N_PROPS + H_TRANSPORT])
+    assert tail.tobytes() == table.buffer_tail(transport).tobytes()
 
 
 def test_a_held_buffer_is_never_handed_out_twice() -> None:

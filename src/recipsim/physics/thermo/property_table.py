@@ -224,11 +224,15 @@ class PropertyTable:
     load_time: float = 0.0
     #: Buffers handed out by :meth:`property_buffer`, reused once nothing else holds them.
     _buffers: list[np.ndarray] = field(default_factory=list, repr=False, compare=False)
+    #: ``id`` of the kept buffers whose tail already holds :attr:`data` (a kept buffer
+    #: lives as long as the table, so its ``id`` names it)
+    _filled: set[int] = field(default_factory=set, repr=False, compare=False)
 
     def __getstate__(self) -> dict[str, Any]:
         """Pickled (to sweep workers) without the reusable buffers."""
         state = dict(self.__dict__)
         state["_buffers"] = []
+        state["_filled"] = set()
         return state
 
     def header(self, slot: int) -> float:
@@ -268,8 +272,11 @@ class PropertyTable:
         self.buffer_tail(transport)])`` gives, in one copy.
 
         The memory of an earlier buffer that nothing but this table holds any more is
-        reused (a model build otherwise allocates, page-faults and frees 11 MB twice);
-        its content is rewritten whole, so a reused buffer equals a new one.
+        reused (a model build otherwise allocates, page-faults and frees 11 MB twice).
+        A reused buffer's tail already holds :attr:`data`: the compiled code and the
+        property callback write only the outputs, so only the outputs and the
+        transport flag are written again (copying the tail cost 0.8 ms of a sweep
+        point's 11 ms). A reused buffer equals a new one.
 
         Parameters
         ----------
@@ -278,7 +285,10 @@ class PropertyTable:
         """
         buf = reusable_buffer(self._buffers, N_PROPS + self.data.size)
         buf[:N_PROPS] = 0.0
-        buf[N_PROPS:] = self.data
+        if id(buf) not in self._filled:
+            buf[N_PROPS:] = self.data
+            if any(kept is buf for kept in self._buffers):
+                self._filled.add(id(buf))
         buf[N_PROPS + H_TRANSPORT] = 1.0 if transport else 0.0
         return buf
 

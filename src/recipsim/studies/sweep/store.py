@@ -150,8 +150,8 @@ class PointStore:
         data = {"format": FORMAT, "point_id": point_id, **record}
         data["checksum"] = record_checksum(data)
         with atomic_file(self.path(point_id)) as handle:
-            # one string, one write: json.dump would write each of its ~500 pieces
-            handle.write(json.dumps(data, indent=1, allow_nan=True))
+            # one string, one write, C encoder (indent would use the pure-Python one: 2x slower)
+            handle.write(json.dumps(data, allow_nan=True))
 
 
 def point_record(task: PointTask, result: dict[str, Any], run_id: str) -> dict[str, Any]:
