@@ -62,7 +62,8 @@ def rating_enthalpies(fluid: Any, op: OperatingPoint) -> tuple[float, float]:
     compressor inlet, or the standard's suction gas); the liquid at the discharge pressure
     and ``op.liquid_temperature``, saturated liquid within 1 uK of the bubble point.
     """
-    h_gas = float(fluid.state_pt(op.suction_pressure, op.suction_temperature)["h"])
+    gas = fluid.state_pt(op.suction_pressure, op.suction_temperature, entropy=False)
+    h_gas = float(gas["h"])
     p = op.discharge_pressure
     if not math.isnan(op.condensing_temperature):
         bubble = fluid.saturation_temperature(p, 0.0)

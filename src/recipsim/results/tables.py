@@ -149,7 +149,8 @@ def _gas_metrics(
     if not discharge_valve_never_opens(solution):  # else NaN by design (no_delivery)
         h_mix = y[cyl.Q_HDIS_OUT] / y[cyl.Q_MDIS_OUT]
         what = "the discharge temperature (mass-weighted discharge enthalpy)"
-        t_dis = state_or_explain(fluid, "ph", op.discharge_pressure, h_mix, what)["T"]
+        discharge = state_or_explain(fluid, "ph", op.discharge_pressure, h_mix, what, False)
+        t_dis = discharge["T"]
     else:
         t_dis = math.nan
     return {
