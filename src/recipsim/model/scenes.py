@@ -98,6 +98,12 @@ def mechanism_state_offset(scene: int) -> int:
     return MECH_Y[scene]
 
 
+def named_state(scene: int, y: Any) -> Any:
+    """The state vector ``y`` of ``scene`` by slot name (:meth:`Layout.bundle` of its
+    table in :data:`STATES`): ``named_state(scene, y).suction_mass_in``."""
+    return STATES[scene].bundle(y)
+
+
 def state_size(scene: int) -> int:
     """Length of the state vector of ``scene``."""
     if scene == SCENE_CYLINDER:

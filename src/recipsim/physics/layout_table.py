@@ -24,8 +24,10 @@ This module imports nothing from recipsim: every layer may use it.
 
 from __future__ import annotations
 
+from collections import namedtuple
 from collections.abc import Iterable
 from dataclasses import dataclass
+from typing import Any
 
 
 @dataclass(frozen=True)
@@ -70,6 +72,7 @@ class Layout:
         self.title = title
         self._entries: list[Entry] = []
         self._by_name: dict[str, Entry] = {}
+        self._bundle_type: Any = None
 
     def add(self, name: str, unit: str, meaning: str) -> int:
         """Declare the next slot; returns its index.
@@ -98,6 +101,7 @@ class Layout:
         entry = Entry(name, unit, meaning, len(self._entries))
         self._entries.append(entry)
         self._by_name[name] = entry
+        self._bundle_type = None  # the bundle's fields follow the table
         return entry.index
 
     def add_series(self, pattern: str, labels: Iterable[str], unit: str, meaning: str) -> int:
@@ -187,6 +191,39 @@ class Layout:
     def column(self, index: int) -> str:
         """Report column name of slot ``index``: ``"<name> [<unit>]"``."""
         return self._entries[index].column
+
+    def bundle(self, values: Any, offset: int = 0) -> Any:
+        """The slots of a laid-out array by name: a named tuple whose fields are the
+        slot names, in index order.
+
+        The Python layers read states, parameters and outputs through it instead of
+        index constants (``end.suction_mass_in`` for ``y[Q_MSUC_IN]``). The compiled
+        code keeps the arrays: a named tuple of the coupled scene's 165 parameters
+        makes a kernel that reads them 1.8 times slower and a call from Python 25 times
+        slower (``python -m recipsim.studies.bench.bundles``; docs/speed.md).
+
+        Parameters
+        ----------
+        values : array_like
+            1-D: slot ``k`` at ``values[offset + k]`` (the fields are floats); 2-D
+            (samples, slots): slot ``k`` is column ``offset + k`` (the fields are
+            columns).
+        offset : int
+            Index of slot 0 in ``values`` (a block of a larger layout).
+
+        Returns
+        -------
+        NamedTuple
+            Of :attr:`size` fields; the type is made once per table.
+        """
+        if self._bundle_type is None:
+            typename = "".join(w.capitalize() for w in self.title.replace("-", " ").split())
+            fields = [e.name for e in self._entries]
+            self._bundle_type = namedtuple(typename, fields)  # type: ignore[misc]
+        block = values[..., offset : offset + self.size]
+        if getattr(block, "ndim", 1) == 1:
+            return self._bundle_type._make(block.tolist())
+        return self._bundle_type._make(block.T)
 
     def __len__(self) -> int:
         return len(self._entries)

@@ -107,10 +107,10 @@ def loss_breakdown(
         dh_s_heated = fluid.state_ps(op.discharge_pressure, heated["s"])["h"] - heated["h"]
     else:
         dh_s_heated = dh_s_line
-    from recipsim.physics.thermo import cylinder as cyl
+    from recipsim.model.scenes import named_state
 
-    y = solution.final.y_end  # type: ignore[union-attr]
-    suction_flow = (y[cyl.Q_MSUC_IN] - y[cyl.Q_MSUC_OUT]) * freq
+    end = named_state(model.scene, solution.final.y_end)  # type: ignore[union-attr]
+    suction_flow = (end.suction_mass_in - end.suction_mass_out) * freq
     mufflers = suction_flow * (op.suction_pressure - p_s) / inlet.density
     mufflers += mdot * (p_d - op.discharge_pressure) / model.discharge.density
     out = {

@@ -125,9 +125,9 @@ def explained(stage: str) -> Iterator[None]:
 
 def delivered_mass(solution: PeriodicSolution) -> float:
     """Mass out through the discharge valve over the final revolution [kg] (gross)."""
-    from recipsim.physics.thermo import cylinder as cyl
+    from recipsim.model.scenes import named_state
 
-    return float(solution.final.y_end[cyl.Q_MDIS_OUT])
+    return float(named_state(solution.model.scene, solution.final.y_end).discharge_mass_out)
 
 
 def discharge_valve_never_opens(solution: PeriodicSolution) -> bool:
@@ -148,19 +148,21 @@ def no_delivery_closures(solution: PeriodicSolution, cycle: CycleLike) -> dict[s
     """
     import numpy as np
 
-    from recipsim.physics.thermo import cylinder as cyl
+    from recipsim.model.scenes import named_state
 
-    y = solution.final.y_end
-    m_suc = y[cyl.Q_MSUC_IN] - y[cyl.Q_MSUC_OUT]
-    m_dis = y[cyl.Q_MDIS_OUT] - y[cyl.Q_MDIS_IN]
-    m_leak = y[cyl.Q_MLEAK_OUT] - y[cyl.Q_MLEAK_IN]
-    m_ref = max(y[cyl.Q_MSUC_IN], float(cycle["gas_mass [kg]"].max()))
-    h_out = (y[cyl.Q_HDIS_OUT] - y[cyl.Q_HDIS_IN]) + (y[cyl.Q_HLEAK_OUT] - y[cyl.Q_HLEAK_IN])
-    h_in = y[cyl.Q_HSUC_IN] - y[cyl.Q_HSUC_OUT]
+    y = named_state(solution.model.scene, solution.final.y_end)
+    m_suc = y.suction_mass_in - y.suction_mass_out
+    m_dis = y.discharge_mass_out - y.discharge_mass_in
+    m_leak = y.leakage_mass_out - y.leakage_mass_in
+    m_ref = max(y.suction_mass_in, float(cycle["gas_mass [kg]"].max()))
+    h_out = (y.discharge_enthalpy_out - y.discharge_enthalpy_in) + (
+        y.leakage_enthalpy_out - y.leakage_enthalpy_in
+    )
+    h_in = y.suction_enthalpy_in - y.suction_enthalpy_out
     p = cycle["cylinder_pressure [Pa]"].to_numpy()
     v = cycle["cylinder_volume [m3]"].to_numpy()
     gross_work = float(np.sum(np.abs(0.5 * (p + np.roll(p, -1)) * (np.roll(v, -1) - v))))
-    energy = y[cyl.Q_WORK] - (h_out - h_in - y[cyl.Q_HEAT])
+    energy = y.work_on_gas - (h_out - h_in - y.heat_to_gas)
     return {
         "mass_balance_residual [-]": float((m_suc - m_dis - m_leak) / m_ref),
         "energy_balance_residual [-]": float(energy / gross_work) if gross_work > 0 else 0.0,

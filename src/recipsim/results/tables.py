@@ -34,8 +34,6 @@ import numpy as np
 from recipsim.case.load import Case
 from recipsim.model.build import scenes
 from recipsim.model.plenum import isentropic_state
-from recipsim.physics.mechanics import layout as mlay
-from recipsim.physics.thermo import cylinder as cyl
 from recipsim.results.bearings import film_summary, mechanism_summary
 from recipsim.results.columns import Columns, CycleLike
 from recipsim.results.cycle import (  # re-exported (__all__): the cycle table is in .cycle
@@ -128,11 +126,12 @@ def _gas_metrics(
     op = model.case.operating_point
     geo = model.case.geometry
     y = solution.final.y_end
-    m_suc = y[cyl.Q_MSUC_IN] - y[cyl.Q_MSUC_OUT]
-    m_dis = y[cyl.Q_MDIS_OUT] - y[cyl.Q_MDIS_IN]
-    m_leak = y[cyl.Q_MLEAK_OUT] - y[cyl.Q_MLEAK_IN]
-    work = y[cyl.Q_WORK]
-    heat_in = y[cyl.Q_HEAT]
+    end = scenes.named_state(model.scene, y)
+    m_suc = end.suction_mass_in - end.suction_mass_out
+    m_dis = end.discharge_mass_out - end.discharge_mass_in
+    m_leak = end.leakage_mass_out - end.leakage_mass_in
+    work = end.work_on_gas
+    heat_in = end.heat_to_gas
     fluid = model.fluid
     suction = model.compressor_inlet
     h_gas, h_liquid = rating_enthalpies(fluid, op)
@@ -147,7 +146,7 @@ def _gas_metrics(
     p_ind = work * freq
     p_isen = mdot_dis * (h_2s - suction.enthalpy)
     if not discharge_valve_never_opens(solution):  # else NaN by design (no_delivery)
-        h_mix = y[cyl.Q_HDIS_OUT] / y[cyl.Q_MDIS_OUT]
+        h_mix = end.discharge_enthalpy_out / end.discharge_mass_out
         what = "the discharge temperature (mass-weighted discharge enthalpy)"
         discharge = state_or_explain(fluid, "ph", op.discharge_pressure, h_mix, what, False)
         t_dis = discharge["T"]
@@ -157,8 +156,8 @@ def _gas_metrics(
         "suction_mass_flow [kg/s]": m_suc * freq,
         "discharge_mass_flow [kg/s]": mdot_dis,
         "leakage_mass_flow [kg/s]": m_leak * freq,
-        "suction_backflow_mass_flow [kg/s]": y[cyl.Q_MSUC_OUT] * freq,
-        "discharge_backflow_mass_flow [kg/s]": y[cyl.Q_MDIS_IN] * freq,
+        "suction_backflow_mass_flow [kg/s]": end.suction_mass_out * freq,
+        "discharge_backflow_mass_flow [kg/s]": end.discharge_mass_in * freq,
         "cooling_capacity [W]": capacity,
         "indicated_power [W]": p_ind,
         "isentropic_power [W]": p_isen,
@@ -259,12 +258,11 @@ def _drive_work(
     """
     model = solution.model if solution is not None else None
     if model is not None and model.scene != scenes.SCENE_CYLINDER:
-        q = model.mechanism_offset + mlay.N_STATE
-        drive_work = solution.final.y_end[q + scenes.MQ_DRIVE]  # type: ignore[union-attr]
-        bearing_loss = solution.final.y_end[q + scenes.MQ_BEARINGS]  # type: ignore[union-attr]
+        end = scenes.named_state(model.scene, solution.final.y_end)  # type: ignore[union-attr]
+        drive_work, bearing_loss = end.drive_work, end.bearing_dissipation
         freq = 1.0 / solution.final.duration if model.free_speed else freq  # type: ignore[union-attr]
     elif model is not None:
-        drive_work = solution.final.y_end[cyl.Q_SHAFT]  # type: ignore[union-attr]
+        drive_work = scenes.named_state(model.scene, solution.final.y_end).shaft_work  # type: ignore[union-attr]
         bearing_loss = 0.0
     else:
         torque = cycle["shaft_torque [N m]"].to_numpy()
@@ -304,8 +302,8 @@ def _gas_summary(
         return _gas_metrics(solution, freq, p_shaft, p_electrical)  # type: ignore[arg-type]
     gas = dict.fromkeys(GAS_SUMMARY, math.nan)
     if model is not None:  # work of the gas on the piston, integrated with the motion
-        q = model.mechanism_offset + mlay.N_STATE + scenes.MQ_GAS
-        gas["indicated_power [W]"] = -solution.final.y_end[q] * freq  # type: ignore[union-attr]
+        end = scenes.named_state(model.scene, solution.final.y_end)  # type: ignore[union-attr]
+        gas["indicated_power [W]"] = -end.gas_work_on_piston * freq
     else:
         gas["indicated_power [W]"] = _loop_work(cycle) * freq
     return gas

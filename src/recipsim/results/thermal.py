@@ -15,7 +15,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from recipsim.physics.thermo import cylinder as cyl
+from recipsim.model.scenes import named_state
 from recipsim.physics.thermo.shell_network import NODES, SM, node_residuals
 
 if TYPE_CHECKING:
@@ -66,8 +66,8 @@ def thermal_columns(solution: PeriodicSolution | None, case: Case) -> dict[str, 
     t = net.temperature
     for i, node in enumerate(NODES):
         row[f"node_temperature_{node} [K]"] = float(t[i])
-    y = solution.final.y_end
-    p_in = y[cyl.Q_WORK] / solution.final.duration + loads.friction_power + loads.motor_loss_power
+    end = named_state(solution.model.scene, solution.final.y_end)
+    p_in = end.work_on_gas / solution.final.duration + loads.friction_power + loads.motor_loss_power
     q_shell = net.shell_heat_rejection
     rise = loads.delivered_mass_flow * (net.outlet_enthalpy - net.inlet_enthalpy)
     outlet = solution.model.fluid.state_ph(op.discharge_pressure, net.outlet_enthalpy)

@@ -16,11 +16,9 @@ from __future__ import annotations
 
 import logging
 import math
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
-import numpy as np
-
-from recipsim.physics.thermo import cylinder as cyl
+from recipsim.model.scenes import named_state
 
 if TYPE_CHECKING:
     from recipsim.solve.periodic import PeriodicSolution
@@ -37,15 +35,15 @@ def _fraction(back: float, forward: float) -> float:
     return back / forward if forward > 0.0 else math.nan
 
 
-def backflow_fractions(quadratures: np.ndarray | None) -> dict[str, float]:
+def backflow_fractions(quadratures: Any) -> dict[str, float]:
     """Back-flow fractions of both valves over one revolution.
 
     Parameters
     ----------
-    quadratures : ndarray or None
-        The cylinder states at the end of the converged revolution (the cumulative
-        masses of :mod:`recipsim.physics.thermo.cylinder`); None when no gas was
-        integrated (the fractions are then NaN).
+    quadratures : NamedTuple or None
+        The scene's states by name at the end of the converged revolution
+        (:func:`recipsim.model.scenes.named_state`: the cumulative masses through the
+        valves); None when no gas was integrated (the fractions are then NaN).
 
     Returns
     -------
@@ -58,8 +56,8 @@ def backflow_fractions(quadratures: np.ndarray | None) -> dict[str, float]:
         return dict.fromkeys(BACKFLOW_COLUMNS, math.nan)
     y = quadratures
     return {
-        "discharge_backflow_fraction [-]": _fraction(y[cyl.Q_MDIS_IN], y[cyl.Q_MDIS_OUT]),
-        "suction_backflow_fraction [-]": _fraction(y[cyl.Q_MSUC_OUT], y[cyl.Q_MSUC_IN]),
+        "discharge_backflow_fraction [-]": _fraction(y.discharge_mass_in, y.discharge_mass_out),
+        "suction_backflow_fraction [-]": _fraction(y.suction_mass_out, y.suction_mass_in),
     }
 
 
@@ -90,7 +88,7 @@ def valve_summary(case_name: str, solution: PeriodicSolution | None) -> dict[str
     ``solution`` (NaN without a gas model), warning about large ones."""
     y = None
     if solution is not None and solution.model.has_gas:
-        y = solution.final.y_end[: cyl.N_STATE]
+        y = named_state(solution.model.scene, solution.final.y_end)
     fractions = backflow_fractions(y)
     warn_large_backflow(case_name, fractions)
     return fractions
