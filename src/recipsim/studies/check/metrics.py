@@ -94,7 +94,7 @@ def reed_openings(lift: np.ndarray, stop_height: float) -> int:
 
 def closures(run: CaseRun) -> dict[str, float | None]:
     """Mass, energy and drive closures of a run (module docstring); None: not applicable."""
-    from recipsim.physics.thermo import cylinder as cyl
+    from recipsim.model.scenes import named_state
 
     out: dict[str, float | None] = {"mass": None, "energy": None, "drive": None}
     sol = run.solution
@@ -108,18 +108,20 @@ def closures(run: CaseRun) -> dict[str, float | None]:
     model = sol.model
     if not model.has_gas:
         return out
-    y = sol.final.y_end
-    m_suc = y[cyl.Q_MSUC_IN] - y[cyl.Q_MSUC_OUT]
-    m_dis = y[cyl.Q_MDIS_OUT] - y[cyl.Q_MDIS_IN]
-    m_leak = y[cyl.Q_MLEAK_OUT] - y[cyl.Q_MLEAK_IN]
-    h_out = (y[cyl.Q_HDIS_OUT] - y[cyl.Q_HDIS_IN]) + (y[cyl.Q_HLEAK_OUT] - y[cyl.Q_HLEAK_IN])
-    h_in = y[cyl.Q_HSUC_IN] - y[cyl.Q_HSUC_OUT]
+    y = named_state(model.scene, sol.final.y_end)
+    m_suc = y.suction_mass_in - y.suction_mass_out
+    m_dis = y.discharge_mass_out - y.discharge_mass_in
+    m_leak = y.leakage_mass_out - y.leakage_mass_in
+    h_out = (y.discharge_enthalpy_out - y.discharge_enthalpy_in) + (
+        y.leakage_enthalpy_out - y.leakage_enthalpy_in
+    )
+    h_in = y.suction_enthalpy_in - y.suction_enthalpy_out
     suction = model.suction
     m_swept = suction.density * run.case.geometry.swept_volume
     h_2s = model.fluid.state_ps(run.case.operating_point.discharge_pressure, suction.entropy)["h"]
     out["mass"] = float(abs(m_suc - m_dis - m_leak) / m_swept)
     out["energy"] = float(
-        abs(y[cyl.Q_WORK] - (h_out - h_in - y[cyl.Q_HEAT])) / (m_swept * (h_2s - suction.enthalpy))
+        abs(y.work_on_gas - (h_out - h_in - y.heat_to_gas)) / (m_swept * (h_2s - suction.enthalpy))
     )
     return out
 
