@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import replace
+from functools import lru_cache
 from pathlib import Path
 from typing import Any
 
@@ -62,7 +63,7 @@ def case_sections(
     (all but ``raw`` and ``source_text``)."""
     check_keys(raw, TOP_KEYS, file, "")
     top = _header(raw, file)
-    search = [Path(file).resolve().parent, Path(file).resolve().parent.parent]
+    search = list(_refrigerant_search(file))
     refrigerant = load_refrigerant(top["refrigerant"], file, "refrigerant", search)
     options = Options(**read_table(raw.get("options"), OPTION_SPEC, file, "options"))
     fluid = case_fluid(refrigerant, options.properties)
@@ -102,6 +103,14 @@ def case_sections(
         "motor_circuit": circuit,
         "thermal": thermal,
     }
+
+
+@lru_cache(maxsize=64)
+def _refrigerant_search(file: str) -> tuple[Path, Path]:
+    """The case file's folder and its parent, where its refrigerant file may lie (resolved
+    once per file: a sweep validates a case at every point)."""
+    folder = Path(file).resolve().parent
+    return folder, folder.parent
 
 
 def _header(raw: dict[str, Any], file: str) -> dict[str, Any]:

@@ -11,6 +11,7 @@ from __future__ import annotations
 import os
 import stat
 import tomllib
+from functools import lru_cache
 from importlib import resources
 from pathlib import Path
 from typing import Any
@@ -27,8 +28,10 @@ MAX_EXTENDS_DEPTH = 16
 MAX_TOML_NESTING = 12
 
 
+@lru_cache(maxsize=64)
 def package_data(*parts: str) -> Path:
-    """A folder of the data shipped inside the package (``recipsim/data/...``)."""
+    """A folder of the data shipped inside the package (``recipsim/data/...``; found
+    once per process: a sweep asks at every point)."""
     return Path(str(resources.files("recipsim").joinpath("data", *parts)))
 
 

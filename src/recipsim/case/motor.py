@@ -10,6 +10,7 @@ curve is built.
 from __future__ import annotations
 
 import math
+from functools import lru_cache
 from typing import Any
 
 from recipsim.case.motor_losses import CIRCUIT_SPEC, motor_circuit_from_table
@@ -43,6 +44,46 @@ def read_motor_table(raw: Any, file: str) -> dict[str, Any]:
         For an unknown key, a value out of range or of the wrong dimension.
     """
     return read_table(raw, MOTOR_SPEC, file, "motor")
+
+
+@lru_cache(maxsize=256)
+def breakdown_slip(s_r: float, rated_torque: float, t_k: float, u: float) -> float | None:
+    """The breakdown slip [-] that puts the torque curve through the rated point.
+
+    Parameters
+    ----------
+    s_r : float
+        Rated slip [-].
+    rated_torque, t_k : float
+        Rated and breakdown torque [N m].
+    u : float
+        Backward-field ratio [-].
+
+    Returns
+    -------
+    float or None
+        None when no curve passes through the rated point. Found once per motor and
+        process (a sweep validates its case at every point).
+    """
+
+    def excess(s_k: float) -> float:  # decreasing in s_k on (s_r, inf)
+        return t_k * (kloss(s_r, s_k) - u * kloss(2.0 - s_r, s_k)) - rated_torque
+
+    s_hi = 1e3
+    if excess(s_r) <= 0.0:
+        return None
+    # bisection on the bracket (importing scipy.optimize for brentq costs 0.25 s of
+    # start-up); 200 halvings reach adjacent floats
+    s_lo = s_r
+    for _ in range(200):
+        mid = 0.5 * (s_lo + s_hi)
+        if mid in (s_lo, s_hi):
+            break
+        if excess(mid) > 0.0:
+            s_lo = mid
+        else:
+            s_hi = mid
+    return 0.5 * (s_lo + s_hi)
 
 
 def motor_from_table(raw: Any, file: str) -> MotorSpec:
@@ -79,30 +120,14 @@ def motor_from_table(raw: Any, file: str) -> MotorSpec:
             f"{t_k:g} N m must exceed the rated torque {rated_torque:g} N m",
         )
     s_r = (sync - rated_speed) / sync
-
-    def excess(s_k: float) -> float:  # decreasing in s_k on (s_r, inf)
-        return t_k * (kloss(s_r, s_k) - u * kloss(2.0 - s_r, s_k)) - rated_torque
-
-    s_hi = 1e3
-    if excess(s_r) <= 0.0:
+    s_k = breakdown_slip(s_r, rated_torque, t_k, u)
+    if s_k is None:
         raise CaseError(
             file,
             "motor.backward_field_ratio",
             f"{u:g} leaves no curve through the rated point with this breakdown torque; "
             "lower it or raise motor.breakdown_torque",
         )
-    # bisection on the bracket (importing scipy.optimize for brentq costs 0.25 s of
-    # start-up); 200 halvings reach adjacent floats
-    s_lo = s_r
-    for _ in range(200):
-        mid = 0.5 * (s_lo + s_hi)
-        if mid in (s_lo, s_hi):
-            break
-        if excess(mid) > 0.0:
-            s_lo = mid
-        else:
-            s_hi = mid
-    s_k = 0.5 * (s_lo + s_hi)
     return MotorSpec(
         line_frequency=float(v["line_frequency"]),
         poles=poles,
