@@ -60,10 +60,11 @@ def draw_report_figures(
         save_cycle_figures(cycle, directory, plenum, title, cycle_names)
     if "loss_breakdown" in names:
         from recipsim.report.loss_plot import plot_loss_breakdown
-        from recipsim.report.mechanics_plots import save_figure
+        from recipsim.report.plotting import PNG_OPTIONS, fixed_margins
 
         figure = plot_loss_breakdown(summary_row, title=title)
-        save_figure(figure, Path(directory) / "loss_breakdown.png")
+        fixed_margins(figure, "waterfall")
+        figure.savefig(Path(directory) / "loss_breakdown.png", dpi=110, pil_kwargs=PNG_OPTIONS)
 
 
 def run_title(row: Mapping[str, Any]) -> str:

@@ -26,22 +26,18 @@ def test_forked_figures_are_the_in_process_files(run, tmp_path: Path) -> None:
     included) is written by the children, and the PNG bytes are identical: the
     children draw with the same code from an exact copy of the cycle table."""
     from recipsim.report.figure_process import FigureProcesses
-    from recipsim.report.loss_plot import plot_loss_breakdown
-    from recipsim.report.mechanics_plots import save_figure
-    from recipsim.report.plotting import save_cycle_figures
-    from recipsim.report.report_figures import report_figure_names, run_title
+    from recipsim.report.report_figures import draw_report_figures, report_figure_names
 
     op = run.case.operating_point
     plenum = (op.suction_pressure, op.discharge_pressure)
     serial, forked = tmp_path / "serial", tmp_path / "forked"
     serial.mkdir()
     forked.mkdir()
-    title = run_title(run.row)
-    save_cycle_figures(run.cycle, serial, plenum, title)  # decides itself what applies
-    save_figure(plot_loss_breakdown(run.row, title=title), serial / "loss_breakdown.png")
+    names = report_figure_names(run.cycle, run.row)
+    draw_report_figures(serial, run.cycle, run.row, plenum, names)
 
     figures = FigureProcesses(2)
-    figures.draw(forked, run.cycle, run.row, plenum, report_figure_names(run.cycle, run.row))
+    figures.draw(forked, run.cycle, run.row, plenum, names)
     figures.wait()
 
     names = sorted(p.name for p in serial.glob("*.png"))
