@@ -49,6 +49,9 @@ def start_compiled_runtime() -> None:
         return
     from numba.core.registry import cpu_target
 
+    from recipsim import timeline
+
+    timeline.mark("numba imported")
     stand_in = types.ModuleType(_BLAS_MODULE)
     sys.modules[_BLAS_MODULE] = stand_in
     try:
@@ -56,3 +59,4 @@ def start_compiled_runtime() -> None:
     finally:
         if sys.modules.get(_BLAS_MODULE) is stand_in:
             del sys.modules[_BLAS_MODULE]
+    timeline.mark("numba started")
