@@ -59,6 +59,7 @@ from recipsim.case.sections import (
     Valves,
     ValveSpec,
 )
+from recipsim.physics.compiled_runtime import start_compiled_runtime
 
 
 def load_case(
@@ -91,6 +92,7 @@ def load_case(
     CaseError
         With the file, the key and what is allowed.
     """
+    start_compiled_runtime()  # before the first compiled call (the property table's)
     path = shipped_case(path)
     file = str(path)
     texts = override_texts(overrides)

@@ -100,6 +100,10 @@ def format_system(result: dict[str, Any]) -> str:
         lines.append(f"  {name:28s} {t['wall [s]']:7.3f} / {t['cpu [s]']:7.3f}")
     for name, t in result["run"]["run"].items():
         lines.append(f"  recipsim run, {name:14s} {t['wall [s]']:7.3f} / {t['cpu [s]']:7.3f}")
+    for name, roles in result["run"].get("phases", {}).items():
+        lines.append(f"recipsim run, {name}: phase ends [s after start], medians")
+        for role, marks in roles.items():
+            lines.append(f"  {role}: " + ", ".join(f"{m} {t:.3f}" for m, t in marks.items()))
     if "map" in result:
         m = result["map"]
         lines.append(f"map {m['sweep']}: {m['points']} points, solves {m['solve_sum [s]']:.2f} s")

@@ -24,7 +24,7 @@ from collections.abc import Collection
 from pathlib import Path
 from typing import Any
 
-from recipsim import __version__
+from recipsim import __version__, timeline
 from recipsim.cli.bench import add_bench_parser
 from recipsim.cli.bench_system import add_bench_system_parser
 from recipsim.cli.calibrate import add_calibrate_parser
@@ -104,28 +104,38 @@ def run_case(
     :func:`recipsim.report.case_report.report_name`). It is checked before the
     simulation (it must be new, empty or a recipsim report), so a refused ``--out``
     costs nothing. ``plots``: every figure, none, or those named. ``fork_figures``:
-    draw the figures in forked processes that import matplotlib while this one solves
-    (:mod:`recipsim.report.figure_process`; the command line's choice, never a
-    library's).
+    write the tables and draw the figures in forked processes that import pandas and
+    matplotlib while this one solves (:mod:`recipsim.report.figure_process`; the
+    command line's choice, never a library's).
     """
     figures = None
     if fork_figures:  # the command line: on a fresh machine, compile while the table builds
+        from recipsim.report.figure_process import (
+            REPORT_PRELOAD,
+            TABLES_PRELOAD,
+            start_figure_processes,
+        )
         from recipsim.results.compile_ahead import start_compile_ahead
 
         start_compile_ahead(path, overrides, allow_external_paths)
-    if fork_figures and plots:
-        from recipsim.report.figure_process import start_figure_processes
-
-        figures = start_figure_processes()
+        # the report processes import pandas (and matplotlib) while this one solves
+        preload = REPORT_PRELOAD if plots else TABLES_PRELOAD
+        figures = start_figure_processes(
+            None if plots else 1, preload, share_pandas=False, at_least=1
+        )
     try:
         from recipsim.case.load import load_case
         from recipsim.report.case_report import report_dir, write_case_report
         from recipsim.results.run import simulate_case
 
+        timeline.mark("report processes started")
         case = load_case(path, overrides, allow_external_paths=allow_external_paths)
+        timeline.mark("case loaded")
         target = report_dir(out, case.name, case.overrides)
         run = simulate_case(case, argv)
+        timeline.mark("solved")
         write_case_report(run, target, overrides, plots, figures)
+        timeline.mark("report renamed into place")
     except BaseException:
         if figures is not None:  # the children exit without drawing; the first error wins
             with contextlib.suppress(BaseException):
@@ -168,9 +178,13 @@ def _run_command(args: argparse.Namespace, argv: list[str] | None) -> int:
 
 def main(argv: list[str] | None = None) -> int:
     """Entry point of the ``recipsim`` command."""
+    timeline.mark("imports")
     args = _parser().parse_args(argv)
     _show_progress_notes(not getattr(args, "quiet", False))
-    status: int = args.handler(args, argv)
+    try:
+        status: int = args.handler(args, argv)
+    finally:
+        timeline.flush("parent")
     return status
 
 

@@ -13,11 +13,15 @@ from collections.abc import Collection, Mapping, Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-import pandas as pd
-
+from recipsim import timeline
 from recipsim.atomic import atomic_directory, check_replaceable, checked_name, normalised
 from recipsim.errors import CaseError
-from recipsim.report.report_figures import draw_report_figures, report_figure_names
+from recipsim.report.report_figures import (
+    Table,
+    draw_report_figures,
+    report_figure_names,
+    write_tables,
+)
 from recipsim.report.report_figures import run_title as run_title  # re-exported
 
 if TYPE_CHECKING:
@@ -28,7 +32,7 @@ if TYPE_CHECKING:
 def write_report(
     out_dir: Path,
     summary_row: dict[str, Any],
-    cycle: pd.DataFrame,
+    cycle: Table,
     case_text: str,
     overrides: list[str],
     meta: dict[str, Any],
@@ -44,10 +48,11 @@ def write_report(
     ``case_text`` becomes ``case.toml`` (headed by the overrides when it does not name
     them itself); ``files`` (relative path to content) are written beside it.
     ``plots``: every figure (True), none (False) or those named
-    (:data:`recipsim.report.figure_names.FIGURE_NAMES`). ``figures``: forked processes
-    that draw them while the tables are written
-    (:func:`recipsim.report.figure_process.start_figure_processes`); None draws them
-    here, one after the other.
+    (:data:`recipsim.report.figure_names.FIGURE_NAMES`). ``cycle``: the cycle table, or
+    its columns as numpy arrays. ``figures``: forked report processes that write the
+    tables and draw the figures while this one writes the rest
+    (:func:`recipsim.report.figure_process.start_figure_processes`); None writes and
+    draws them here, one after the other.
 
     Returns
     -------
@@ -58,9 +63,11 @@ def write_report(
     with atomic_directory(out_dir) as tmp:
         names = report_figure_names(cycle, summary_row, plots)
         if figures is not None:
-            figures.draw(tmp, cycle, summary_row, plenum, names)
-        pd.DataFrame([summary_row]).to_csv(tmp / "summary.csv", index=False)
-        cycle.to_csv(tmp / "cycle.csv", index=False)
+            figures.draw(tmp, cycle, summary_row, plenum, names, tables=True)
+            timeline.mark("report handed over")
+        else:
+            write_tables(tmp, summary_row, cycle)
+            timeline.mark("tables written")
         header = "".join(f"# --set {o}\n" for o in overrides if f"# --set {o}" not in case_text)
         (tmp / "case.toml").write_text(
             ("# overrides applied on top of this file:\n" + header if header else "") + case_text
@@ -69,10 +76,13 @@ def write_report(
             (tmp / name).parent.mkdir(parents=True, exist_ok=True)
             (tmp / name).write_bytes(content)
         (tmp / "provenance.json").write_text(json.dumps(meta, indent=2, default=str))
+        timeline.mark("case and provenance written")
         if figures is not None:
             figures.wait()
+            timeline.mark("report processes done")
         elif names:
             draw_report_figures(tmp, cycle, summary_row, plenum, names)
+            timeline.mark("figures drawn")
     return out_dir
 
 
@@ -98,7 +108,7 @@ def write_case_report(
     return write_report(
         out_dir,
         run.row,
-        run.cycle,
+        run.table if figures is not None else run.cycle,
         text,
         overrides,
         run.meta,

@@ -72,6 +72,10 @@ def _child(jobs: int, results: int, preload: tuple[str, ...]) -> None:
     import importlib
     import signal
 
+    from recipsim import timeline
+
+    timeline.reset()
+
     # Ctrl-C reaches the whole process group: the parent handles it and tells the
     # children to stop (no job), so that its own exit status is the one reported
     signal.signal(signal.SIGINT, signal.SIG_IGN)
@@ -79,25 +83,34 @@ def _child(jobs: int, results: int, preload: tuple[str, ...]) -> None:
     try:
         for module in preload:
             importlib.import_module(module)
+        timeline.mark("imports")
         size = int.from_bytes(_read_exactly(jobs, 8) or bytes(8), "little")
         if size:
             module, function, kwargs = pickle.loads(_read_exactly(jobs, size))
+            timeline.mark("job received")
             value = getattr(importlib.import_module(module), function)(**kwargs)
+            timeline.mark("job done")
             reply = pickle.dumps((True, value))
     except BaseException as exc:  # noqa: BLE001 - everything goes back to the parent
         try:
             reply = pickle.dumps((False, exc))
         except Exception:  # noqa: BLE001 - an exception that cannot be pickled
             reply = pickle.dumps((False, RuntimeError(f"figure process: {exc!r}")))
+    timeline.flush("report process")
     _write_all(results, reply)
 
 
-#: What the children of a case report import before their job arrives.
+#: What the children of a case report import before their job arrives: pandas first
+#: (``recipsim run`` leaves the tables to them and never imports it itself).
 REPORT_PRELOAD = (
+    "pandas",
     "recipsim.report.loss_plot",
     "recipsim.report.plotting",
     "recipsim.report.report_figures",
 )
+
+#: The same without figures (``--no-plots``): the tables only.
+TABLES_PRELOAD = ("pandas", "recipsim.report.report_figures")
 
 
 class FigureProcesses:
@@ -149,13 +162,21 @@ class FigureProcesses:
         summary_row: Mapping[str, Any],
         plenum: tuple[float, float] | None,
         names: Collection[str],
+        tables: bool = False,
     ) -> None:
-        """Send the figures ``names`` of one case report to the children, shared by cost
-        (:func:`recipsim.report.report_figures.draw_report_figures`).
+        """Send the figures ``names`` of one case report to the children, shared by cost,
+        and with ``tables`` its ``summary.csv`` and ``cycle.csv`` to the least loaded one
+        (:func:`recipsim.report.report_figures.write_report_share`). ``cycle``: the cycle
+        table or its columns (numpy arrays, cheaper to send; the child builds the table).
 
         Returns at once; :meth:`wait` waits for the files. Call it (or :meth:`submit`)
         once.
         """
+        shares = share_by_cost(names, len(self.pids), FIGURE_COST)
+        if tables and len(shares) < len(self.pids):
+            shares.append([])  # a child without figures writes the tables
+        loads = [sum(FIGURE_COST.get(name, 0.1) for name in share) for share in shares]
+        lightest = loads.index(min(loads)) if tables else -1
         jobs = [
             {
                 "directory": Path(directory),
@@ -163,10 +184,11 @@ class FigureProcesses:
                 "summary_row": dict(summary_row),
                 "plenum": plenum,
                 "names": tuple(share),
+                "tables": index == lightest,
             }
-            for share in share_by_cost(names, len(self.pids), FIGURE_COST)
+            for index, share in enumerate(shares)
         ]
-        self.submit("recipsim.report.report_figures", "draw_report_figures", jobs)
+        self.submit("recipsim.report.report_figures", "write_report_share", jobs)
 
     def submit(self, module: str, function: str, jobs: list[dict[str, Any]]) -> None:
         """Run ``module.function(**kwargs)`` for each ``kwargs`` of ``jobs``, one per child
@@ -256,7 +278,10 @@ def idle_cores(most: int) -> int:
 
 
 def start_figure_processes(
-    count: int | None = None, preload: tuple[str, ...] = REPORT_PRELOAD
+    count: int | None = None,
+    preload: tuple[str, ...] = REPORT_PRELOAD,
+    share_pandas: bool = True,
+    at_least: int = 0,
 ) -> FigureProcesses | None:
     """Fork the figure children of one report, or None where forking is not available.
 
@@ -265,10 +290,16 @@ def start_figure_processes(
     count : int, optional
         Children; default ``RECIPSIM_FIGURE_PROCESSES`` when set, else the cores other
         work leaves idle (:func:`idle_cores`), at most 2 (more do not pay for their
-        start-up on a report's 7 figures). On a busy machine the children's own
-        matplotlib imports would cost more than their parallel drawing saves.
+        start-up on a report's 7 figures), and at least ``at_least``.
     preload : tuple of str
         Modules the children import while they wait (default: the case report's).
+    share_pandas : bool
+        Import pandas here before forking, so that the children have it (a parent that
+        needs pandas anyway: the sweep). ``recipsim run`` does not: its parent never
+        imports pandas or matplotlib, so one child costs no import twice and pays on a
+        busy machine too, which is why it asks for ``at_least=1``.
+    at_least : int
+        Fewest children where ``count`` is not given.
 
     Returns
     -------
@@ -282,11 +313,12 @@ def start_figure_processes(
     if not hasattr(os, "fork") or count == 0:
         return None
     if count is None:
-        count = idle_cores(2)
+        count = max(idle_cores(2), at_least)
         if count == 0:
             return None
-    # pandas, which the parent needs anyway, is imported once before forking: the
-    # children import only matplotlib (0.25 s each instead of 0.5 s)
-    import pandas  # noqa: F401
+    if share_pandas:
+        # pandas, which the parent needs anyway, is imported once before forking: the
+        # children import only matplotlib (0.25 s each instead of 0.5 s)
+        import pandas  # noqa: F401
 
     return FigureProcesses(count, preload)

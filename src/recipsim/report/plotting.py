@@ -121,14 +121,23 @@ PNG_OPTIONS = {"compress_level": 1}
 # Fixed margins of the report's figures [inch] (left, right, bottom, top): the
 # constrained layout engine, which measures every label at every draw, took about a
 # third of the drawing time. Sizes fit the report's labels at its font size.
-_MARGINS = {"single": (0.85, 0.25, 0.6, 0.65), "twin": (0.85, 0.8, 0.6, 0.65)}
+# The loss waterfall's are those its constrained layout found for its fixed labels.
+_MARGINS = {
+    "single": (0.85, 0.25, 0.6, 0.65),
+    "twin": (0.85, 0.8, 0.6, 0.65),
+    "waterfall": (1.83, 0.09, 0.48, 0.23),
+}
 
 
 def fixed_margins(fig: Figure, kind: str = "single") -> None:
     """Replace ``fig``'s layout engine by fixed margins (see ``_MARGINS``) [inch]."""
     left, right, bottom, top = _MARGINS[kind]
     width, height = fig.get_size_inches()
-    fig.set_layout_engine("none")
+    # no layout engine at all: savefig draws a figure that has one (even the "none"
+    # placeholder) twice, once to lay it out
+    fig.set_layout_engine(None)
+    if fig.get_layout_engine() is not None:  # a matplotlibrc that asks for one
+        fig.set_layout_engine("none")
     # subplots_adjust refuses a figure made with a layout engine: the same by hand
     fig.subplotpars.update(
         left=left / width,

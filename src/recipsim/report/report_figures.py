@@ -1,19 +1,28 @@
-"""Which figures a case report draws and drawing them: shared by the in-process report
-writer (:mod:`recipsim.report.case_report`) and the forked figure processes
-(:mod:`recipsim.report.figure_process`). Importing it costs pandas, not matplotlib."""
+"""Which figures a case report draws, drawing them and writing the report's tables:
+shared by the in-process report writer (:mod:`recipsim.report.case_report`) and the
+forked report processes (:mod:`recipsim.report.figure_process`). Importing it costs
+neither pandas nor matplotlib: the command line decides which figures apply before it
+has either."""
 
 from __future__ import annotations
 
 import math
 from collections.abc import Collection, Mapping
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
-import pandas as pd
+import numpy as np
+
+if TYPE_CHECKING:
+    import pandas as pd
+
+#: A cycle table: the DataFrame, or its columns as numpy arrays (what a report process
+#: is sent; it builds the DataFrame, see :func:`as_table`).
+Table = Any
 
 
 def report_figure_names(
-    cycle: pd.DataFrame, summary_row: Mapping[str, Any], plots: bool | Collection[str] = True
+    cycle: Table, summary_row: Mapping[str, Any], plots: bool | Collection[str] = True
 ) -> tuple[str, ...]:
     """Names of the figures a report draws: those of ``plots`` (True: all, False: none)
     that apply to the run (e.g. ``valves`` only with the simulated gas, ``loss_breakdown``
@@ -36,16 +45,52 @@ def report_figure_names(
     return tuple(name for name in FIGURE_NAMES if name in wanted and name in applies)
 
 
-def _moves(cycle: pd.DataFrame, bearing: str) -> bool:
+def _moves(cycle: Table, bearing: str) -> bool:
     """Whether ``bearing``'s journal moves (mechanics_plots.has_orbits, without importing
     matplotlib)."""
     columns = [f"bearing_displacement_{bearing}_{axis} [m]" for axis in "xy"]
-    return all(c in cycle for c in columns) and bool((cycle[columns] != 0.0).to_numpy().any())
+    return all(c in cycle for c in columns) and any(
+        bool(np.any(np.asarray(cycle[c]) != 0.0)) for c in columns
+    )
+
+
+def as_table(cycle: Table) -> pd.DataFrame:
+    """The cycle table as a DataFrame: ``cycle`` itself, or built from its columns."""
+    if isinstance(cycle, dict):
+        import pandas as pd
+
+        return pd.DataFrame(cycle)
+    return cycle
+
+
+def write_tables(directory: Path, summary_row: Mapping[str, Any], cycle: Table) -> None:
+    """Write ``summary.csv`` (one row) and ``cycle.csv`` into ``directory``."""
+    import pandas as pd
+
+    pd.DataFrame([dict(summary_row)]).to_csv(Path(directory) / "summary.csv", index=False)
+    as_table(cycle).to_csv(Path(directory) / "cycle.csv", index=False)
+
+
+def write_report_share(
+    directory: Path,
+    cycle: Table,
+    summary_row: Mapping[str, Any],
+    plenum: tuple[float, float] | None,
+    names: Collection[str],
+    tables: bool = False,
+) -> None:
+    """One report process's share of a report: its tables (``tables``), then the figures
+    ``names``."""
+    table = as_table(cycle)
+    if tables:
+        write_tables(directory, summary_row, table)
+    if names:
+        draw_report_figures(directory, table, summary_row, plenum, names)
 
 
 def draw_report_figures(
     directory: Path,
-    cycle: pd.DataFrame,
+    cycle: Table,
     summary_row: Mapping[str, Any],
     plenum: tuple[float, float] | None,
     names: Collection[str],
@@ -57,13 +102,14 @@ def draw_report_figures(
     title = run_title(summary_row)
     cycle_names = [name for name in names if name != "loss_breakdown"]
     if cycle_names:
-        save_cycle_figures(cycle, directory, plenum, title, cycle_names)
+        save_cycle_figures(as_table(cycle), directory, plenum, title, cycle_names)
     if "loss_breakdown" in names:
         from recipsim.report.loss_plot import plot_loss_breakdown
-        from recipsim.report.mechanics_plots import save_figure
+        from recipsim.report.plotting import PNG_OPTIONS, fixed_margins
 
         figure = plot_loss_breakdown(summary_row, title=title)
-        save_figure(figure, Path(directory) / "loss_breakdown.png")
+        fixed_margins(figure, "waterfall")
+        figure.savefig(Path(directory) / "loss_breakdown.png", dpi=110, pil_kwargs=PNG_OPTIONS)
 
 
 def run_title(row: Mapping[str, Any]) -> str:

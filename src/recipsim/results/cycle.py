@@ -10,10 +10,9 @@ pressure, where nothing is integrated.
 from __future__ import annotations
 
 import math
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
-import pandas as pd
 
 from recipsim.case.load import Case
 from recipsim.model.build import case_mechanism_parameters, scenes
@@ -22,6 +21,9 @@ from recipsim.physics.mechanics.tabulated import tabulated_pressure
 from recipsim.physics.thermo import cylinder as cyl
 from recipsim.results.bearings import flexible_columns, pinned_columns
 from recipsim.solve.periodic import PeriodicSolution, sample_outputs
+
+if TYPE_CHECKING:
+    import pandas as pd
 
 
 def _column(index: int) -> str:
@@ -93,6 +95,8 @@ def _time_from_tdc(grid: np.ndarray, speed: np.ndarray) -> np.ndarray:
 
 def cycle_table(solution: PeriodicSolution) -> pd.DataFrame:
     """One row per uniform crank-angle sample of the converged revolution, from TDC."""
+    import pandas as pd  # here: a run's report process builds the table (see .run)
+
     return pd.DataFrame(cycle_columns(solution))
 
 
@@ -165,4 +169,6 @@ def pinned_tabulated_cycle(case: Case) -> pd.DataFrame:
         _column(cyl.A_TORQUE_SHAFT): torque,
     }
     data.update(mech)
+    import pandas as pd
+
     return pd.DataFrame(data)

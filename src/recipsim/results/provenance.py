@@ -10,8 +10,6 @@ from functools import lru_cache
 from pathlib import Path
 from typing import Any
 
-import pandas as pd
-
 from recipsim import __version__
 from recipsim.case.case import Case
 from recipsim.physics.thermo.coolprop_info import coolprop_version
@@ -33,7 +31,7 @@ def case_provenance(case: Case, argv: list[str] | None = None) -> dict[str, Any]
         "numpy": numpy.__version__,
         "scipy": scipy.__version__,
         "numba": numba.__version__,
-        "pandas": pd.__version__,
+        "pandas": _pandas_version(),
         "property_backend": f"CoolProp {case.options.properties.upper()}",
         "fluid": case.refrigerant.coolprop_name,
         "options": case.options.__dict__,
@@ -62,6 +60,17 @@ def provenance(solution: PeriodicSolution, argv: list[str] | None = None) -> dic
     if table is not None:  # properties = "table": its measured error against HEOS, cache
         meta.update(table.provenance())
     return meta
+
+
+def _pandas_version() -> str:
+    """pandas' version, without importing it (a run writes its tables in a report process
+    that does, :mod:`recipsim.report.figure_process`)."""
+    module = sys.modules.get("pandas")
+    if module is not None:
+        return str(module.__version__)
+    from importlib.metadata import version
+
+    return version("pandas")
 
 
 @lru_cache(maxsize=1)

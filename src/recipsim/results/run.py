@@ -3,12 +3,12 @@
 from __future__ import annotations
 
 import logging
-from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 from recipsim.cache_dirs import numba_cache_lacks
 
 if TYPE_CHECKING:
+    import numpy as np
     import pandas as pd
 
     from recipsim.case.case import Case
@@ -24,17 +24,19 @@ logger = logging.getLogger(__name__)
 _COMPILED: set[str] = set()
 
 
-@dataclass
 class CaseRun:
     """A simulated case.
 
-    Attributes
+    Parameters
     ----------
     case : Case
     solution : PeriodicSolution or None
         None for the pinned mechanism under a tabulated pressure (inverse dynamics only).
-    cycle : pandas.DataFrame
-        The converged revolution (:func:`recipsim.results.tables.cycle_table`).
+    cycle : pandas.DataFrame or dict of str to numpy.ndarray
+        The converged revolution: the table, or its columns
+        (:func:`recipsim.results.cycle.cycle_columns`), from which :attr:`cycle` builds
+        the table when first asked (importing pandas then, 0.2-0.3 s: ``recipsim run``
+        hands the columns to a report process that has imported it meanwhile).
     row : dict
         The summary row (:func:`recipsim.results.tables.summary`), units in the keys.
     meta : dict
@@ -43,12 +45,36 @@ class CaseRun:
         The start-up transient before the periodic solve (``solver.start = "rest"``).
     """
 
-    case: Case
-    solution: PeriodicSolution | None
-    cycle: pd.DataFrame
-    row: dict[str, Any]
-    meta: dict[str, Any]
-    startup: StartupRun | None = None
+    def __init__(
+        self,
+        case: Case,
+        solution: PeriodicSolution | None,
+        cycle: pd.DataFrame | dict[str, np.ndarray],
+        row: dict[str, Any],
+        meta: dict[str, Any],
+        startup: StartupRun | None = None,
+    ) -> None:
+        self.case = case
+        self.solution = solution
+        self._cycle = cycle
+        self.row = row
+        self.meta = meta
+        self.startup = startup
+
+    @property
+    def cycle(self) -> pd.DataFrame:
+        """The cycle table (:func:`recipsim.results.tables.cycle_table`)."""
+        if isinstance(self._cycle, dict):
+            import pandas as pd
+
+            self._cycle = pd.DataFrame(self._cycle)
+        return self._cycle
+
+    @property
+    def table(self) -> pd.DataFrame | dict[str, np.ndarray]:
+        """The cycle table as it is held: the DataFrame, or its columns while no one has
+        asked for :attr:`cycle` (what a report process is sent)."""
+        return self._cycle
 
 
 def solver_entry(case: Case) -> str | None:
@@ -75,22 +101,26 @@ def simulate_case(case: Case, argv: list[str] | None = None) -> CaseRun:
         Naming the crank angle and the state where the integration failed, or the
         quantity and state of a failed property evaluation (never a raw library error).
     """
+    from recipsim.results.columns import Columns, CycleLike
     from recipsim.results.outcome import classify, explained
     from recipsim.results.provenance import case_provenance, provenance
-    from recipsim.results.tables import cycle_table, pinned_tabulated_cycle, summary
+    from recipsim.results.tables import cycle_columns, pinned_tabulated_cycle, summary
 
     case, solution, startup = _solve(case)
+    table: pd.DataFrame | dict[str, np.ndarray]
+    cycle: CycleLike
     if solution is None:  # pinned mechanism, tabulated pressure: inverse dynamics only
-        cycle = pinned_tabulated_cycle(case)
+        table = cycle = pinned_tabulated_cycle(case)
         meta = case_provenance(case, argv)
-    else:
-        cycle = cycle_table(solution)
+    else:  # the columns: the summary reads them as it reads the DataFrame (.columns)
+        table = cycle_columns(solution)
+        cycle = Columns(table)
         meta = provenance(solution, argv)
     with explained("post-processing the converged revolution"):
         row = summary(solution, cycle, case)
         _add_startup(row, startup)
     row["status"], row["status_message"] = classify(solution, cycle, row)
-    return CaseRun(case, solution, cycle, row, meta, startup)
+    return CaseRun(case, solution, table, row, meta, startup)
 
 
 def simulate_row(case: Case) -> dict[str, Any]:

@@ -26,22 +26,18 @@ def test_forked_figures_are_the_in_process_files(run, tmp_path: Path) -> None:
     included) is written by the children, and the PNG bytes are identical: the
     children draw with the same code from an exact copy of the cycle table."""
     from recipsim.report.figure_process import FigureProcesses
-    from recipsim.report.loss_plot import plot_loss_breakdown
-    from recipsim.report.mechanics_plots import save_figure
-    from recipsim.report.plotting import save_cycle_figures
-    from recipsim.report.report_figures import report_figure_names, run_title
+    from recipsim.report.report_figures import draw_report_figures, report_figure_names
 
     op = run.case.operating_point
     plenum = (op.suction_pressure, op.discharge_pressure)
     serial, forked = tmp_path / "serial", tmp_path / "forked"
     serial.mkdir()
     forked.mkdir()
-    title = run_title(run.row)
-    save_cycle_figures(run.cycle, serial, plenum, title)  # decides itself what applies
-    save_figure(plot_loss_breakdown(run.row, title=title), serial / "loss_breakdown.png")
+    names = report_figure_names(run.cycle, run.row)
+    draw_report_figures(serial, run.cycle, run.row, plenum, names)
 
     figures = FigureProcesses(2)
-    figures.draw(forked, run.cycle, run.row, plenum, report_figure_names(run.cycle, run.row))
+    figures.draw(forked, run.cycle, run.row, plenum, names)
     figures.wait()
 
     names = sorted(p.name for p in serial.glob("*.png"))
@@ -150,3 +146,44 @@ def test_children_ignore_ctrl_c_and_leave_it_to_the_parent() -> None:
         time.sleep(0.01)
     os.kill(pid, signal.SIGINT)
     assert figures.wait() == []
+
+
+def test_run_leaves_pandas_and_matplotlib_to_the_report_processes(tmp_path: Path) -> None:
+    """``recipsim run`` hands the tables and the figures to report processes (with and
+    without figures): the command's own process imports neither pandas nor matplotlib
+    (0.5 s between them), and the report is the one written in-process."""
+    import subprocess
+    import sys
+
+    import pandas as pd
+
+    child = (
+        "import sys\n"
+        "from recipsim.cli.main import main\n"
+        f"for extra in ([], ['--no-plots']):\n"
+        f"    out = {str(tmp_path)!r} + '/forked' + ''.join(extra)\n"
+        f"    assert main(['run', {str(REFERENCE)!r}, '--out', out, '--quiet', *extra]) == 0\n"
+        "print(sorted(m for m in ('pandas', 'matplotlib') if m in sys.modules))\n"
+    )
+    env = dict(os.environ, RECIPSIM_FIGURE_PROCESSES="1")
+    out = subprocess.run(
+        [sys.executable, "-c", child], capture_output=True, text=True, check=True, env=env
+    )
+    assert out.stdout.strip() == "[]"
+    from recipsim.cli.main import main
+
+    os.environ["RECIPSIM_FIGURE_PROCESSES"] = "0"
+    try:
+        assert main(["run", str(REFERENCE), "--out", str(tmp_path / "serial"), "--quiet"]) == 0
+    finally:
+        del os.environ["RECIPSIM_FIGURE_PROCESSES"]
+    serial = tmp_path / "serial" / "reference_r134a_lbp"
+    for forked in (tmp_path / "forked", tmp_path / "forked--no-plots"):
+        report = forked / "reference_r134a_lbp"
+        assert (report / "cycle.csv").read_bytes() == (serial / "cycle.csv").read_bytes()
+        ours, theirs = (pd.read_csv(r / "summary.csv") for r in (report, serial))
+        pd.testing.assert_frame_equal(
+            ours.drop(columns="wall_time [s]"), theirs.drop(columns="wall_time [s]")
+        )
+        has_figures = forked.name == "forked"
+        assert bool(list(report.glob("*.png"))) == has_figures

@@ -11,6 +11,7 @@ from helpers import REFERENCE
 from recipsim.cli.main import main
 from recipsim.errors import CaseError
 from recipsim.report.figure_names import FIGURE_NAMES, check_figure_names
+from recipsim.results.loss_breakdown import LOSS_COLUMNS
 
 
 @pytest.fixture(scope="module")
@@ -47,12 +48,19 @@ def test_fixed_margins_keep_every_label_inside(cycle, tmp_path: Path) -> None:
     from matplotlib.backends.backend_agg import FigureCanvasAgg
 
     from recipsim.report import plotting
+    from recipsim.report.loss_plot import plot_loss_breakdown
 
-    for name, kind, make in plotting._figure_makers(cycle, (1.2e5, 1.5e6)):
+    title = "reference_r134a_lbp: pinned crank, constant_speed, cylinder model"
+    row = {"motor_electrical_power [W]": 110.3, "isentropic_power [W]": 101.0}
+    row |= {column: 1.0 for column in LOSS_COLUMNS}
+    makers = plotting._figure_makers(cycle, (1.2e5, 1.5e6))
+    # the loss waterfall: its title on the axes, fixed margins too (report_figures)
+    makers.append(("loss_breakdown", "waterfall", lambda: plot_loss_breakdown(row, title=title)))
+    for name, kind, make in makers:
         fig = make()
         if kind is not None:
             plotting.fixed_margins(fig, kind)
-        suptitle = fig.suptitle("reference_r134a_lbp: pinned crank, constant_speed, cylinder model")
+        suptitle = fig.suptitle("" if name == "loss_breakdown" else title)
         renderer = FigureCanvasAgg(fig).get_renderer()
         width, height = fig.bbox.width, fig.bbox.height
         renderer.clear()

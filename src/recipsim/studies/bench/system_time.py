@@ -191,7 +191,10 @@ def measure_run_stages(case: str, overrides: list[str], repeats: int = 3) -> dic
     dict
         ``stages``: stage name to ``{"wall [s]", "cpu [s]"}`` (``numba_cache_load`` is the
         first solve minus a warm build and solve); ``run``: the command with its figures
-        and with ``--no-plots``, each ``{"wall [s]", "cpu [s]"}``.
+        and with ``--no-plots``, each ``{"wall [s]", "cpu [s]"}`` (CPU of the command and
+        its report processes); ``phases``: for each of the two, the real command's
+        timeline (:func:`median_timeline`): when each phase ended, seconds after the
+        command was started, in the parent and in its report processes.
     """
     with tempfile.TemporaryDirectory(prefix="recipsim-system-") as tmp:
         child = [sys.executable, "-c", _CHILD, case, tmp, *overrides]
@@ -204,13 +207,67 @@ def measure_run_stages(case: str, overrides: list[str], repeats: int = 3) -> dic
         }
         command = [sys.executable, "-m", "recipsim", "run", case, "--out", tmp, "--quiet"]
         command += [a for o in overrides for a in ("--set", o)]
-        result: dict[str, Any] = {"stages": stages, "run": {}}
+        result: dict[str, Any] = {"stages": stages, "run": {}, "phases": {}}
         for label, extra in (("with_figures", []), ("no_plots", ["--no-plots"])):
-            timings = [_timed(command + extra)[:2] for _ in range(repeats)]
+            timings, timelines = [], []
+            for _ in range(repeats):
+                wall, cpu, timeline = _timed_with_timeline(command + extra, Path(tmp))
+                timings.append((wall, cpu))
+                timelines.append(timeline)
             result["run"][label] = {
                 "wall [s]": statistics.median(t[0] for t in timings),
                 "cpu [s]": statistics.median(t[1] for t in timings),
             }
+            result["phases"][label] = median_timeline(timelines)
+    return result
+
+
+def _timed_with_timeline(
+    command: list[str], tmp: Path
+) -> tuple[float, float, dict[str, list[tuple[str, float]]]]:
+    """:func:`_timed` of ``recipsim run`` with ``RECIPSIM_TIMELINE`` set: its wall and CPU
+    time [s] and its marks (:mod:`recipsim.timeline`) by process role, each as the time
+    since the command was started [s]."""
+    path = tmp / "timeline.jsonl"
+    path.unlink(missing_ok=True)
+    start = time.time()
+    wall, cpu, _ = _timed(command, dict(os.environ, RECIPSIM_TIMELINE=str(path)))
+    marks: dict[str, list[tuple[str, float]]] = {}
+    for line in path.read_text().splitlines() if path.exists() else []:
+        entry = json.loads(line)
+        role = entry["role"] if entry["role"] not in marks else f"{entry['role']} {entry['pid']}"
+        marks[role] = [(name, at - start) for name, at, _cpu in entry["marks"]]
+    marks["parent"] = [*marks.get("parent", []), ("exit", wall)]
+    return wall, cpu, marks
+
+
+def median_timeline(
+    timelines: list[dict[str, list[tuple[str, float]]]],
+) -> dict[str, dict[str, float]]:
+    """Median over runs of the time each mark of each process role is reached [s, since
+    the command started] (``parent``, ``report process``; a role missing from some runs,
+    e.g. a second report process, is given over the runs that have it).
+
+    Parameters
+    ----------
+    timelines : list of dict
+        Per run, role to ``[(mark, seconds), ...]`` (:func:`_timed_with_timeline`).
+
+    Returns
+    -------
+    dict
+        Role to ``{mark: median seconds}``, marks in the order reached.
+    """
+    result: dict[str, dict[str, float]] = {}
+    roles = dict.fromkeys(role for t in timelines for role in t)
+    for role in roles:
+        names = dict.fromkeys(name for t in timelines for name, _ in t.get(role, []))
+        result[role] = {
+            name: statistics.median(
+                at for t in timelines for mark, at in t.get(role, []) if mark == name
+            )
+            for name in names
+        }
     return result
 
 

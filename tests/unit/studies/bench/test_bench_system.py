@@ -3,6 +3,8 @@ and one run of the stages of ``recipsim run`` in a child interpreter."""
 
 from __future__ import annotations
 
+import os
+
 import pytest
 
 from recipsim.cli.bench_system import format_system
@@ -37,8 +39,22 @@ def test_run_stages_cover_the_command() -> None:
         assert stages[name]["wall [s]"] >= 0.0 and stages[name]["cpu [s]"] >= 0.0
     assert {f"figure_{n}" for n in ("p_V", "torque", "valves", "bearing_loads")} <= set(stages)
     assert "numba_cache_load" in stages
+    # the real command's phases, from its timeline: the parent's in order, and the report
+    # process that wrote the tables and drew the figures meanwhile
+    for label in ("with_figures", "no_plots"):
+        parent = result["phases"][label]["parent"]
+        assert list(parent)[0] == "imports" and list(parent)[-1] == "exit"
+        assert {"numba started", "case loaded", "solved", "report renamed into place"} <= set(
+            parent
+        )
+        assert list(parent.values()) == sorted(parent.values())
+        assert parent["exit"] == pytest.approx(result["run"][label]["wall [s]"])
+        if hasattr(os, "fork"):
+            child = result["phases"][label]["report process"]
+            assert child["job done"] <= parent["report processes done"]
     text = format_system({"machine": {"load_average": [0, 0, 0]}, "run": result})
     assert "recipsim run, with_figures" in text
+    assert "recipsim run, no_plots: phase ends" in text
 
 
 def test_warmup_refuses_an_unknown_refrigerant(capsys: pytest.CaptureFixture[str]) -> None:

@@ -1,0 +1,62 @@
+"""numba's code generator, started without importing scipy.linalg.
+
+Before numba loads the first compiled function of a process (from its cache or by
+compiling it) it initialises its code generator once: it imports its implementation
+modules, among them ``numba.np.arraymath``, which checks that a BLAS is at hand by
+importing ``scipy.linalg.cython_blas``. That import runs ``scipy.linalg``'s package
+(0.1-0.2 s: scipy's array-API layer, numpy's f2py), a fifth to a third of numba's start
+and more than a warm solve; recipsim's compiled code calls no BLAS (its linear algebra
+is written out in :mod:`recipsim.solve.stiff`). :func:`start_compiled_runtime` runs
+that initialisation with a stand-in for the module while the check imports it; numba
+still reads scipy's BLAS integer width from ``scipy.__config__``, and code that does
+need BLAS later imports the real module (the stand-in is gone by then), as numba's
+lowering of ``np.dot`` and ``np.linalg`` imports it again.
+"""
+
+from __future__ import annotations
+
+import os
+import sys
+import types
+
+#: The module numba imports only to see that it imports.
+_BLAS_MODULE = "scipy.linalg.cython_blas"
+
+_started = False
+
+
+def start_compiled_runtime() -> None:
+    """Initialise numba's code generator without importing ``scipy.linalg`` (see the
+    module docstring); once per process, before the first compiled call.
+
+    Does nothing where numba's implementation modules or scipy.linalg are already
+    imported, under ``NUMBA_DISABLE_JIT=1``, or without scipy (numba then finds no BLAS
+    on its own, as it would have).
+    """
+    global _started
+    if _started:
+        return
+    _started = True
+    if (
+        os.environ.get("NUMBA_DISABLE_JIT") == "1"
+        or "numba.np.arraymath" in sys.modules
+        or _BLAS_MODULE in sys.modules
+    ):
+        return
+    import importlib.util
+
+    if importlib.util.find_spec("scipy") is None:
+        return
+    from numba.core.registry import cpu_target
+
+    from recipsim import timeline
+
+    timeline.mark("numba imported")
+    stand_in = types.ModuleType(_BLAS_MODULE)
+    sys.modules[_BLAS_MODULE] = stand_in
+    try:
+        cpu_target.target_context.refresh()  # what numba's first dispatch would do
+    finally:
+        if sys.modules.get(_BLAS_MODULE) is stand_in:
+            del sys.modules[_BLAS_MODULE]
+    timeline.mark("numba started")
