@@ -34,6 +34,7 @@ from recipsim.cli.options import add_common_options, exit_status
 from recipsim.cli.paper import add_paper_parser
 from recipsim.cli.sweep import add_sweep_parser
 from recipsim.cli.warmup import add_warmup_parser
+from recipsim.physics import compiled_runtime
 from recipsim.report.figure_names import FIGURE_NAMES, check_figure_names
 
 # Each registers its subparser and sets ``handler(args, argv) -> exit status`` on it.
@@ -179,6 +180,7 @@ def _run_command(args: argparse.Namespace, argv: list[str] | None) -> int:
 def main(argv: list[str] | None = None) -> int:
     """Entry point of the ``recipsim`` command."""
     timeline.mark("imports")
+    compiled_runtime.allow_stand_in()  # numba starts without scipy.linalg (0.1-0.2 s)
     args = _parser().parse_args(argv)
     _show_progress_notes(not getattr(args, "quiet", False))
     try:

@@ -11,6 +11,10 @@ that initialisation with a stand-in for the module while the check imports it; n
 still reads scipy's BLAS integer width from ``scipy.__config__``, and code that does
 need BLAS later imports the real module (the stand-in is gone by then), as numba's
 lowering of ``np.dot`` and ``np.linalg`` imports it again.
+
+Only the command line does this (:func:`allow_stand_in`, called by ``recipsim``'s
+entry point): a library does not touch ``sys.modules`` behind its caller's back, and a
+notebook pays numba's start once per session anyway.
 """
 
 from __future__ import annotations
@@ -23,18 +27,27 @@ import types
 _BLAS_MODULE = "scipy.linalg.cython_blas"
 
 _started = False
+_allowed = False
+
+
+def allow_stand_in() -> None:
+    """Let :func:`start_compiled_runtime` use the stand-in in this process (the command
+    line's choice, never a library's)."""
+    global _allowed
+    _allowed = True
 
 
 def start_compiled_runtime() -> None:
     """Initialise numba's code generator without importing ``scipy.linalg`` (see the
     module docstring); once per process, before the first compiled call.
 
-    Does nothing where numba's implementation modules or scipy.linalg are already
-    imported, under ``NUMBA_DISABLE_JIT=1``, or without scipy (numba then finds no BLAS
-    on its own, as it would have).
+    Does nothing unless the command line allowed it (:func:`allow_stand_in`), where
+    numba's implementation modules or scipy.linalg are already imported, under
+    ``NUMBA_DISABLE_JIT=1``, or without scipy (numba then finds no BLAS on its own, as
+    it would have).
     """
     global _started
-    if _started:
+    if _started or not _allowed:
         return
     _started = True
     if (
