@@ -76,9 +76,9 @@ SUMMARY_DOCS: tuple[ColumnDoc, ...] = (
         "discharge mass flow times (h of the suction gas at the suction pressure and suction "
         "temperature - h of the liquid at the discharge pressure and liquid temperature; "
         "saturated liquid at the bubble point), the temperatures being the rating standard's "
-        "where the case names one (`operating_point.standard`); the compressor inlet, not the"
-        ' heated gas the valve draws with `thermal = "network"` (so are the volumetric and '
-        "isentropic efficiencies)",
+        "where the case names one (`operating_point.standard`); the compressor inlet, not "
+        'the heated gas the valve draws with `thermal = "network"` (so are the volumetric '
+        "and isentropic efficiencies)",
     ),
     _c(
         "discharge_backflow_fraction [-]",
@@ -189,9 +189,9 @@ SUMMARY_DOCS: tuple[ColumnDoc, ...] = (
         "power absorbed by the bearings, -(sum F.de/dt + T_journal w_journal + T_bushing "
         "w_bushing) averaged over the revolution: the oil films' friction and squeeze "
         "dissipation, the contact friction, the piston film's friction and, for linear "
-        "bearings, the damper dissipation (at the periodic state their spring part integrates"
-        " to zero; on an unconverged revolution it also holds the change of spring energy); 0"
-        " for the pinned crank",
+        "bearings, the damper dissipation (at the periodic state their spring part "
+        "integrates to zero; on an unconverged revolution it also holds the change of spring "
+        "energy); 0 for the pinned crank",
     ),
     _c("mechanical_efficiency [-]", "indicated power / shaft power (flexible scenes)"),
     _c(
@@ -227,15 +227,15 @@ SUMMARY_DOCS: tuple[ColumnDoc, ...] = (
     _c(
         "piston_friction_power [W]",
         "time mean of the power of the piston film's axial friction (lubricated skirt); with "
-        '`options.friction = "mean"`, the concentric skirt\'s mu pi D L v^2 / delta (L: piston'
-        " length inside the bore, delta: the piston film's or else the leakage radial "
+        '`options.friction = "mean"`, the concentric skirt\'s mu pi D L v^2 / delta (L: '
+        "piston length inside the bore, delta: the piston film's or else the leakage radial "
         "clearance)",
     ),
     _c(
         "motor_input_power [W]",
         "induction motor drive: air-gap power, synchronous speed x time-mean motor torque "
-        "(the electrical input less the stator losses, which are not modelled); NaN for other"
-        " drives",
+        "(the electrical input less the stator losses, which are not modelled); NaN for "
+        "other drives",
     ),
     _c(
         "motor_rotor_loss_power [W]",
@@ -265,17 +265,17 @@ SUMMARY_DOCS: tuple[ColumnDoc, ...] = (
     _c("indicated_isentropic_efficiency [-]", "isentropic power over indicated power"),
     _c(
         "discharge_temperature [K]",
-        "temperature at the discharge pressure and the mass-weighted enthalpy of the gas that"
-        " left through the discharge valve",
+        "temperature at the discharge pressure and the mass-weighted enthalpy of the gas "
+        "that left through the discharge valve",
     ),
     _c(
         "mass_balance_residual [-]",
         "(suction - discharge - leakage mass) / suction mass over the converged revolution; "
         "below a volumetric efficiency of about 1 % the scale is 1 % of the swept mass "
         "(suction density x swept volume) instead, the larger of the two "
-        "(`recipsim.solve.residual.closures`). The cycle residual includes this closure / 10,"
-        " so a converged run has it below 10 x `solver.cycle_tolerance` (1e-3 by default); "
-        "`no_delivery` rows carry their own (see `status`)",
+        "(`recipsim.solve.residual.closures`). The cycle residual includes this closure / "
+        "10, so a converged run has it below 10 x `solver.cycle_tolerance` (1e-3 by "
+        "default); `no_delivery` rows carry their own (see `status`)",
     ),
     _c(
         "energy_balance_residual [-]",
@@ -292,8 +292,8 @@ SUMMARY_DOCS: tuple[ColumnDoc, ...] = (
     ),
     _c(
         "suction_plenum_pressure [Pa]",
-        "pressure of that plenum: the suction line pressure less the suction muffler's drop K"
-        " rho v^2 / 2 (`network`)",
+        "pressure of that plenum: the suction line pressure less the suction muffler's drop "
+        "K rho v^2 / 2 (`network`)",
     ),
     _c(
         "discharge_plenum_pressure [Pa]",
@@ -373,16 +373,16 @@ SUMMARY_DOCS: tuple[ColumnDoc, ...] = (
         "how the periodic state was found: `revolutions` (revolution iteration), `shooting` "
         "(Newton on the one-revolution map, `auto` having handed over or asked for), "
         "`shooting, fell back to revolutions`, `revolutions, shooting's period-1 orbit "
-        "repels` (one-revolution shooting found an orbit with a real Floquet multiplier below"
-        " -1.05, rejected: `solve/periodic.py`), `shooting on the n-revolution map` (a "
+        "repels` (one-revolution shooting found an orbit with a real Floquet multiplier "
+        "below -1.05, rejected: `solve/periodic.py`), `shooting on the n-revolution map` (a "
         "`subharmonic` run that `auto` handed over while it approached a period of n "
         "revolutions: `solve/subharmonic.py`), `none` (nothing integrated)",
     ),
     _c("newton_iterations [-]", "Newton steps of the shooting solver (0 for revolution iteration)"),
     _c(
         "suction_valve_opening_angle [deg]",
-        "crank angle at which the suction valve opens (start of the longest open interval, to"
-        " the sample resolution)",
+        "crank angle at which the suction valve opens (start of the longest open interval, "
+        "to the sample resolution)",
     ),
     _c("suction_valve_closing_angle [deg]", "crank angle of the last open sample of that interval"),
     _c("discharge_valve_opening_angle [deg]", "as above for the discharge valve"),
