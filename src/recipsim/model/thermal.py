@@ -51,6 +51,7 @@ from recipsim.physics.thermo.shell_network import (
     muffler_pressure_drop,
     solve_network,
 )
+from recipsim.physics.thermo.shell_nodes import GP_DC, GP_SM
 
 _DEW_MARGIN = 0.5  # K
 
@@ -211,7 +212,7 @@ class ThermalCoupling:
         """The network together with the cycle moved to a plenum at the suction muffler's
         temperature (:class:`CycleResponse`), solved by one Newton."""
         state = self._state(model)
-        p_sm = pressures.node[0]
+        p_sm = pressures.node[GP_SM]
         guess = None if self.applied is None else self.applied.solution.temperature
 
         def loads_at(t_sm: float) -> NetworkLoads:
@@ -240,8 +241,8 @@ class ThermalCoupling:
                 abs(t[SM] - t_old[SM]) / t[SM],
                 abs(t[CW] - t_old[CW]) / t[CW],
                 abs(t[DC] - t_old[DC]) / t[DC],
-                abs(pressures.node[0] - old.pressures.node[0]) / pressures.node[0],
-                abs(pressures.node[2] - old.pressures.node[2]) / pressures.node[2],
+                abs(pressures.node[GP_SM] - old.pressures.node[GP_SM]) / pressures.node[GP_SM],
+                abs(pressures.node[GP_DC] - old.pressures.node[GP_DC]) / pressures.node[GP_DC],
             )
         self.applied = AppliedNetwork(solution, solution.loads, pressures)
         return change
@@ -316,8 +317,8 @@ def _apply(model: CoupledModel, solution: NetworkSolution, pressures: NetworkPre
     """Give the cylinder the boundary of a network solution: suction plenum (suction
     muffler node), discharge plenum (discharge chamber), shell gas, cylinder wall."""
     t = solution.temperature
-    model.set_suction_state(pressures.node[0], float(t[SM]))
-    model.set_discharge_state(pressures.node[2], float(solution.enthalpy[DC]))
+    model.set_suction_state(pressures.node[GP_SM], float(t[SM]))
+    model.set_discharge_state(pressures.node[GP_DC], float(solution.enthalpy[DC]))
     model.set_shell_gas_state(float(t[SG]))
     model.par[cyl.C_TWALL] = float(t[CW])
 

@@ -5,8 +5,8 @@ eccentric; piston for pin, piston_top and piston_skirt), inertial X, Y, Z [N];
 displacements are journal minus bushing marker normal to the bearing axis [m] (zero
 for the pinned mechanism). Every column name carries its unit; the columns that are
 mechanism outputs take name and unit from the layout's table
-(:data:`recipsim.physics.mechanics.layout.OUTPUTS`); the meaning of each column is
-documented in ``reports/README.md``.
+(:data:`recipsim.physics.mechanics.layout.OUTPUTS`), meaning included; the others are
+declared in :mod:`.column_docs`.
 """
 
 from __future__ import annotations

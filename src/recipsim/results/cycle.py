@@ -1,7 +1,8 @@
 """The cycle table: one row per uniform crank-angle sample of the converged revolution.
 
 Every column name carries its unit (``cylinder_pressure [Pa]``); the meaning of each
-column is documented in ``reports/README.md``. :func:`cycle_columns` gives the columns as
+column is its layout entry's or declared in :mod:`.column_docs` (``reports/README.md``'s
+tables are generated from them). :func:`cycle_columns` gives the columns as
 numpy arrays, :func:`cycle_table` the DataFrame of them (the same values);
 :func:`pinned_tabulated_cycle` is the table of the pinned mechanism under a tabulated
 pressure, where nothing is integrated.

@@ -9,7 +9,6 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
-from recipsim.physics.mechanics.layout import BEARING_NAMES
 from recipsim.solve import startup as su
 from recipsim.solve.startup import StartupRun
 
@@ -29,18 +28,15 @@ def startup_table(run: StartupRun) -> pd.DataFrame:
     """
     tr = run.transient.trace
     speed = tr[:, su.TR_SPEED]
+    col = su.TRACE.column  # "name [unit]" of a trace slot
     columns: dict[str, np.ndarray] = {
-        "time [s]": tr[:, su.TR_TIME],
+        col(su.TR_TIME): tr[:, su.TR_TIME],
         "crank_angle [deg]": np.degrees(np.mod(tr[:, su.TR_ANGLE], 2.0 * math.pi)),
-        "crank_speed [rad/s]": speed,
+        col(su.TR_SPEED): speed,
         "crank_speed [rpm]": speed * 30.0 / math.pi,
-        "motor_torque [N m]": tr[:, su.TR_MOTOR_TORQUE],
-        "cylinder_pressure [Pa]": tr[:, su.TR_PRESSURE],
-        "suction_pressure [Pa]": tr[:, su.TR_SUCTION_PRESSURE],
-        "discharge_pressure [Pa]": tr[:, su.TR_DISCHARGE_PRESSURE],
     }
-    for i, name in enumerate(BEARING_NAMES):
-        columns[f"bearing_load_{name} [N]"] = tr[:, su.TR_BEARING_LOAD + i]
+    for slot in range(su.TR_MOTOR_TORQUE, su.N_TRACE):  # torque, pressures, bearing loads
+        columns[col(slot)] = tr[:, slot]
     return pd.DataFrame(columns)
 
 

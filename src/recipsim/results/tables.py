@@ -1,10 +1,11 @@
 """Summary metrics of a converged cycle (the cycle table itself: :mod:`.cycle`, whose
 names this module re-exports).
 
-Every key carries its unit (``cooling_capacity [W]``); the meaning of each is documented
-in ``reports/README.md``. The summary reads the cycle table through
-:class:`~recipsim.results.columns.CycleLike`: a DataFrame or, where the table is not kept
-(a sweep point), its columns as arrays (:func:`summary_row`), with the same values.
+Every key carries its unit (``cooling_capacity [W]``); the meaning of each is declared
+in :mod:`.summary_docs` (``reports/README.md``'s tables are generated from it). The
+summary reads the cycle table through :class:`~recipsim.results.columns.CycleLike`: a
+DataFrame or, where the table is not kept (a sweep point), its columns as arrays
+(:func:`summary_row`), with the same values.
 
 Definitions (per converged revolution, f = shaft speed in revolutions per second):
 

@@ -16,7 +16,8 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from recipsim.model.scenes import named_state
-from recipsim.physics.thermo.shell_network import NODES, SM, node_residuals
+from recipsim.physics.thermo.shell_network import node_residuals
+from recipsim.physics.thermo.shell_nodes import GP_DC, GP_SM, NODES, SM
 
 if TYPE_CHECKING:
     from recipsim.case.case import Case
@@ -75,8 +76,8 @@ def thermal_columns(solution: PeriodicSolution | None, case: Case) -> dict[str, 
         {
             "shell_heat_rejection [W]": q_shell,
             "cylinder_inlet_temperature [K]": float(t[SM]),
-            "suction_plenum_pressure [Pa]": used.pressures.node[0],
-            "discharge_plenum_pressure [Pa]": used.pressures.node[2],
+            "suction_plenum_pressure [Pa]": used.pressures.node[GP_SM],
+            "discharge_plenum_pressure [Pa]": used.pressures.node[GP_DC],
             "thermal_balance_residual [-]": float(
                 np.max(node_residuals(coupling.parameters, loads, net))
             ),

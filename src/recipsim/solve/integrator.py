@@ -40,9 +40,8 @@ location), :mod:`.dense_output` (Hermite interpolation and samples) and
 :mod:`.step_control` (step-size control and method switching); this module holds the
 loop, the event landing and the counters.
 
-Status codes returned in ``stats[ST_STATUS]``: 0 done, 1 step size underflow,
-2 property failure that smaller steps could not cure, 3 too many events at one
-instant (chattering).
+Counters in ``stats``: table :data:`STATS` (``ST_*``). Status: 0 done, 1 step size underflow,
+2 property failure that smaller steps could not cure, 3 chattering (events at one instant).
 """
 
 from __future__ import annotations
@@ -61,6 +60,7 @@ from recipsim.model.scenes import (
     rhs_for,
 )
 from recipsim.model.scenes import scene_rhs as scene_rhs  # re-exported (every scene)
+from recipsim.physics.layout_table import Layout
 from recipsim.physics.thermo.cylinder import I_SCENE
 from recipsim.solve.dense_output import hermite, record_samples
 from recipsim.solve.dopri5 import dopri5_step, stiffness_estimate
@@ -79,18 +79,18 @@ from recipsim.solve.step_control import (  # METHOD_*: also the integrator's pub
 )
 from recipsim.solve.stiff import jacobian_fd, spectral_bound, w_step
 
-ST_STATUS = 0
-ST_NFEV = 1
-ST_NACCEPT = 2
-ST_NREJECT = 3
-ST_NEVENTS = 4
-ST_T = 5
-ST_H = 6
-ST_NSAMPLES = 7
-ST_NSTIFF = 8  # accepted Rosenbrock-W steps
-ST_NJAC = 9  # finite-difference Jacobians
-N_STATS = 10
-
+STATS = Layout("integrator statistics")
+ST_STATUS = STATS.add("status", "code", "how the run ended (DONE, STEP_UNDERFLOW, ...)")
+ST_NFEV = STATS.add("rhs_evaluations", "count", "right-hand-side evaluations")
+ST_NACCEPT = STATS.add("steps", "count", "accepted steps")
+ST_NREJECT = STATS.add("rejected_steps", "count", "rejected steps")
+ST_NEVENTS = STATS.add("events", "count", "located events")
+ST_T = STATS.add("time", "s", "time reached")
+ST_H = STATS.add("step", "s", "last step size")
+ST_NSAMPLES = STATS.add("samples", "count", "output samples written")
+ST_NSTIFF = STATS.add("stiff_steps", "count", "accepted Rosenbrock-W steps")
+ST_NJAC = STATS.add("jacobians", "count", "finite-difference Jacobians")
+N_STATS = STATS.size
 
 DONE = 0
 STEP_UNDERFLOW = 1

@@ -50,6 +50,7 @@ import numpy as np
 from recipsim.errors import SolverError
 from recipsim.model import scenes
 from recipsim.model.build import START_ANGLE, Model
+from recipsim.physics.layout_table import Layout
 from recipsim.physics.mechanics import layout as mlay
 from recipsim.physics.thermo import cylinder as cyl
 from recipsim.solve.integrator import N_STATS, ST_NACCEPT, ST_NFEV, ST_NSAMPLES, ST_STATUS, ST_T
@@ -76,16 +77,25 @@ SAMPLES_PER_PERIOD = 72
 #: longest window, in nominal periods: a revolution taking longer is a stall
 WINDOW_PERIODS = 50
 
-# columns of StartupTransient.trace
-TR_TIME = 0  # [s] from the start
-TR_ANGLE = 1  # crank angle [rad], unwrapped
-TR_SPEED = 2  # crank speed [rad/s]
-TR_MOTOR_TORQUE = 3  # [N m]
-TR_PRESSURE = 4  # cylinder pressure [Pa]
-TR_SUCTION_PRESSURE = 5  # suction plenum [Pa]
-TR_DISCHARGE_PRESSURE = 6  # discharge plenum [Pa]
-TR_BEARING_LOAD = 7  # six bearing load magnitudes [N], in layout.BEARING_NAMES order
-N_TRACE = TR_BEARING_LOAD + mlay.N_BEARINGS
+#: Columns of StartupTransient.trace (names and units: startup.csv's where it writes them).
+TRACE = Layout("start-up trace")
+TR_TIME = TRACE.add("time", "s", "time from standstill")
+TR_ANGLE = TRACE.add("crank_angle", "rad", "crank angle, unwrapped")
+TR_SPEED = TRACE.add("crank_speed", "rad/s", "crank speed (the rotor's spin rate)")
+TR_MOTOR_TORQUE = TRACE.add(
+    "motor_torque",
+    "N m",
+    "torque of the induction motor's curve at that speed, positive along the rotation",
+)
+TR_PRESSURE = TRACE.add("cylinder_pressure", "Pa", "gas pressure in the cylinder")
+TR_SUCTION_PRESSURE = TRACE.add("suction_pressure", "Pa", "suction plenum along the pull-down ramp")
+TR_DISCHARGE_PRESSURE = TRACE.add(
+    "discharge_pressure", "Pa", "discharge plenum along the pull-down ramp"
+)
+TR_BEARING_LOAD = TRACE.add_series(
+    "bearing_load_{}", mlay.BEARING_NAMES, "N", "force magnitude of the bearing"
+)
+N_TRACE = TRACE.size
 
 
 @dataclass

@@ -1,5 +1,7 @@
 """The layout tables: every slot of the compiled arrays declared once, the index constants
-handed out by the tables (issue 13, "layouts declared once").
+handed out by the tables (issue 13, "layouts declared once"): the scenes' arrays, the
+property buffer and tables, the journal tables, the pinned mechanism's outputs, the shell
+network's nodes, the integrator's counters and the start-up trace.
 
 Each table's indices run 0..n-1 in order, its names are unique, its units parse as
 units (or are one of the integer kinds), and the module-level constants are the
@@ -20,8 +22,15 @@ import pytest
 
 from recipsim.model import scenes
 from recipsim.physics.layout_table import Layout
+from recipsim.physics.mechanics import journal_table as jt
 from recipsim.physics.mechanics import layout as mlay
+from recipsim.physics.mechanics import pinned
 from recipsim.physics.thermo import cylinder as cyl
+from recipsim.physics.thermo import property_slots as ps
+from recipsim.physics.thermo import property_table as pt
+from recipsim.physics.thermo import shell_network as sn
+from recipsim.physics.thermo import shell_nodes
+from recipsim.solve import integrator, startup
 
 #: Units of integer slots (and the dimensionless "-"), not physical units.
 NON_PHYSICAL_UNITS = {"-", "code", "index", "count"}
@@ -42,6 +51,18 @@ TABLES: list[tuple[str, Layout]] = [
     ("scenes.MECHANISM_STATES", scenes.MECHANISM_STATES),
     ("scenes.COUPLED_STATES", scenes.COUPLED_STATES),
     ("scenes.OUTPUTS", scenes.OUTPUTS),
+    ("property_slots.PROPS", ps.PROPS),
+    ("property_table.HEADER", pt.HEADER),
+    ("property_table.GRID", pt.GRID),
+    ("property_table.SAT", pt.SAT),
+    ("journal_table.HEADER", jt.HEADER),
+    ("journal_table.QUANTITIES", jt.QUANTITIES),
+    ("journal_table.NODE", jt.NODE),
+    ("pinned.OUTPUTS", pinned.OUTPUTS),
+    ("shell_nodes.TEMPERATURES", shell_nodes.TEMPERATURES),
+    ("shell_nodes.PRESSURES", shell_nodes.PRESSURES),
+    ("integrator.STATS", integrator.STATS),
+    ("startup.TRACE", startup.TRACE),
 ]
 
 
@@ -202,10 +223,25 @@ def test_scene_tables_compose_the_blocks() -> None:
     assert scenes.MECH_Y[scenes.SCENE_COUPLED] == cyl.N_STATE
 
 
-@pytest.mark.parametrize("module", [cyl, mlay, scenes], ids=lambda m: m.__name__)
+#: Slot-constant prefixes of each module whose constants come from tables.
+SLOT_PREFIXES: dict[ModuleType, tuple[str, ...]] = {
+    cyl: ("Y_", "Q_", "I_", "C_", "V_", "A_"),
+    mlay: ("Y_", "P_", "BP_", "A_"),
+    scenes: ("I_", "P_", "MQ_", "A_"),
+    ps: ("PROP_",),
+    pt: ("H_", "G_", "S_"),
+    jt: ("H_", "JQ_"),
+    pinned: ("PIN_",),
+    shell_nodes: ("GP_", "SM", "SG", "CW", "DC", "DM", "MO", "OIL", "SH"),
+    integrator: ("ST_",),
+    startup: ("TR_",),
+}
+
+
+@pytest.mark.parametrize("module", list(SLOT_PREFIXES), ids=lambda m: m.__name__)
 def test_no_slot_constant_is_written_by_hand(module: ModuleType) -> None:
     """Slot constants come from a table call or from other constants, never a literal."""
-    prefixes = ("Y_", "Q_", "I_", "C_", "V_", "A_", "P_", "BP_", "MQ_")
+    prefixes = SLOT_PREFIXES[module]
     tree = ast.parse(inspect.getsource(module))
     for node in tree.body:
         if not (isinstance(node, ast.Assign) and len(node.targets) == 1):
@@ -215,3 +251,67 @@ def test_no_slot_constant_is_written_by_hand(module: ModuleType) -> None:
             assert not isinstance(node.value, ast.Constant), (
                 f"{module.__name__}.{target.id} is a literal; declare it in its table"
             )
+
+
+#: (module, table, constant prefixes, series: first constant -> length, size constant)
+BUFFERS = [
+    (ps, ps.PROPS, ("PROP_",), {}, "N_PROPS"),
+    (pt, pt.HEADER, ("H_",), {}, "N_HEADER"),
+    (pt, pt.GRID, ("G_",), {}, "N_GRID"),
+    (pt, pt.SAT, ("S_",), {}, "N_SAT"),
+    (jt, jt.HEADER, ("H_",), {}, "N_HEADER"),
+    (jt, jt.QUANTITIES, ("JQ_",), {}, "N_QUANTITIES"),
+    (pinned, pinned.OUTPUTS, ("PIN_",), {"PIN_BEARING_FORCE": 3 * mlay.N_BEARINGS}, "N_PIN_OUT"),
+    (shell_nodes, shell_nodes.PRESSURES, ("GP_",), {}, None),
+    (integrator, integrator.STATS, ("ST_",), {}, "N_STATS"),
+    (startup, startup.TRACE, ("TR_",), {"TR_BEARING_LOAD": mlay.N_BEARINGS}, "N_TRACE"),
+]
+
+
+@pytest.mark.parametrize(
+    ("module", "table", "prefixes", "series", "size"),
+    BUFFERS,
+    ids=[f"{b[0].__name__}:{b[1].title}" for b in BUFFERS],
+)
+def test_buffer_constants_are_the_tables_indices(
+    module: ModuleType,
+    table: Layout,
+    prefixes: tuple[str, ...],
+    series: dict[str, int],
+    size: str | None,
+) -> None:
+    if size is not None:
+        assert getattr(module, size) == table.size, f"{module.__name__}.{size}"
+    _covered(table, _slot_constants(module, prefixes), series, table.title)
+
+
+def test_buffer_sizes_are_unchanged() -> None:
+    """The sizes the arrays are allocated with (the compiled code and the cached tables
+    depend on them), and how the blocks compose."""
+    assert (ps.N_PROPS, pt.N_HEADER, pt.N_GRID, pt.N_SAT) == (12, 24, 7, 19)
+    assert (jt.N_HEADER, jt.N_QUANTITIES, jt.N_NODE_VALUES) == (8, 3, jt.NODE.size)
+    assert jt.N_NODE_VALUES == 4 * jt.N_QUANTITIES
+    for k, part in enumerate(("value", "d_du", "d_dtheta0", "d2_du_dtheta0")):
+        slot = jt.NODE.entries[k * jt.N_QUANTITIES + jt.JQ_PEAK]
+        assert slot.name == f"{part}_peak_pressure_ratio"
+    # the pinned row: the bearing forces laid out as the flexible mechanism's outputs
+    assert pinned.N_PIN_OUT == 3 * mlay.N_BEARINGS + 4
+    for i, bearing in enumerate(mlay.BEARING_NAMES):
+        name = pinned.OUTPUTS.entries[pinned.PIN_BEARING_FORCE + 3 * i + 2].name
+        assert name == mlay.OUTPUTS.entries[mlay.A_BEARING_FORCE + 3 * i + 2].name
+        assert name == f"bearing_force_{bearing}_z"
+    assert integrator.N_STATS == 10
+    assert startup.N_TRACE == startup.TR_BEARING_LOAD + mlay.N_BEARINGS
+
+
+def test_shell_network_nodes_are_the_tables() -> None:
+    nodes = shell_nodes.TEMPERATURES
+    assert sn.N_NODES == nodes.size == 8
+    assert sn.NODES == tuple(e.name for e in nodes.entries)
+    indices = (sn.SM, sn.SG, sn.CW, sn.DC, sn.DM, sn.MO, sn.OIL, sn.SH)
+    assert indices == tuple(range(nodes.size))
+    # the gas-node pressures follow GAS_NODES slot by slot
+    gas = [nodes.entries[n].name for n in sn.GAS_NODES]
+    assert gas == [e.name for e in shell_nodes.PRESSURES.entries]
+    assert sn.GAS_NODES[shell_nodes.GP_SM] == sn.SM
+    assert sn.GAS_NODES[shell_nodes.GP_DC] == sn.DC

@@ -37,6 +37,9 @@ from recipsim.physics.mechanics.journal_table import (
     H_N_THETA0,
     H_THETA0_START,
     H_U_MAX,
+    JQ_IMAG,
+    JQ_PEAK,
+    JQ_REAL,
     N_HEADER,
     N_NODE_VALUES,
     N_QUANTITIES,
@@ -155,8 +158,8 @@ def finite_journal_film(
         return 0.0, 0.0, torque
     sr, st = short_film_unit_forces(eps, b / v, a / v)
     theta0 = math.atan2(b, a)
-    qr = tabulated_ratio(table, offset, eps, theta0, 0)
-    qi = tabulated_ratio(table, offset, eps, theta0, 1)
+    qr = tabulated_ratio(table, offset, eps, theta0, JQ_REAL)
+    qi = tabulated_ratio(table, offset, eps, theta0, JQ_IMAG)
     scale = viscosity * radius * length**3 * v / (clearance * clearance)
     fr = (qr * sr - qi * st) * scale
     ft = (qr * st + qi * sr) * scale
@@ -186,7 +189,7 @@ def finite_journal_peak_pressure(
     _, _, eps, a, b, _ = film_kinematics(ex, ey, vx, vy, omega_journal, omega_bushing, clearance)
     if a == 0.0 and b == 0.0:
         return 0.0
-    ratio = tabulated_ratio(table, offset, eps, math.atan2(b, a), 2)
+    ratio = tabulated_ratio(table, offset, eps, math.atan2(b, a), JQ_PEAK)
     short = short_journal_peak_pressure(
         ex, ey, vx, vy, omega_journal, omega_bushing, radius, length, clearance, viscosity
     )

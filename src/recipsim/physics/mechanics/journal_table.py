@@ -31,12 +31,11 @@ the thinnest film). The mirror symmetry ``A -> -A`` gives ``Q(pi - theta0) =
 conj(Q(theta0))``: only half the theta0 values are solved.
 
 Flat table layout (float64, self-describing; ``offset`` is where it starts in a larger
-array): a header of :data:`N_HEADER` values (``H_*`` indices: format, total length, L/D,
-grid sizes and origins), then for each eps node j and theta0 node m a block of
-:data:`N_NODE_VALUES` values at ``N_HEADER + (j n_theta0 + m) N_NODE_VALUES``: the
-quantities ``Q_r, Q_i`` and the peak-pressure ratio (finite over short), then their
-d/du, then d/dtheta0, then d2/du dtheta0. Build time about 2 s per L/D (33 x 33 Reynolds
-solutions of 128 x 12 nodes, warm-started).
+array): the :data:`HEADER` (``H_*``), then for each eps node j and theta0 node m the
+:data:`NODE` values (the :data:`QUANTITIES` ``Q_r, Q_i`` and the peak-pressure ratio,
+then their d/du, d/dtheta0 and d2/du dtheta0) at ``N_HEADER + (j n_theta0 + m)
+N_NODE_VALUES``. Build time about 2 s per L/D (33 x 33 Reynolds solutions of 128 x 12
+nodes, warm-started).
 """
 
 from __future__ import annotations
@@ -55,25 +54,33 @@ from numba import njit
 
 from recipsim.atomic import atomic_write
 from recipsim.cache_dirs import cache_dir, private_dir
+from recipsim.physics.layout_table import Layout
 from recipsim.physics.mechanics.journal import film_peak_shape, short_film_unit_forces
 
 logger = logging.getLogger(__name__)
 
 #: Table format identifier (``table[offset + H_FORMAT]``).
 TABLE_FORMAT = 1.0
-H_FORMAT = 0  # format identifier
-H_LENGTH = 1  # total length of the table, header included
-H_LENGTH_OVER_DIAMETER = 2  # L/D it was built for [-]
-H_N_EPS = 3  # number of eps nodes
-H_N_THETA0 = 4  # number of theta0 nodes (over 2 pi)
-H_U_MAX = 5  # last eps node in u = -ln(1 - eps)
-H_THETA0_START = 6  # first theta0 node [rad]
-H_RESERVED = 7
-N_HEADER = 8
-#: Tabulated quantities: Q_r, Q_i and the peak-pressure ratio (finite over short).
-N_QUANTITIES = 3
+HEADER = Layout("journal table header")
+_h = HEADER.add
+H_FORMAT = _h("format", "code", "format identifier (TABLE_FORMAT)")
+H_LENGTH = _h("length", "count", "total length of the table, header included")
+H_LENGTH_OVER_DIAMETER = _h("length_over_diameter", "-", "L/D the table was built for")
+H_N_EPS = _h("eps_nodes", "count", "number of eps nodes")
+H_N_THETA0 = _h("theta0_nodes", "count", "number of theta0 nodes (over 2 pi)")
+H_U_MAX = _h("u_max", "-", "last eps node in u = -ln(1 - eps)")
+H_THETA0_START = _h("theta0_start", "rad", "first theta0 node")
+H_RESERVED = _h("reserved", "-", "spare slot: nothing is stored there")
+N_HEADER = HEADER.size
+QUANTITIES = Layout("journal table quantities")
+JQ_REAL = QUANTITIES.add("impedance_ratio_real", "-", "Q_r, real part of the force ratio")
+JQ_IMAG = QUANTITIES.add("impedance_ratio_imag", "-", "Q_i, imaginary part of the force ratio")
+JQ_PEAK = QUANTITIES.add("peak_pressure_ratio", "-", "peak film pressure ratio")
+N_QUANTITIES = QUANTITIES.size
 #: Values per node: the quantities, then their d/du, d/dtheta0 and d2/du dtheta0.
-N_NODE_VALUES = 4 * N_QUANTITIES
+NODE = Layout("journal table node values")
+NODE.add_rows(QUANTITIES, ("value", "d_du", "d_dtheta0", "d2_du_dtheta0"))
+N_NODE_VALUES = NODE.size
 #: Version of the cache file's layout (key, data, checksum).
 CACHE_FORMAT = 1
 
@@ -239,13 +246,13 @@ def impedance_ratios(
             total += sweeps
             sr, st = short_film_unit_forces(eps, math.sin(theta0), math.cos(theta0))
             norm = sr * sr + st * st
-            ratios[j, m, 0] = (fr * sr + ft * st) / norm
-            ratios[j, m, 1] = (ft * sr - fr * st) / norm
-            ratios[j, m, 2] = peak / (1.5 * film_peak_shape(eps, theta0))
+            ratios[j, m, JQ_REAL] = (fr * sr + ft * st) / norm
+            ratios[j, m, JQ_IMAG] = (ft * sr - fr * st) / norm
+            ratios[j, m, JQ_PEAK] = peak / (1.5 * film_peak_shape(eps, theta0))
         for m in range(n_theta0 // 2 + 1, n_theta0):
-            ratios[j, m, 0] = ratios[j, n_theta0 - m, 0]
-            ratios[j, m, 1] = -ratios[j, n_theta0 - m, 1]
-            ratios[j, m, 2] = ratios[j, n_theta0 - m, 2]
+            ratios[j, m, JQ_REAL] = ratios[j, n_theta0 - m, JQ_REAL]
+            ratios[j, m, JQ_IMAG] = -ratios[j, n_theta0 - m, JQ_IMAG]
+            ratios[j, m, JQ_PEAK] = ratios[j, n_theta0 - m, JQ_PEAK]
     return total
 
 

@@ -194,15 +194,17 @@ A_BEARING_FORCE = OUTPUTS.add_series(
     "bearing_force_{}",
     _XYZ,
     "N",
-    "force on the journal-side body (rotor for 1, 2, 3; piston for 4, 5, 6) from the other "
-    "body, inertial X, Y, Z",
+    "force on the journal-side body of the bearing (rotor for primary, secondary, eccentric; "
+    "piston for pin, piston_top, piston_skirt) from the other body, inertial X, Y, Z (Z: 0, "
+    "no gravity and no axial load in the model)",
 )
 A_BEARING_DISPLACEMENT = OUTPUTS.add_series(
     "bearing_displacement_{}",
     _XYZ,
     "m",
-    "journal marker minus bushing marker, inertial X, Y, Z, only the components normal to "
-    "the bearing axis (others 0): rotor, eccentric and pin (x, y, 0); piston (0, y, 0)",
+    "journal minus bushing marker, inertial X, Y, Z, only the components normal to the "
+    "bearing axis (others 0): rotor, eccentric and pin (x, y, 0); piston bearings slide "
+    "along X (0, y, 0); 0 on the pinned crank",
 )
 A_DRIVE_TORQUE = _a("drive_torque", "N m", "driving torque about the rotor axis")
 A_GAS_FORCE = _a("gas_force", "N", "-(p - p_shell) A_p, along the piston axis")
@@ -210,30 +212,38 @@ A_KINETIC_ENERGY_ROTOR = _a("kinetic_energy_rotor", "J", "kinetic energy of the 
 A_KINETIC_ENERGY_ROD = _a("kinetic_energy_rod", "J", "kinetic energy of the rod")
 A_KINETIC_ENERGY_PISTON = _a("kinetic_energy_piston", "J", "kinetic energy of the piston")
 A_SPRING_ENERGY = _a("spring_energy", "J", "elastic energy of the linear bearings")
-A_BEARING_POWER = _a("bearing_power_loss", "W", "power absorbed by all bearings, -sum F.de/dt")
+A_BEARING_POWER = _a(
+    "bearing_power_loss",
+    "W",
+    "power absorbed by all bearings at this instant, -sum F.de/dt (as "
+    "`bearing_dissipation_power`, not averaged)",
+)
 A_DRIVE_POWER = _a("drive_power", "W", "torque x spin rate about the rotor axis")
 A_GAS_POWER = _a("gas_power", "W", "power of the gas force on the piston")
 A_PISTON_DISPLACEMENT = _a("piston_displacement", "m", "crown axial displacement from rigid TDC")
 A_PISTON_SPEED = _a("piston_speed", "m/s", "its time derivative (dV/dt = A_p * this)")
-A_PISTON_LATERAL = _a("piston_lateral_displacement", "m", "piston centre of mass, Y")
-A_PISTON_TILT = _a("piston_tilt", "rad", "piston tilt about Z")
+A_PISTON_LATERAL = _a(
+    "piston_lateral_displacement", "m", "piston centre of mass off the bore axis, Y (flexible only)"
+)
+A_PISTON_TILT = _a("piston_tilt", "rad", "piston rotation about the pin axis Z (flexible only)")
 A_CRANK_ANGLE = _a("crank_angle", "rad", "crank angle")
-A_CRANK_SPEED = _a("crank_speed", "rad/s", "crank speed")
+A_CRANK_SPEED = _a("crank_speed", "rad/s", "crank speed (constant for `constant_speed`)")
 #: Per bearing i: friction torque about the bearing axis on the journal-side body at
 #: ``A_BEARING_TORQUE + 2 i`` and on the bushing-side body at ``+ 2 i + 1``.
 A_BEARING_TORQUE = OUTPUTS.add_series(
     "friction_torque_{}",
     tuple(f"{b}{side}" for b in BEARING_NAMES for side in ("", "_bushing")),
     "N m",
-    "friction torque about the bearing axis on the journal-side (name) or bushing-side "
-    "(name_bushing) body; zero for the linear law and the piston film",
+    "friction torque of the film (and contact) about the bearing axis on the journal-side body "
+    "(rotor for primary, secondary, eccentric; the `_bushing` slots, not reported: on the "
+    "bushing-side body); 0 for the linear law and the piston film",
 )
 A_BEARING_DISSIPATION = OUTPUTS.add_series(
     "bearing_power_loss_{}",
     BEARING_NAMES,
     "W",
-    "power dissipated in the film and contact, -(F.de/dt + T_j w_j + T_b w_b) (the linear "
-    "law: its damper's power)",
+    "power absorbed by the bearing at this instant: the film and contact, -(F.de/dt + T_j w_j "
+    "+ T_b w_b) (the linear law: its damper's power)",
 )
 A_BEARING_CONTACT = OUTPUTS.add_series(
     "contact_force_{}",
@@ -241,14 +251,18 @@ A_BEARING_CONTACT = OUTPUTS.add_series(
     "N",
     "asperity contact normal force (0 while the film carries the load)",
 )
-A_PISTON_FRICTION = _a("piston_friction_force", "N", "axial film force on the piston")
+A_PISTON_FRICTION = _a(
+    "piston_friction_force",
+    "N",
+    "axial force of the piston film on the piston, positive towards the head",
+)
 A_PISTON_FRICTION_POWER = _a("piston_friction_power", "W", "power the axial film force dissipates")
 #: Per bearing i: only when ``par[P_DETAILED_OUTPUTS]`` is set (post-processing), else 0.
 A_BEARING_PEAK_PRESSURE = OUTPUTS.add_series(
     "film_peak_pressure_{}",
     BEARING_NAMES,
     "Pa",
-    "largest film pressure (with P_DETAILED_OUTPUTS, else 0; the skirt film reports at "
-    "piston_skirt)",
+    "largest film pressure at this instant (computed with P_DETAILED_OUTPUTS, else 0; the "
+    "skirt film reports at piston_skirt)",
 )
 N_AUX = OUTPUTS.size

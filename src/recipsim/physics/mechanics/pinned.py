@@ -27,15 +27,24 @@ import numpy as np
 from numba import njit
 
 from recipsim.physics.kinematics import piston_displacement, rod_angle, rod_centre_of_mass
+from recipsim.physics.layout_table import Layout
 from recipsim.physics.mechanics import layout as lay
 
-#: Output row of :func:`pinned_reactions`: bearing forces at ``3 * i + k`` (as aux),
-#: then the following.
-PIN_DRIVE_TORQUE = 3 * lay.N_BEARINGS  # [N m]
-PIN_GAS_TORQUE = PIN_DRIVE_TORQUE + 1  # (p - p_shell) A dx/dtheta [N m]
-PIN_GAS_FORCE = PIN_DRIVE_TORQUE + 2  # -(p - p_shell) A, along X on the piston [N]
-PIN_PISTON_DISPLACEMENT = PIN_DRIVE_TORQUE + 3  # from TDC [m]
-N_PIN_OUT = PIN_DRIVE_TORQUE + 4
+#: Output row of :func:`pinned_reactions`: bearing i's force component k at
+#: ``PIN_BEARING_FORCE + 3 * i + k`` (as the mechanism's aux), then torque, force, pose.
+OUTPUTS = Layout("pinned mechanism outputs")
+_a = OUTPUTS.add
+PIN_BEARING_FORCE = OUTPUTS.add_series(
+    "bearing_force_{}",
+    tuple(f"{b}_{ax}" for b in lay.BEARING_NAMES for ax in "xyz"),
+    "N",
+    "force on the journal-side body, inertial X, Y, Z (as the flexible mechanism's)",
+)
+PIN_DRIVE_TORQUE = _a("drive_torque", "N m", "driving torque about the rotor axis")
+PIN_GAS_TORQUE = _a("gas_torque", "N m", "(p - p_shell) A dx/dtheta")
+PIN_GAS_FORCE = _a("gas_force", "N", "-(p - p_shell) A, along X on the piston")
+PIN_PISTON_DISPLACEMENT = _a("piston_displacement", "m", "piston displacement from TDC")
+N_PIN_OUT = OUTPUTS.size
 
 
 @njit(cache=True)

@@ -140,29 +140,71 @@ N_PAR = PAR.size
 OUTPUTS = Layout("cylinder outputs")
 _a = OUTPUTS.add
 A_THETA = _a("crank_angle", "rad", "crank angle (not wrapped)")
-A_VOLUME = _a("cylinder_volume", "m3", "cylinder volume")
+A_VOLUME = _a("cylinder_volume", "m3", "clearance volume + piston area x displacement")
 A_DVDT = _a("volume_rate", "m3/s", "dV/dt")
 A_PRESSURE = _a("cylinder_pressure", "Pa", "gas pressure in the cylinder")
 A_TEMPERATURE = _a("gas_temperature", "K", "gas temperature in the cylinder")
 A_DENSITY = _a("gas_density", "kg/m3", "gas density in the cylinder")
 A_MASS = _a("gas_mass", "kg", "gas mass in the cylinder")
-A_ENTHALPY = _a("gas_specific_enthalpy", "J/kg", "specific enthalpy of the gas")
-A_QUALITY = _a("vapour_quality", "-", "vapour quality (-1: single phase or no gas state)")
-A_MDOT_SUC = _a("suction_mass_flow", "kg/s", "into the cylinder through the suction valve")
-A_MDOT_DIS = _a("discharge_mass_flow", "kg/s", "out of the cylinder through the discharge valve")
-A_MDOT_LEAK = _a("leakage_mass_flow", "kg/s", "out of the cylinder through the piston gap")
-A_QDOT = _a("heat_flow_to_gas", "W", "heat into the gas")
-A_HTC = _a("heat_transfer_coefficient", "W/(m2 K)", "gas-wall heat-transfer coefficient")
-A_LIFT_S = _a("suction_valve_lift", "m", "suction reed lift")
-A_LIFT_D = _a("discharge_valve_lift", "m", "discharge reed lift")
-A_VEL_S = _a("suction_valve_velocity", "m/s", "suction reed velocity")
-A_VEL_D = _a("discharge_valve_velocity", "m/s", "discharge reed velocity")
-A_FORCE_GAS = _a("gas_force", "N", "(p - p_shell) A_p on the piston, towards the crank")
-A_TORQUE_GAS = _a("gas_torque", "N m", "(p - p_shell) A_p dx/dtheta")
-A_TORQUE_INERTIA = _a("inertia_torque", "N m", "driving torque + gas torque")
-A_TORQUE_SHAFT = _a("shaft_torque", "N m", "driving torque for constant speed")
-A_DISPLACEMENT = _a("piston_displacement", "m", "piston displacement from TDC")
-A_PISTON_VELOCITY = _a("piston_velocity", "m/s", "dx/dt")
+A_ENTHALPY = _a("gas_specific_enthalpy", "J/kg", "specific enthalpy of the cylinder gas")
+A_QUALITY = _a(
+    "vapour_quality",
+    "-",
+    "vapour mass fraction inside the two-phase dome; -1 for a single-phase state (or no gas state)",
+)
+A_MDOT_SUC = _a(
+    "suction_mass_flow",
+    "kg/s",
+    "flow into the cylinder through the suction valve (negative: back-flow)",
+)
+A_MDOT_DIS = _a(
+    "discharge_mass_flow",
+    "kg/s",
+    "flow out of the cylinder through the discharge valve (negative: back-flow)",
+)
+A_MDOT_LEAK = _a(
+    "leakage_mass_flow",
+    "kg/s",
+    "flow out of the cylinder through the piston-cylinder gap (negative: into it)",
+)
+A_QDOT = _a("heat_flow_to_gas", "W", "heat from the wall into the gas")
+A_HTC = _a(
+    "heat_transfer_coefficient",
+    "W/(m2 K)",
+    "convective gas-wall coefficient of the heat-transfer correlation (0 when adiabatic)",
+)
+A_LIFT_S = _a(
+    "suction_valve_lift", "m", "suction reed lift at the port (0 for `ideal` and `quasi_static`)"
+)
+A_LIFT_D = _a("discharge_valve_lift", "m", "discharge reed lift at the port")
+A_VEL_S = _a("suction_valve_velocity", "m/s", "suction reed velocity, positive opening")
+A_VEL_D = _a("discharge_valve_velocity", "m/s", "discharge reed velocity, positive opening")
+A_FORCE_GAS = _a(
+    "gas_force",
+    "N",
+    "(cylinder - shell pressure) x piston area, pushing the piston towards the crank",
+)
+A_TORQUE_GAS = _a(
+    "gas_torque",
+    "N m",
+    "torque of the gas force on the crankshaft, positive along the rotation (negative while "
+    'compressing; "Torques" in reports/README.md): (p - p_shell) A dx/dtheta on the pinned '
+    "crank, gas power on the piston / crank speed on the flexible one",
+)
+A_TORQUE_INERTIA = _a(
+    "inertia_torque",
+    "N m",
+    "driving torque + gas torque: what accelerates the bodies (and loads the flexible bearings)",
+)
+A_TORQUE_SHAFT = _a(
+    "shaft_torque",
+    "N m",
+    "driving torque on the crankshaft, positive along the rotation: inertia torque - gas torque",
+)
+A_DISPLACEMENT = _a("piston_displacement", "m", "piston distance from top dead centre")
+A_PISTON_VELOCITY = _a(
+    "piston_velocity", "m/s", "rate of the displacement (positive towards bottom dead centre)"
+)
 A_FORCE_REED_S = _a(
     "suction_reed_force", "N", "net opening force on the suction reed (spring excluded)"
 )
@@ -171,6 +213,11 @@ A_FORCE_REED_D = _a(
 )
 A_STATUS = _a("property_status", "code", "status of the property call (property_slots.STATUS_*)")
 A_LEAK_ECC = _a(
-    "leakage_eccentricity", "-", "eccentricity ratio of the piston in the bore seen by the leak"
+    "leakage_eccentricity",
+    "-",
+    "eccentricity ratio of the piston in the bore used by the gap leakage, (1 + 1.5 eps^2) in "
+    "the flow: the case's `leakage.eccentricity_ratio` on the rigid crank, the land-averaged "
+    "offset of the flexible piston (lateral displacement and tilt, series resistance) in the "
+    "coupled scene",
 )
 N_AUX = OUTPUTS.size

@@ -1,24 +1,32 @@
 """Layout of the property buffer shared by the HEOS callback and the property table:
-the slot of each property a state evaluation fills, and the status it returns.
+the slot of each property a state evaluation fills (table :data:`PROPS`, declared once
+with unit and meaning, :class:`~recipsim.physics.layout_table.Layout`), and the status
+it returns.
 """
 
-PROP_PRESSURE = 0  # p [Pa]
-PROP_ENTHALPY = 1  # h [J/kg]
-PROP_CV = 2  # c_v [J/(kg K)] (mixture value in the dome)
-PROP_DPDT = 3  # (dp/dT)_rho [Pa/K] (dp_sat/dT in the dome)
-PROP_KAPPA = 4  # isentropic exponent rho c^2 / p [-] (1 in the dome, see docs)
-PROP_K0 = 5  # ideal-gas c_p0/c_v0 [-]
-PROP_VISCOSITY = 6  # [Pa s] (only with transport)
-PROP_CONDUCTIVITY = 7  # [W/(m K)] (only with transport)
-PROP_CP = 8  # [J/(kg K)] (only with transport)
-PROP_QUALITY = 9  # vapour quality, -1 for single phase
-PROP_DPDRHO = 10  # (dp/drho)_T [Pa m3/kg]
-N_PROPS = 12
+from recipsim.physics.layout_table import Layout
+
+PROPS = Layout("property buffer")
+_p = PROPS.add
+PROP_PRESSURE = _p("pressure", "Pa", "pressure")
+PROP_ENTHALPY = _p("enthalpy", "J/kg", "specific enthalpy")
+PROP_CV = _p("cv", "J/(kg K)", "isochoric specific heat (mixture value in the dome)")
+PROP_DPDT = _p("dpdt", "Pa/K", "(dp/dT)_rho (dp_sat/dT in the dome)")
+PROP_KAPPA = _p("kappa", "-", "isentropic exponent rho c^2 / p (1 in the dome, see docs)")
+PROP_K0 = _p("k0", "-", "ideal-gas c_p0 / c_v0")
+PROP_VISCOSITY = _p("viscosity", "Pa s", "dynamic viscosity (only with transport)")
+PROP_CONDUCTIVITY = _p("conductivity", "W/(m K)", "thermal conductivity (only with transport)")
+PROP_CP = _p("cp", "J/(kg K)", "isobaric specific heat (only with transport)")
+PROP_QUALITY = _p("quality", "-", "vapour quality, -1 for single phase")
+PROP_DPDRHO = _p("dpdrho", "Pa m3/kg", "(dp/drho)_T")
+PROP_RESERVED = _p("reserved", "-", "spare slot: no property is stored there")
+N_PROPS = PROPS.size
 
 STATUS_OK = 0
 STATUS_DOMAIN = 1
 
 __all__ = [
+    "PROPS",
     "PROP_PRESSURE",
     "PROP_ENTHALPY",
     "PROP_CV",
@@ -30,6 +38,7 @@ __all__ = [
     "PROP_CP",
     "PROP_QUALITY",
     "PROP_DPDRHO",
+    "PROP_RESERVED",
     "N_PROPS",
     "STATUS_OK",
     "STATUS_DOMAIN",

@@ -56,6 +56,7 @@ from typing import Any
 import numpy as np
 from numba import njit
 
+from recipsim.physics.layout_table import Layout
 from recipsim.physics.thermo.buffer_pool import reusable_buffer
 from recipsim.physics.thermo.property_slots import (
     N_PROPS,
@@ -82,65 +83,73 @@ STATUS_FALLBACK = 2
 TABLE_FORMAT = 4
 
 # ---- header (offsets after N_PROPS) ------------------------------------------------------
-H_FORMAT = 0
-H_TMIN = 1  # temperature range of the table = domain of the callback [K]
-H_TMAX = 2
-H_NT = 3  # grid: temperature nodes, first node [K], spacing [K]
-H_T0 = 4
-H_DT = 5
-H_NX = 6  # grid: ln(rho) nodes, first node, spacing
-H_X0 = 7
-H_DX = 8
-H_NS = 9  # saturation table: nodes, first node [K], spacing [K]
-H_TS0 = 10
-H_DTS = 11
-H_TSAT_MAX = 12  # the dome is tabulated below this temperature [K]
-H_TCRIT = 13
-H_LNRHOV_BAND = 14  # ln of the dew density at H_TSAT_MAX
-H_OFF_GRID = 15  # absolute offsets in the buffer
-H_OFF_MASK = 16
-H_OFF_K0 = 17
-H_OFF_SAT = 18
-H_TRANSPORT = 19  # 1: fill viscosity, conductivity and c_p
-H_S_T = 20  # entropy anchor: temperature [K], ln(rho), HEOS entropy there [J/(kg K)]
-H_S_X = 21
-H_S_VALUE = 22
-N_HEADER = 24
+HEADER = Layout("property table header")
+_h = HEADER.add
+H_FORMAT = _h("format", "code", "TABLE_FORMAT the table was built with")
+H_TMIN = _h("t_min", "K", "lowest temperature of the table (= domain of the callback)")
+H_TMAX = _h("t_max", "K", "highest temperature of the table")
+H_NT = _h("grid_t_nodes", "count", "grid: temperature nodes")
+H_T0 = _h("grid_t_first", "K", "grid: first temperature node")
+H_DT = _h("grid_t_step", "K", "grid: temperature spacing")
+H_NX = _h("grid_x_nodes", "count", "grid: ln(rho) nodes")
+H_X0 = _h("grid_x_first", "-", "grid: first ln(rho) node (rho in kg/m3)")
+H_DX = _h("grid_x_step", "-", "grid: ln(rho) spacing")
+H_NS = _h("sat_nodes", "count", "saturation table: nodes")
+H_TS0 = _h("sat_t_first", "K", "saturation table: first node")
+H_DTS = _h("sat_t_step", "K", "saturation table: spacing")
+H_TSAT_MAX = _h("sat_t_max", "K", "the dome is tabulated below this temperature")
+H_TCRIT = _h("t_crit", "K", "critical temperature")
+H_LNRHOV_BAND = _h("ln_dew_density_at_sat_t_max", "-", "ln of the dew density at sat_t_max")
+H_OFF_GRID = _h("grid_offset", "index", "absolute offset of the grid in the buffer")
+H_OFF_MASK = _h("mask_offset", "index", "absolute offset of the cell mask in the buffer")
+H_OFF_K0 = _h("k0_offset", "index", "absolute offset of the k0 table in the buffer")
+H_OFF_SAT = _h("sat_offset", "index", "absolute offset of the saturation table in the buffer")
+H_TRANSPORT = _h("transport", "code", "1: fill viscosity, conductivity and c_p")
+H_S_T = _h("entropy_anchor_t", "K", "entropy anchor: temperature")
+H_S_X = _h("entropy_anchor_x", "-", "entropy anchor: ln(rho)")
+H_S_VALUE = _h("entropy_anchor_value", "J/(kg K)", "entropy anchor: HEOS entropy there")
+H_RESERVED = _h("reserved", "-", "spare slot: nothing is stored there")
+N_HEADER = HEADER.size
 
 # ---- grid quantities (single phase, functions of T and ln rho) ----------------------------
-G_PRHO = 0  # p / rho [Pa m3/kg]
-G_H = 1  # h [J/kg]
-G_CV = 2  # c_v [J/(kg K)]
-G_DPDT_RHO = 3  # (dp/dT)_rho / rho [Pa m3/(kg K)]
-G_DPDRHO = 4  # (dp/drho)_T [Pa m3/kg]
-G_VISCOSITY = 5  # [Pa s]
-G_CONDUCTIVITY = 6  # [W/(m K)]
-N_GRID = 7
+GRID = Layout("property table grid quantities")
+_g = GRID.add
+G_PRHO = _g("p_over_rho", "Pa m3/kg", "p / rho")
+G_H = _g("enthalpy", "J/kg", "specific enthalpy")
+G_CV = _g("cv", "J/(kg K)", "isochoric specific heat")
+G_DPDT_RHO = _g("dpdt_over_rho", "Pa m3/(kg K)", "(dp/dT)_rho / rho")
+G_DPDRHO = _g("dpdrho", "Pa m3/kg", "(dp/drho)_T")
+G_VISCOSITY = _g("viscosity", "Pa s", "dynamic viscosity")
+G_CONDUCTIVITY = _g("conductivity", "W/(m K)", "thermal conductivity")
+N_GRID = GRID.size
 #: cell mask bits: the thermodynamic quantities, the transport quantities meet the tolerance
 MASK_THERMO = 1
 MASK_TRANSPORT = 2
 
 # ---- saturation quantities (functions of T) -----------------------------------------------
-S_P = 0  # pressure inside the dome (DmassT) [Pa]
-S_LNRHOV = 1  # ln of the dew density of the DmassT dome
-S_VL_DOME = 2  # bubble specific volume of the DmassT dome [m3/kg]
-S_HL_DOME = 3  # h at quality 0 and 1 of the DmassT dome [J/kg]
-S_HV_DOME = 4
-S_VL = 5  # QT saturated liquid and vapour: v [m3/kg], dv/dT, u [J/kg], du/dT
-S_VV = 6
-S_DVL = 7
-S_DVV = 8
-S_UL = 9
-S_UV = 10
-S_DUL = 11
-S_DUV = 12
-S_DPSAT = 13  # dp_sat/dT [Pa/K]
-S_MUV = 14  # saturated vapour viscosity, conductivity, c_p
-S_KV = 15
-S_CPV = 16
-S_DHDP_L = 17  # saturated liquid (dh/dp)_T [m3/kg] and (d2h/dp2)_T [m3/(kg Pa)]: the
-S_D2HDP2_L = 18  # liquid line's enthalpy by expansion in p (table_states.liquid_enthalpy)
-N_SAT = 19
+SAT = Layout("property table saturation quantities")
+_s = SAT.add
+S_P = _s("pressure", "Pa", "pressure inside the dome (DmassT)")
+S_LNRHOV = _s("ln_dew_density", "-", "ln of the dew density of the DmassT dome")
+S_VL_DOME = _s("dome_liquid_volume", "m3/kg", "bubble specific volume of the DmassT dome")
+S_HL_DOME = _s("dome_liquid_enthalpy", "J/kg", "h at quality 0 of the DmassT dome")
+S_HV_DOME = _s("dome_vapour_enthalpy", "J/kg", "h at quality 1 of the DmassT dome")
+S_VL = _s("liquid_volume", "m3/kg", "QT saturated liquid: specific volume")
+S_VV = _s("vapour_volume", "m3/kg", "QT saturated vapour: specific volume")
+S_DVL = _s("liquid_volume_slope", "m3/(kg K)", "QT saturated liquid: dv/dT")
+S_DVV = _s("vapour_volume_slope", "m3/(kg K)", "QT saturated vapour: dv/dT")
+S_UL = _s("liquid_energy", "J/kg", "QT saturated liquid: specific internal energy")
+S_UV = _s("vapour_energy", "J/kg", "QT saturated vapour: specific internal energy")
+S_DUL = _s("liquid_energy_slope", "J/(kg K)", "QT saturated liquid: du/dT")
+S_DUV = _s("vapour_energy_slope", "J/(kg K)", "QT saturated vapour: du/dT")
+S_DPSAT = _s("pressure_slope", "Pa/K", "dp_sat/dT")
+S_MUV = _s("vapour_viscosity", "Pa s", "saturated vapour dynamic viscosity")
+S_KV = _s("vapour_conductivity", "W/(m K)", "saturated vapour thermal conductivity")
+S_CPV = _s("vapour_cp", "J/(kg K)", "saturated vapour isobaric specific heat")
+#: the liquid line's enthalpy by expansion in p (table_states.liquid_enthalpy)
+S_DHDP_L = _s("liquid_dhdp", "m3/kg", "saturated liquid (dh/dp)_T")
+S_D2HDP2_L = _s("liquid_d2hdp2", "m3/(kg Pa)", "saturated liquid (d2h/dp2)_T")
+N_SAT = SAT.size
 
 #: buffer slots compared with HEOS by :func:`measure_error`, and their names
 CHECKED_SLOTS = {

@@ -38,19 +38,19 @@ from dataclasses import dataclass
 
 import numpy as np
 
-NODES = (
-    "suction_muffler",
-    "shell_gas",
-    "cylinder_wall",
-    "discharge_chamber",
-    "discharge_muffler",
-    "motor",
-    "oil",
-    "shell",
+from recipsim.physics.thermo.shell_nodes import (
+    CW,
+    DC,
+    DM,
+    GAS_NODES,
+    MO,
+    N_NODES,
+    NODES,
+    OIL,
+    SG,
+    SH,
+    SM,
 )
-SM, SG, CW, DC, DM, MO, OIL, SH = range(8)
-N_NODES = 8
-GAS_NODES = (SM, SG, DC, DM)
 
 #: Conductance links (node a, node b); the case key is ``"<a>_<b>"`` (``ua_`` prefixed).
 LINKS = (
@@ -148,8 +148,8 @@ class NetworkLoads:
 class NetworkPressures:
     """Pressures of the gas nodes and the inlet state (SI).
 
-    ``node`` holds the pressure [Pa] of each gas node in the order of
-    :data:`GAS_NODES` (suction muffler, shell gas, discharge chamber, discharge muffler).
+    ``node`` holds the pressure [Pa] of each gas node, laid out by :data:`PRESSURES`
+    (``GP_*``: suction muffler, shell gas, discharge chamber, discharge muffler).
     """
 
     inlet_pressure: float
