@@ -234,13 +234,13 @@ def test_thermal_table_errors_name_file_key_and_range():
 
 def test_the_next_start_follows_the_plenum_without_moving_the_periodic_state(monkeypatch):
     """Revolution iteration moves the cylinder's start state with the network's suction
-    plenum (``Model.update_thermal(..., y_next)``). The periodic state is the same as
+    plenum (``WorkingModel.update_thermal(..., y_next)``). The periodic state is the same as
     with the start left where the last revolution ended (the plenum does not move once
     converged): capacity, COP and the cylinder inlet within 3e-4 (each run converged to
     the 1e-4 cycle tolerance; measured 5e-5). It must also pay: fewer revolutions
     (measured here 6 instead of 7; over 24 map points of the reference case 5.0 instead
     of 6.5 on average)."""
-    from recipsim.model.build import Model
+    from recipsim.model.build import WorkingModel
 
     case = recipsim.load_case(
         "reference_r134a_lbp",
@@ -252,12 +252,12 @@ def test_the_next_start_follows_the_plenum_without_moving_the_periodic_state(mon
         },
     )
     following = simulate_case(case).row
-    original = Model.update_thermal
+    original = WorkingModel.update_thermal
 
     def lagging(self, y_end, duration, y_next=None):  # the start stays where it ended
         return original(self, y_end, duration)
 
-    monkeypatch.setattr(Model, "update_thermal", lagging)
+    monkeypatch.setattr(WorkingModel, "update_thermal", lagging)
     lag = simulate_case(case).row
     assert following["converged [-]"] and lag["converged [-]"]
     for column in ("cooling_capacity [W]", "COP [-]", "cylinder_inlet_temperature [K]"):

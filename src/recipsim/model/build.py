@@ -6,18 +6,16 @@ side, the property callback, the plenum states, the initial state and the state
 scales used by the error control.
 
 The cylinder scene's own arrays and property callback are packed by
-:mod:`recipsim.model.cylinder_parameters`.
-
-Size (over the project's 400 lines): the scenes' layout with the mechanism and the
-plenum setters that the thermal network and shooting call between revolutions share the
-model; moving the setters and the drive table into modules of their own is listed on
-issue 13.
+:mod:`recipsim.model.cylinder_parameters`. The model is built once and its arrays are
+read-only: a solve moves a working copy of it (:class:`WorkingModel`, whose setters
+move the plena, the wall and the shell between revolutions) and never the model
+(:mod:`recipsim.model.scene_model`).
 """
 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import replace
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -34,161 +32,29 @@ from recipsim.model.cylinder_parameters import (
 from recipsim.model.loss_sources import NetworkLossSources, constant_speed_mean_friction
 from recipsim.model.mechanism_parameters import bearing_tables, mechanism_parameters
 from recipsim.model.pinned import pinned_torque_profile
-from recipsim.model.plenum import PlenumState, isentropic_state, plenum_state, write_plenum
+from recipsim.model.plenum import PlenumState, isentropic_state, plenum_state
+from recipsim.model.scene_model import Model, WorkingModel
 from recipsim.model.thermal import ThermalCoupling
 from recipsim.physics.kinematics import piston_displacement
 from recipsim.physics.mechanics import layout as mlay
 from recipsim.physics.mechanics.flexible_setup import initial_state, state_scales
 from recipsim.physics.mechanics.tabulated import tabulated_pressure
 from recipsim.physics.thermo import cylinder as cyl
-from recipsim.physics.thermo.properties import HeosProperties
 
 if TYPE_CHECKING:
     from recipsim.case.refrigerant import AnyFluid
 
 
-@dataclass
-class Model:
-    """A compiled scene ready to integrate.
-
-    Attributes
-    ----------
-    par, ipar : ndarray
-        Float and integer parameters (layouts in :mod:`recipsim.physics.thermo.cylinder`).
-    props : HeosProperties
-        Property callback passed to the compiled code.
-    y0 : ndarray
-        Initial state at :data:`START_ANGLE` (suction gas compressed isentropically
-        from bottom dead centre).
-    mode0 : ndarray
-        Initial discrete modes.
-    scale : ndarray
-        Typical magnitude of each state for the absolute tolerance.
-    period : float
-        One revolution [s].
-    """
-
-    case: Case
-    fluid: AnyFluid
-    par: np.ndarray
-    ipar: np.ndarray
-    props: HeosProperties
-    y0: np.ndarray
-    mode0: np.ndarray
-    scale: np.ndarray
-    period: float
-    suction: PlenumState
-    discharge: PlenumState
-    shell: PlenumState
-    n_err: int = cyl.N_ERR
-    scene: int = scenes.SCENE_CYLINDER
-    #: indices of the quadrature states (reset at the start of every revolution)
-    quadratures: np.ndarray = field(default_factory=lambda: np.arange(cyl.N_ERR, cyl.N_STATE))
-    #: the crank speed is free (a revolution ends on the crank-angle event)
-    free_speed: bool = False
-    #: the gas entering the shell (the operating point's suction state); None: the
-    #: suction plenum is that state (``options.thermal = "fixed_wall"``)
-    inlet: PlenumState | None = None
-    #: the shell's thermal network (``options.thermal = "network"``)
-    thermal: ThermalCoupling | None = None
-    #: the discharge plenum's enthalpy floor at each pressure [Pa -> J/kg]
-    _enthalpy_floor: dict[float, float] = field(default_factory=dict, repr=False)
-
-    @property
-    def compressor_inlet(self) -> PlenumState:
-        """The suction gas at the compressor inlet (capacity and efficiencies refer to it)."""
-        return self.suction if self.inlet is None else self.inlet
-
-    @property
-    def has_gas(self) -> bool:
-        """Whether the scene integrates the cylinder gas (else the pressure is tabulated)."""
-        return self.scene != scenes.SCENE_MECHANISM
-
-    @property
-    def mechanism_offset(self) -> int:
-        """Index of the first mechanism state (flexible scenes)."""
-        return scenes.mechanism_state_offset(self.scene)
-
-    @property
-    def mechanism_par(self) -> np.ndarray:
-        """The mechanism block of ``par`` (layout :mod:`recipsim.physics.mechanics.layout`)."""
-        return self.par[scenes.P_MECH : scenes.P_MECH + mlay.N_PAR]
-
-    def set_discharge_enthalpy(self, enthalpy: float) -> None:
-        """Move the discharge plenum (the source of back-flow) to ``enthalpy`` [J/kg],
-        kept at or above the vapour 0.5 K above its dew point (a Newton iterate of the
-        shooting solver may ask for less: the plenum holds vapour, and a flash far into
-        the liquid fails in CoolProp)."""
-        self.set_discharge_state(self.discharge.pressure, enthalpy)
-
-    def _discharge_enthalpy_floor(self, pressure: float) -> float:
-        """Enthalpy of the vapour 0.5 K above the dew point at ``pressure`` [Pa] [J/kg]
-        (-inf above the critical pressure)."""
-        floor = self._enthalpy_floor.get(pressure)
-        if floor is None:
-            if pressure >= getattr(self.fluid, "critical_pressure", math.inf):
-                floor = -math.inf
-            else:
-                dew = self.fluid.saturation_temperature(pressure, 1.0)
-                floor = float(self.fluid.enthalpy_pt(pressure, dew + 0.5)[0])
-            if len(self._enthalpy_floor) > 64:  # a start-up ramps the pressure
-                self._enthalpy_floor.clear()
-            self._enthalpy_floor[pressure] = floor
-        return floor
-
-    def set_discharge_state(self, pressure: float, enthalpy: float) -> None:
-        """Move the discharge plenum to ``pressure`` [Pa] and ``enthalpy`` [J/kg] (at least
-        the floor of :meth:`set_discharge_enthalpy`)."""
-        enthalpy = max(enthalpy, self._discharge_enthalpy_floor(pressure))
-        state = plenum_state(self.fluid, pressure, enthalpy=enthalpy)
-        self.discharge = state
-        write_plenum(
-            self.par, state, cyl.C_PD, cyl.C_RHOD, cyl.C_HD, cyl.C_KAPPAD, cyl.C_K0D, cyl.C_TD
-        )
-
-    def set_suction_state(self, pressure: float, temperature: float) -> None:
-        """Move the suction plenum (the gas the suction valve draws) to (p [Pa], T [K])."""
-        state = plenum_state(self.fluid, pressure, temperature=temperature)
-        self.suction = state
-        write_plenum(
-            self.par, state, cyl.C_PS, cyl.C_RHOS, cyl.C_HS, cyl.C_KAPPAS, cyl.C_K0S, cyl.C_TS
-        )
-
-    def set_shell_gas_state(self, temperature: float) -> None:
-        """The gas behind the piston (drawn into the gap by reverse leakage) at the shell
-        pressure and ``temperature`` [K]."""
-        if self.ipar[cyl.I_LEAK] == 0:
-            return
-        state = plenum_state(self.fluid, self.shell.pressure, temperature=temperature)
-        self.shell = state
-        self.par[cyl.C_RHOSHELL] = state.density
-        self.par[cyl.C_HSHELL] = state.enthalpy
-        self.par[cyl.C_MUSHELL] = state.viscosity
-
-    def update_thermal(
-        self, y_end: np.ndarray, duration: float, y_next: np.ndarray | None = None
-    ) -> float:
-        """Solve the thermal network (if any) with a revolution's quadratures ``y_end``
-        over ``duration`` [s] and apply it; its relative change [-] (0 without one).
-
-        ``y_next``, the state the next revolution starts from (``y_end``'s copy), follows
-        a moved suction plenum in place: the gas the cylinder holds at the start angle,
-        valves shut, was drawn from the old plenum; its density is scaled with the
-        plenum's density and its temperature with the plenum's temperature, the same
-        compression from a scaled intake (exact for an ideal gas). The next revolution
-        then starts near the new periodic state instead of one lagging revolution
-        behind (measured on 24 map points of the reference case: 5.0 instead of 6.5
-        revolutions); at the periodic state the plenum does not move and nothing
-        changes.
-        """
-        if self.thermal is None or not self.has_gas:
-            return 0.0
-        drawn = self.suction
-        change = self.thermal.update(self, y_end, duration, follows=y_next is not None)
-        if y_next is not None and self.suction is not drawn:
-            y_next[cyl.Y_T] *= self.suction.temperature / drawn.temperature
-            y_next[cyl.Y_RHO] *= self.suction.density / drawn.density
-        return change
+__all__ = [
+    "START_ANGLE",
+    "Model",
+    "WorkingModel",
+    "build_model",
+    "case_mechanism_parameters",
+    "crank_geometry",
+    "cylinder_model",
+    "scenes",
+]
 
 
 def cylinder_model(case: Case) -> Model:
@@ -239,32 +105,50 @@ def cylinder_model(case: Case) -> Model:
         shell=shell,
     )
     if network:
-        _attach_network(model, case, fluid, suction)
+        return _attach_network(model, case, fluid, suction)
     return model
 
 
-def _attach_network(model: Model, case: Case, fluid: AnyFluid, suction: PlenumState) -> None:
-    """Couple the thermal network to ``model``: predict the suction plenum and start the
-    gas from it.
+def _attach_network(model: Model, case: Case, fluid: AnyFluid, suction: PlenumState) -> Model:
+    """``model`` coupled to the thermal network: its suction plenum predicted and the
+    gas started from it.
 
     Parameters
     ----------
     model : Model
-        The cylinder scene, changed in place (inlet, thermal coupling, initial state
-        and scales).
+        The cylinder scene at the operating point's plena.
     case : Case
         The case (its ``options.friction`` feeds the network's loss sources).
     fluid : AnyFluid
         The refrigerant's property backend.
     suction : PlenumState
         The suction plenum of the operating point (the network's inlet).
+
+    Returns
+    -------
+    Model
+        With the inlet, the thermal coupling after its predictor, the plena, wall
+        and shell gas it predicts, and the initial state and scales from that suction
+        plenum.
     """
-    model.inlet = suction
-    model.thermal = ThermalCoupling(case)
+    work = model.for_solve()  # the predictor moves the plena like a solve
+    thermal = ThermalCoupling(case)
     friction = constant_speed_mean_friction(case) if case.options.friction == "mean" else 0.0
-    model.thermal.loss_sources = NetworkLossSources(friction)
-    model.thermal.predict(model)
-    model.y0, model.scale = _initial_gas_state(case, fluid, model.suction)
+    thermal.loss_sources = NetworkLossSources(friction)
+    work.thermal = thermal
+    thermal.predict(work)
+    y0, scale = _initial_gas_state(case, fluid, work.suction)
+    return replace(
+        model,
+        par=work.par,
+        inlet=suction,
+        thermal=thermal,
+        suction=work.suction,
+        discharge=work.discharge,
+        shell=work.shell,
+        y0=y0,
+        scale=scale,
+    )
 
 
 #: Largest initial cylinder pressure, a fraction of the discharge pressure.
@@ -371,15 +255,17 @@ def build_model(case: Case, drive_pressure: tuple[np.ndarray, np.ndarray] | None
     free = opts.drive != "constant_speed"
     ipar[scenes.I_STOP_ON_ANGLE] = 1 if free else 0
     y0, scale, quads = _scene_state(model, scene, mpar, p_angles, p_values)
-    model.par = par
-    model.ipar = ipar
-    model.y0 = y0
-    model.scale = scale
-    model.n_err = scenes.state_size(scene)
-    model.scene = scene
-    model.quadratures = quads
-    model.free_speed = free
-    return model
+    return replace(
+        model,
+        par=par,
+        ipar=ipar,
+        y0=y0,
+        scale=scale,
+        n_err=scenes.state_size(scene),
+        scene=scene,
+        quadratures=quads,
+        free_speed=free,
+    )
 
 
 def _pressure_table(case: Case) -> tuple[int, np.ndarray, np.ndarray]:

@@ -1,10 +1,10 @@
 """Constant boundary states of the cylinder: the suction and discharge plena and the shell
 gas, as the compiled scene reads them.
 
-The thermal network and the shooting solver move them between revolutions
-(:meth:`recipsim.model.build.Model.set_suction_state` and its siblings); the entropy is
-left for first use, since only the set-up (the isentropic discharge, the initial state)
-asks for it.
+The thermal network and the shooting solver move them between revolutions, on a solve's
+working copy (:meth:`recipsim.model.scene_model.WorkingModel.set_suction_state` and its
+siblings); the entropy is left for first use, since only the set-up (the isentropic
+discharge, the initial state) asks for it.
 """
 
 from __future__ import annotations

@@ -17,7 +17,7 @@ plain revolutions of shooting call :meth:`ThermalCoupling.update` and count its 
 change in the cycle residual, so the gas cycle and the network converge together (the
 thermal update costs well under a revolution). Revolution iteration also moves the
 cylinder's start state with the suction plenum
-(:meth:`recipsim.model.build.Model.update_thermal`), so each revolution discharges gas
+(:meth:`recipsim.model.scene_model.WorkingModel.update_thermal`), so each revolution discharges gas
 drawn at the plenum it runs with. Before the first revolution a predictor
 solves the network with the clearance-volume estimate of the mass flow and an
 isentropic discharge, so the first revolution already starts near the heated suction
@@ -30,6 +30,7 @@ provides it, else 0 (``loss_sources(model, y_end, duration, drive_power)``).
 
 from __future__ import annotations
 
+import copy
 import math
 from collections.abc import Callable
 from dataclasses import dataclass, replace
@@ -57,11 +58,10 @@ _DEW_MARGIN = 0.5  # K
 
 
 class CoupledModel(Protocol):
-    """What the coupling needs of :class:`recipsim.model.build.Model`."""
+    """What the coupling needs of :class:`recipsim.model.scene_model.WorkingModel`."""
 
     case: Case
     fluid: Any
-    par: np.ndarray
 
     @property
     def suction(self) -> PlenumState: ...
@@ -71,6 +71,7 @@ class CoupledModel(Protocol):
     def set_suction_state(self, pressure: float, temperature: float) -> None: ...
     def set_discharge_state(self, pressure: float, enthalpy: float) -> None: ...
     def set_shell_gas_state(self, temperature: float) -> None: ...
+    def set_wall_temperature(self, temperature: float) -> None: ...
 
 
 @dataclass(frozen=True)
@@ -119,6 +120,15 @@ class ThermalCoupling:
         self.loss_sources: (
             Callable[[Any, np.ndarray | None, float, float | None], tuple[float, float]] | None
         ) = None
+
+    def working_copy(self) -> ThermalCoupling:
+        """A copy with its own running state (the solutions applied, the last loads, the
+        plenum before, the motor's last slip), for one solve
+        (:meth:`recipsim.model.scene_model.Model.for_solve`); the dew point cache is
+        shared."""
+        work = copy.copy(self)
+        work.loss_sources = copy.copy(self.loss_sources)
+        return work
 
     # ---- the network's boundary -----------------------------------------------------------
     def _losses(
@@ -261,7 +271,7 @@ class ThermalCoupling:
             Its duration [s].
         follows : bool
             The gas the cylinder holds at the start angle follows the new suction plenum
-            (:meth:`recipsim.model.build.Model.update_thermal`), so the next revolution
+            (:meth:`recipsim.model.scene_model.WorkingModel.update_thermal`), so the next revolution
             discharges gas drawn at the new plenum: the discharge stream is paired with
             the plenum of this revolution. Otherwise (shooting's revolutions, which start
             where the last one ended) with the plenum of the revolution before.
@@ -320,7 +330,7 @@ def _apply(model: CoupledModel, solution: NetworkSolution, pressures: NetworkPre
     model.set_suction_state(pressures.node[GP_SM], float(t[SM]))
     model.set_discharge_state(pressures.node[GP_DC], float(solution.enthalpy[DC]))
     model.set_shell_gas_state(float(t[SG]))
-    model.par[cyl.C_TWALL] = float(t[CW])
+    model.set_wall_temperature(float(t[CW]))
 
 
 @dataclass(frozen=True)

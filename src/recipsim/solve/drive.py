@@ -29,7 +29,7 @@ def rigid_crank_pressure(case: Case) -> tuple[np.ndarray, np.ndarray]:
     """
     model = cylinder_model(case)
     rigid = solve_periodic(model)
-    out = sample_outputs(model, rigid.final)
+    out = sample_outputs(rigid.model, rigid.final)
     theta = np.mod(out[:, cyl.A_THETA], 2.0 * math.pi)
     order = np.argsort(theta)
     return theta[order], out[order, cyl.A_PRESSURE]

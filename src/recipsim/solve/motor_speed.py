@@ -21,7 +21,7 @@ from dataclasses import dataclass
 
 from recipsim.case.case import Case
 from recipsim.errors import SolverError
-from recipsim.model.build import Model
+from recipsim.model.build import Model, WorkingModel
 from recipsim.model.loss_sources import constant_speed_mean_friction, revolution_shaft_power
 from recipsim.physics.motor_circuit import motor_operating_point_at_torque
 from recipsim.solve.drive import build_model_for
@@ -84,11 +84,12 @@ def motor_speed_at_load(model: Model, solution: PeriodicSolution) -> float:
     return float(point.speed)
 
 
-def _warm_started(model: Model, previous: tuple[Model, PeriodicSolution]) -> Model:
-    """``model`` started from the periodic state of the previous speed: the cylinder's
-    state at the start angle and the discharge plenum (and the thermal network's
-    boundary, where there is one)."""
-    old_model, old = previous
+def _warm_started(model: Model, old: PeriodicSolution) -> WorkingModel:
+    """A working copy of ``model`` started from the periodic state ``old`` of the
+    previous speed: the cylinder's state at the start angle and the discharge plenum
+    (and the thermal network's boundary, where there is one)."""
+    old_model = old.model
+    model = model.for_solve()
     model.y0[:] = old.final.y_end
     model.mode0[:] = old.final.mode_end
     model.set_discharge_enthalpy(old_model.discharge.enthalpy)
@@ -113,10 +114,10 @@ def solve_at_motor_speed(case: Case) -> MotorSpeedSolution:
     speed = case.operating_point.shaft_speed
     speeds: list[float] = []
     revolutions = 0
-    previous: tuple[Model, PeriodicSolution] | None = None
+    previous: PeriodicSolution | None = None
     for _ in range(MAX_SPEED_SOLVES):
         current = case.with_({"operating_point.shaft_speed": speed})
-        model = build_model_for(current)
+        model: Model = build_model_for(current)
         if previous is not None:
             model = _warm_started(model, previous)
         solution = solve_periodic(model)
@@ -126,7 +127,7 @@ def solve_at_motor_speed(case: Case) -> MotorSpeedSolution:
         residual = abs(following - speed) / speed
         if residual < tolerance:
             return MotorSpeedSolution(current, solution, tuple(speeds), residual, revolutions)
-        previous = (model, solution)
+        previous = solution
         speed = following
     raise SolverError(
         f"options.speed = 'motor_slip': the speed did not settle in {MAX_SPEED_SOLVES} solves "

@@ -36,7 +36,7 @@ import time
 
 import numpy as np
 
-from recipsim.model.build import Model
+from recipsim.model.build import Model, WorkingModel
 from recipsim.model.scenes import SCENE_CYLINDER
 from recipsim.solve.residual import cycle_residual, residual_reference, state_change
 from recipsim.solve.revolution import (
@@ -51,13 +51,13 @@ from recipsim.solve.revolution import (
     sample_outputs,
     sample_times,
 )
-from recipsim.solve.shooting import shooting_cost, solve_shooting
+from recipsim.solve.shooting import shoot, shooting_cost, solve_shooting
 from recipsim.solve.subharmonic import (
     SUBHARMONIC_PERIODS,
     RevolutionIntegrator,
     candidate_period,
     period_average,
-    solve_subharmonic,
+    shoot_subharmonic,
     subharmonic_period,
 )
 
@@ -132,7 +132,8 @@ def solve_periodic(model: Model) -> PeriodicSolution:
     flexible bearings, whose free vibration decays slowly or not at all.
 
     ``revolutions`` of the result counts every integrated revolution, those of the
-    shooting Jacobians included.
+    shooting Jacobians included. ``model`` is not changed: the solve moves a working
+    copy of it (:meth:`~recipsim.model.build.Model.for_solve`), which the result carries.
 
     Raises
     ------
@@ -155,6 +156,8 @@ def solve_revolutions(
     Parameters
     ----------
     model : Model
+        Not changed: the revolutions move a working copy of it
+        (:meth:`~recipsim.model.build.Model.for_solve`), which the result carries.
     hand_over : bool
         Hand over to shooting when revolutions converge too slowly (``"auto"``).
     integrate : callable
@@ -168,6 +171,13 @@ def solve_revolutions(
     SolverError
         If a revolution fails (with crank angle and state).
     """
+    return _iterate(model.for_solve(), hand_over, integrate)
+
+
+def _iterate(
+    model: WorkingModel, hand_over: bool, integrate: RevolutionIntegrator
+) -> PeriodicSolution:
+    """:func:`solve_revolutions` on the working copy ``model``, which it moves."""
     s = model.case.solver
     start = time.perf_counter()
     y = model.y0.copy()
@@ -234,7 +244,7 @@ def _tallied(
 
 
 def _hand_over(
-    model: Model,
+    model: WorkingModel,
     recent: list[Revolution],
     start: tuple[Revolution, float],
     history: list[float],
@@ -258,13 +268,13 @@ def _hand_over(
     n = candidate_period([r.y_end[: model.n_err] for r in recent], ref)
     if n > 1 and n not in tried:
         tried.add(n)
-        solution = solve_subharmonic(model, n, start, history, tally, t0, integrate)
+        solution = shoot_subharmonic(model, n, start, history, tally, t0, integrate)
         if solution is not None:
             return solution
     if 1 in tried:
         return None
     tried.add(1)
-    solution = solve_shooting(model, start=start, history=history, tally=tally, t0=t0)
+    solution = shoot(model, start=start, history=history, tally=tally, t0=t0)
     if not repels(model, solution):
         return solution
     enthalpy = discharge_enthalpy(model, rev)  # back to the iteration's plenum

@@ -13,7 +13,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from recipsim.errors import SolverError
-from recipsim.model.build import Model, scenes
+from recipsim.model.build import Model, WorkingModel, scenes
 from recipsim.model.scenes import N_AUX
 from recipsim.physics.mechanics import layout as mlay
 from recipsim.physics.thermo import cylinder as cyl
@@ -85,10 +85,12 @@ class PeriodicSolution:
 
     ``revolutions`` counts every integrated revolution, including the finite-difference
     Jacobian columns and trial steps of shooting; ``residual_history`` holds the cycle
-    residual of every revolution that was not a Jacobian column.
+    residual of every revolution that was not a Jacobian column. ``model`` is the working
+    copy the solve moved (:meth:`~recipsim.model.build.Model.for_solve`): the plenum
+    states and the thermal network as the converged revolution left them.
     """
 
-    model: Model
+    model: WorkingModel
     final: Revolution
     revolutions: int
     residual: float
@@ -138,22 +140,38 @@ def sample_times(model: Model, n: int) -> tuple[np.ndarray, np.ndarray]:
     return times_sorted, order
 
 
+def working(model: Model) -> WorkingModel:
+    """``model`` itself if it is a working copy (:meth:`~recipsim.model.build.Model.for_solve`).
+
+    Raises
+    ------
+    TypeError
+        For a built model: its arrays are read-only, and the compiled code would be
+        compiled again for them (a read-only array is another numba type).
+    """
+    if not isinstance(model, WorkingModel):
+        raise TypeError("integrate a working copy of the model: model.for_solve()")
+    return model
+
+
 def revolution_setup(
-    model: Model, y: np.ndarray, mode: np.ndarray, n_samples: int
+    model: WorkingModel, y: np.ndarray, mode: np.ndarray, n_samples: int
 ) -> tuple[np.ndarray, np.ndarray, float, np.ndarray, np.ndarray, np.ndarray]:
     """What any integrator needs to run one revolution from ``y``, ``mode``.
 
     Returns the state copy with the quadratures reset, the mode copy, the end time
     (three nominal periods when the speed is free: the crank-angle event ends the
-    revolution, armed here in ``model.par``), the sample times and the sample buffers.
+    revolution, armed here in the working copy ``model``), the sample times and the sample
+    buffers.
     """
+    working(model)
     y_run = y.copy()
     y_run[model.quadratures] = 0.0
     mode_run = mode.copy()
     t_end = model.period
     if model.free_speed:
         theta = y_run[model.mechanism_offset + mlay.Y_CRANK_ANGLE]
-        model.par[scenes.P_THETA_END] = theta + 2.0 * math.pi
+        model.set_revolution_end(theta + 2.0 * math.pi)
         t_end = 3.0 * model.period
         times = model.period * np.arange(n_samples) / n_samples
     else:
@@ -181,7 +199,7 @@ def integrator_method(model: Model) -> int:
 
 
 def integrate_revolution(
-    model: Model, y: np.ndarray, mode: np.ndarray, h: float, n_samples: int
+    model: WorkingModel, y: np.ndarray, mode: np.ndarray, h: float, n_samples: int
 ) -> tuple[Revolution, float]:
     """Integrate one revolution from ``y`` (modified copy returned in the result).
 
@@ -318,9 +336,10 @@ class _Tally:
 
 def sample_outputs(model: Model, rev: Revolution) -> np.ndarray:
     """Auxiliary outputs (layout ``A_*`` of the scene) at every sample, in time order,
-    with the post-processing outputs (peak film pressures) switched on."""
+    with the post-processing outputs (peak film pressures) switched on; ``model`` is a
+    working copy, e.g. the solution's (:func:`working`)."""
     out = np.zeros((rev.times.shape[0], N_AUX))
-    par = model.par
+    par = working(model).par
     if model.scene != scenes.SCENE_CYLINDER:
         par = par.copy()
         par[scenes.P_MECH + mlay.P_DETAILED_OUTPUTS] = 1.0

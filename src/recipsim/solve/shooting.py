@@ -73,7 +73,7 @@ import time
 
 import numpy as np
 
-from recipsim.model.build import Model
+from recipsim.model.build import Model, WorkingModel
 from recipsim.solve.newton import newton_fixed_point
 from recipsim.solve.residual import cycle_residual, state_change
 from recipsim.solve.revolution import (
@@ -113,6 +113,8 @@ def solve_shooting(
     Parameters
     ----------
     model : Model
+        Not changed: shooting moves a working copy of it
+        (:meth:`~recipsim.model.build.Model.for_solve`), which the result carries.
     start : (Revolution, float), optional
         The last revolution already run and the integrator's step [s] (hand-over from
         revolution iteration); the discharge enthalpy of ``model`` must already be the
@@ -137,13 +139,26 @@ def solve_shooting(
     SolverError
         If a plain revolution fails (with crank angle and state).
     """
+    return shoot(model.for_solve(), start, history, tally, t0, jacobian)
+
+
+def shoot(
+    model: WorkingModel,
+    start: tuple[Revolution, float] | None = None,
+    history: list[float] | None = None,
+    tally: _Tally | None = None,
+    t0: float | None = None,
+    jacobian: tuple[np.ndarray, np.ndarray] | None = None,
+) -> PeriodicSolution:
+    """:func:`solve_shooting` on the working copy ``model`` itself, which it moves (the
+    hand-over from revolution iteration, which goes on with the same copy)."""
     return _Shooting(model, start, history, tally, t0, jacobian).run()
 
 
 class _StatesRepeat:
     """Newton's convergence test: the states repeat over the revolution to ``target``."""
 
-    def __init__(self, model: Model, target: float) -> None:
+    def __init__(self, model: WorkingModel, target: float) -> None:
         self.model = model
         self.target = target
 
@@ -156,7 +171,7 @@ class _Shooting:
 
     def __init__(
         self,
-        model: Model,
+        model: WorkingModel,
         start: tuple[Revolution, float] | None,
         history: list[float] | None,
         tally: _Tally | None,

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from recipsim.model.build import Model
+from recipsim.model.build import Model, WorkingModel
 from recipsim.physics.mechanics import layout as mlay
 from recipsim.physics.thermo import cylinder as cyl
 from recipsim.solve.revolution import (
@@ -73,7 +73,7 @@ class RevolutionMap:
     crank speed); the modes are the base modes.
     """
 
-    def __init__(self, model: Model, tally: _Tally):
+    def __init__(self, model: WorkingModel, tally: _Tally):
         self.model = model
         self.gas = model.has_gas
         self.tally = tally

@@ -49,11 +49,19 @@ import numpy as np
 
 from recipsim.errors import SolverError
 from recipsim.model import scenes
-from recipsim.model.build import START_ANGLE, Model
+from recipsim.model.build import START_ANGLE, Model, WorkingModel
 from recipsim.physics.layout_table import Layout
 from recipsim.physics.mechanics import layout as mlay
 from recipsim.physics.thermo import cylinder as cyl
-from recipsim.solve.integrator import N_STATS, ST_NACCEPT, ST_NFEV, ST_NSAMPLES, ST_STATUS, ST_T
+from recipsim.solve.integrator import (
+    N_STATS,
+    ST_H,
+    ST_NACCEPT,
+    ST_NFEV,
+    ST_NSAMPLES,
+    ST_STATUS,
+    ST_T,
+)
 from recipsim.solve.integrator import integrate as integrate_scene
 from recipsim.solve.periodic import solve_periodic
 from recipsim.solve.residual import cycle_residual
@@ -136,6 +144,10 @@ class StartupTransient:
         The last revolution (its quadratures, for flow and power).
     settled : bool
         Whether the residual fell below the cycle tolerance after the ramp.
+    model : WorkingModel or None
+        The working copy the transient moved, left with the case's boundary conditions
+        and the discharge plenum of the last revolution (the periodic solve goes on
+        from it).
     """
 
     trace: np.ndarray
@@ -151,6 +163,7 @@ class StartupTransient:
     wall_time: float = 0.0
     windows: int = 0
     extra: dict[str, float] = field(default_factory=dict)
+    model: WorkingModel | None = field(default=None, repr=False)
 
     @property
     def duration(self) -> float:
@@ -198,7 +211,12 @@ def _trace_rows(model: Model, rev: Revolution, t_window: float) -> np.ndarray:
 
 
 def _window(
-    model: Model, y: np.ndarray, mode: np.ndarray, t_window: float, theta_end: float, h: float
+    model: WorkingModel,
+    y: np.ndarray,
+    mode: np.ndarray,
+    t_window: float,
+    theta_end: float,
+    h: float,
 ) -> tuple[Revolution, float]:
     """Integrate from ``y`` at time ``t_window`` until the crank angle ``theta_end``."""
     s = model.case.solver
@@ -214,7 +232,7 @@ def _window(
     y_run[model.quadratures] = 0.0
     mode_run = mode.copy()
     stats = np.zeros(N_STATS)
-    model.par[scenes.P_THETA_END] = theta_end
+    model.set_revolution_end(theta_end)
     with model.props.interrupts_deferred():
         integrate_scene(
             0.0, t_limit, y_run, mode_run, model.par, model.ipar, model.props,
@@ -239,20 +257,23 @@ def _window(
         y.copy(), y_run, mode.copy(), mode_run, times[:n], samples[:n], sample_modes[:n], stats
     )
     rev.duration = float(stats[ST_T])
-    return rev, float(stats[6])
+    return rev, float(stats[ST_H])
 
 
 def run_startup(model: Model) -> StartupTransient:
     """Integrate the start-up from rest until the revolutions settle (module docstring).
 
-    Leaves ``model`` with the case's boundary conditions and the discharge plenum of
-    the last revolution, ready for the periodic solver from ``final.y_end``.
+    ``model`` is not changed: the transient moves a working copy of it
+    (:meth:`~recipsim.model.build.Model.for_solve`), which the result carries, left with
+    the case's boundary conditions and the discharge plenum of the last revolution,
+    ready for the periodic solver from ``final.y_end``.
 
     Raises
     ------
     SolverError
         If a window fails (with crank angle and state) or the motor cannot turn the crank.
     """
+    model = model.for_solve()
     s = model.case.solver
     start = time.perf_counter()
     p0 = standstill_pressure(model)
@@ -315,6 +336,7 @@ def run_startup(model: Model) -> StartupTransient:
         steps=steps,
         wall_time=time.perf_counter() - start,
         windows=len(ends),
+        model=model,
     )
 
 
@@ -341,7 +363,8 @@ def revolution_flow_and_power(model: Model, rev: Revolution) -> tuple[float, flo
 
 
 def solve_from_rest(model: Model) -> StartupRun:
-    """Start-up transient (:func:`run_startup`), then the periodic solver from its end.
+    """Start-up transient (:func:`run_startup`), then the periodic solver from its end
+    (from the transient's working copy; ``model`` is not changed).
 
     Raises
     ------
@@ -349,11 +372,13 @@ def solve_from_rest(model: Model) -> StartupRun:
         If the transient or the periodic solve fails.
     """
     transient = run_startup(model)
-    model.y0 = transient.final.y_end.copy()
-    model.mode0 = transient.final.mode_end.copy()
-    solution = solve_periodic(model)
-    flow_t, power_t = revolution_flow_and_power(model, transient.final)
-    flow_p, power_p = revolution_flow_and_power(model, solution.final)
+    work = transient.model
+    assert work is not None
+    work.y0 = transient.final.y_end.copy()
+    work.mode0 = transient.final.mode_end.copy()
+    solution = solve_periodic(work)
+    flow_t, power_t = revolution_flow_and_power(work, transient.final)
+    flow_p, power_p = revolution_flow_and_power(work, solution.final)
     return StartupRun(
         transient=transient,
         solution=solution,

@@ -12,7 +12,7 @@ import numpy as np
 
 from recipsim.errors import SolverError
 from recipsim.model import scenes
-from recipsim.model.build import Model
+from recipsim.model.build import Model, WorkingModel
 from recipsim.physics.mechanics import layout as mlay
 from recipsim.physics.mechanics.flexible_setup import initial_state
 from recipsim.physics.thermo import cylinder as cyl
@@ -67,7 +67,7 @@ def _gas_temperature(model: Model, p0: float, pressure: float, f: float) -> floa
     return max(chord, fluid.saturation_temperature(pressure) + margin)
 
 
-def set_plenums(model: Model, p0: float, t: float, enthalpy: float | None) -> None:
+def set_plenums(model: WorkingModel, p0: float, t: float, enthalpy: float | None) -> None:
     """Move the suction, discharge and shell states to their values at ``t`` [s]; the
     discharge plenum at ``enthalpy`` [J/kg] (None: the isentropic discharge of the
     suction gas)."""
@@ -78,13 +78,11 @@ def set_plenums(model: Model, p0: float, t: float, enthalpy: float | None) -> No
     if enthalpy is None:
         enthalpy = float(model.fluid.state_ps(p_d, model.suction.entropy)["h"])
     model.set_discharge_state(p_d, enthalpy)
-    model.par[cyl.C_PSHELL] = p_sh
-    model.par[scenes.P_MECH + mlay.P_SHELL_PRESSURE] = p_sh
-    model.shell.pressure = p_sh
+    model.set_shell_pressure(p_sh)
     model.set_shell_gas_state(temperature)
 
 
-def rest_state(model: Model, p0: float) -> tuple[np.ndarray, np.ndarray]:
+def rest_state(model: WorkingModel, p0: float) -> tuple[np.ndarray, np.ndarray]:
     """State and modes at standstill (module docstring); moves the plenums to ``t = 0``."""
     if model.scene != scenes.SCENE_COUPLED or not model.free_speed:
         raise SolverError(

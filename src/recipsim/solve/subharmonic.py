@@ -35,7 +35,7 @@ from collections.abc import Callable
 import numpy as np
 
 from recipsim.errors import SolverError
-from recipsim.model.build import Model
+from recipsim.model.build import Model, WorkingModel
 from recipsim.solve.newton import newton_fixed_point
 from recipsim.solve.residual import (
     CLOSURE_ALLOWANCE,
@@ -55,7 +55,7 @@ from recipsim.solve.shooting_map import RevolutionMap
 
 #: ``integrate(model, y, mode, h, samples) -> (revolution, next first step [s])``
 RevolutionIntegrator = Callable[
-    [Model, np.ndarray, np.ndarray, float, int], tuple[Revolution, float]
+    [WorkingModel, np.ndarray, np.ndarray, float, int], tuple[Revolution, float]
 ]
 
 #: Periods (in revolutions) looked for.
@@ -179,7 +179,7 @@ class _PeriodRepeats:
 class _PeriodMap(RevolutionMap):
     """``z -> G^n(z)``: n chained revolutions from the unknowns ``z`` at the section."""
 
-    def __init__(self, model: Model, tally: _Tally, n: int, integrate: RevolutionIntegrator):
+    def __init__(self, model: WorkingModel, tally: _Tally, n: int, integrate: RevolutionIntegrator):
         super().__init__(model, tally)
         self.n = n
         self.integrate = integrate
@@ -224,6 +224,8 @@ def solve_subharmonic(
     Parameters
     ----------
     model : Model
+        Not changed: Newton moves a working copy of it
+        (:meth:`~recipsim.model.build.Model.for_solve`), which the result carries.
     n : int
         The candidate period (:func:`candidate_period`).
     start : (Revolution, float)
@@ -240,6 +242,21 @@ def solve_subharmonic(
         Converged with ``period_revolutions = n``, or None when Newton stalls, the
         budget runs out or the orbit found repeats after one revolution.
     """
+    return shoot_subharmonic(model.for_solve(), n, start, history, tally, t0, integrate)
+
+
+def shoot_subharmonic(
+    model: WorkingModel,
+    n: int,
+    start: tuple[Revolution, float],
+    history: list[float],
+    tally: _Tally,
+    t0: float,
+    integrate: RevolutionIntegrator = integrate_revolution,
+) -> PeriodicSolution | None:
+    """:func:`solve_subharmonic` on the working copy ``model`` itself, which it moves
+    (the hand-over from revolution iteration, which goes on with the same copy when no
+    period-n orbit is found)."""
     s = model.case.solver
     tol = s.cycle_tolerance
     fmap = _PeriodMap(model, tally, n, integrate)
@@ -288,7 +305,7 @@ def solve_subharmonic(
 
 
 def _solution(
-    model: Model,
+    model: WorkingModel,
     n: int,
     revs: list[Revolution],
     residual: float,

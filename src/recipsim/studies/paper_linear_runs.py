@@ -18,6 +18,7 @@ from __future__ import annotations
 import math
 import time
 from collections.abc import Callable
+from dataclasses import replace
 from typing import Any
 
 import numpy as np
@@ -106,20 +107,22 @@ def flexible_case(
     return tabulated_case(case, curve, changes, config), "fixed_revolutions"
 
 
-def tdc_start(curve: PressureCurve, deflected: bool) -> Callable[[Model], None]:
+def tdc_start(curve: PressureCurve, deflected: bool) -> Callable[[Model], Model]:
     """A start at TDC, as a time-marching run of the paper makes it: the pinned pose with
     the bearings deflected by the pinned loads under ``curve`` (``deflected``) or
     undeflected; the model's revolutions then run from TDC to TDC."""
     p_tdc = tabulated_pressure(0.0, curve.crank_angle, curve.pressure)
 
-    def start(model: Model) -> None:
+    def start(model: Model) -> Model:
         m0 = model.mechanism_offset
-        mpar = model.par[scenes.P_MECH : scenes.P_MECH + mlay.N_PAR]
-        omega = model.y0[m0 + mlay.Y_CRANK_SPEED]
-        model.y0[m0 : m0 + mlay.N_STATE] = initial_state(
+        par, y0 = model.par.copy(), model.y0.copy()  # the built model's are read-only
+        mpar = par[scenes.P_MECH : scenes.P_MECH + mlay.N_PAR]
+        omega = y0[m0 + mlay.Y_CRANK_SPEED]
+        y0[m0 : m0 + mlay.N_STATE] = initial_state(
             mpar, 0.0, omega, p_tdc, static_deflection=deflected
         )
-        model.par[cyl.C_THETA0] = 0.0  # the samples' crank angles at constant speed
+        par[cyl.C_THETA0] = 0.0  # the samples' crank angles at constant speed
+        return replace(model, par=par, y0=y0)
 
     return start
 

@@ -110,7 +110,7 @@ def tabulated_case(
 def solve_load(
     configuration: str,
     case: Case,
-    start: Callable[[Model], None] | None = None,
+    start: Callable[[Model], Model] | None = None,
     jacobian: tuple[np.ndarray, np.ndarray] | None = None,
 ) -> LoadRun:
     """Solve ``case`` to its periodic state (``solver.periodic``) and tabulate it.
@@ -121,8 +121,8 @@ def solve_load(
         Recorded in the result.
     case : Case
     start : callable, optional
-        Called with the built model before the solve, to change its initial state
-        (``model.y0``).
+        Called with the built model before the solve; the model it returns is solved
+        (another initial state ``y0``, say).
     jacobian : (numpy.ndarray, numpy.ndarray), optional
         Seed of a shooting solve (:func:`recipsim.solve.shooting.solve_shooting`; the
         case's ``solver.periodic`` must be ``"shooting"``).
@@ -140,7 +140,7 @@ def solve_load(
     t0 = time.perf_counter()
     model = build_model_for(case)
     if start is not None:
-        start(model)
+        model = start(model)
     if jacobian is not None and case.solver.periodic == "shooting":
         sol = solve_shooting(model, jacobian=jacobian)
     else:

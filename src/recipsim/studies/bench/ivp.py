@@ -36,7 +36,7 @@ from scipy.integrate import solve_ivp
 
 from recipsim.errors import SolverError
 from recipsim.model import scenes
-from recipsim.model.build import Model
+from recipsim.model.build import Model, WorkingModel
 from recipsim.physics.mechanics import layout as mlay
 from recipsim.physics.thermo import cylinder as cyl
 from recipsim.physics.thermo.properties import PROPS_SIGNATURE
@@ -200,7 +200,7 @@ class _Progress:
 
 
 def integrate_revolution_ivp(
-    model: Model, y: np.ndarray, mode: np.ndarray, n_samples: int, method: str
+    model: WorkingModel, y: np.ndarray, mode: np.ndarray, n_samples: int, method: str
 ) -> Revolution:
     """One revolution from ``y`` with ``solve_ivp`` (mirrors ``periodic.integrate_revolution``).
 
@@ -368,7 +368,7 @@ def solve_periodic_ivp(model: Model, method: str) -> PeriodicSolution:
         raise ValueError(f"unknown solve_ivp method {method!r}; expected one of {METHODS}")
 
     def integrate(
-        model: Model, y: np.ndarray, mode: np.ndarray, h: float, samples: int
+        model: WorkingModel, y: np.ndarray, mode: np.ndarray, h: float, samples: int
     ) -> tuple[Revolution, float]:
         with warnings.catch_warnings():
             # NaN derivatives of a failed property call are how a step is rejected here

@@ -117,9 +117,8 @@ def solve(model: Any, integrator: str) -> Any:
         from recipsim.solve.periodic import solve_periodic
 
         # the rung names the compiled integrator, whatever the case file's solver.method
-        model.case = dataclasses.replace(
-            model.case, solver=dataclasses.replace(model.case.solver, method=integrator)
-        )
+        solver = dataclasses.replace(model.case.solver, method=integrator)
+        model = dataclasses.replace(model, case=dataclasses.replace(model.case, solver=solver))
         if model.case.options.speed == "motor_slip":  # as `recipsim run` solves it
             from recipsim.solve.motor_speed import solve_at_motor_speed
 
