@@ -29,7 +29,7 @@ SOFT_DISCHARGE = [
 def _discharge_rhs(overrides: list[str], lift: float) -> tuple[np.ndarray, float]:
     """Outputs of the rigid-crank right-hand side with the discharge reed free at
     ``lift`` and the gas at 370 K, 75 kg/m3 (about 17 bar, above the 14.7 bar plenum)."""
-    model = build_model(load_case(REFERENCE, overrides))
+    model = build_model(load_case(REFERENCE, overrides)).for_solve()  # writable arrays
     y = model.y0.copy()
     y[cyl.Y_T], y[cyl.Y_RHO], y[cyl.Y_XD] = 370.0, 75.0, lift
     mode = np.array([0, 1], dtype=np.int64)

@@ -136,23 +136,26 @@ def test_solving_leaves_the_model_as_built(scene: str) -> None:
     name, overrides, solve = SCENES[scene]
     model = build_model_for(load_case(name, overrides))
     before = snapshot(model)
+    readonly = set(_readonly_signatures())  # other tests may have made some (pandas 3's
+    # to_numpy gives read-only views): only the solves' own count here
     first = solve(model)
     assert snapshot(model) == before
     count = _signature_count()
     assert _same(solve(model), first), "solving the same model twice"
     assert snapshot(model) == before
     assert _signature_count() == count, "the second solve compiled something"
-    assert _readonly_signatures() == []
+    assert set(_readonly_signatures()) - readonly == set()
 
 
 def test_motor_slip_speed_is_the_same_twice() -> None:
     """``options.speed = "motor_slip"``: the nested solves, each warm-started from the
     previous speed's working copy, give the same speeds and summary twice."""
     case = load_case("tles5.7kk3_r600a")
+    readonly = set(_readonly_signatures())
     a, b = solve_at_motor_speed(case), solve_at_motor_speed(case)
     assert a.speeds == b.speeds and a.revolutions == b.revolutions
     assert _same(_row(a.solution), _row(b.solution))
-    assert _readonly_signatures() == []
+    assert set(_readonly_signatures()) - readonly == set()
 
 
 def test_a_built_model_is_read_only_and_its_working_copy_is_not() -> None:
