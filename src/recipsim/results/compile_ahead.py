@@ -6,8 +6,9 @@ one child process that loads the same case with the CoolProp properties (no tabl
 build) and solves one revolution of it, which compiles the case's scene and the tables'
 compiled code into numba's cache: the property callback has the same numba type with
 either property source, so the parent then loads what the child compiled. The parent
-builds the property table meanwhile and waits for the child before it integrates
-(:func:`wait_for_compile_ahead`). The child only pays where it has a core to itself:
+meanwhile builds the property table and its model (which compiles the table's own
+functions, which the child never needs) and waits for the child only then, before it
+integrates (:func:`wait_for_compile_ahead`). The child only pays where it has a core to itself:
 it starts when the machine has two cores that other work leaves idle (usable cores less
 the one-minute load average, as for the figure processes), nothing of the solver is
 cached and ``RECIPSIM_COMPILE_AHEAD`` is not ``0`` (``1`` starts it whatever the load).

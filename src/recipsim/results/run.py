@@ -163,27 +163,32 @@ def _solve(case: Case) -> tuple[Case, PeriodicSolution | None, StartupRun | None
     from recipsim.solve.motor_speed import solve_at_motor_speed
     from recipsim.solve.periodic import solve_periodic
 
-    wait_for_compile_ahead()  # a child compiling the solver on a fresh machine
     entry = solver_entry(case)
     if entry is not None and entry not in _COMPILED and numba_cache_lacks("integrator", entry):
         logger.info("compiling the solver for this scene (once per installation: about 15-25 s)")
     check_envelope(case)  # refuse a point outside the refrigerant's envelope up front
     if case.options.pressure == "tabulated" and case.options.mechanics == "pinned":
+        wait_for_compile_ahead()
         return case, None, None
     if case.solver.start == "rest":  # the start-up transient, then the periodic solve
         from recipsim.solve.startup import solve_from_rest
 
         with explained("building the model"):
             model = build_model_for(case)
+        wait_for_compile_ahead()
         with explained("integrating the start-up from rest"):
             startup = solve_from_rest(model)
         return case, startup.solution, startup
     if case.options.speed == "motor_slip":
+        wait_for_compile_ahead()
         with explained("integrating the periodic state at the motor's slip speed"):
             at_speed = solve_at_motor_speed(case)
         return at_speed.case, at_speed.solution, None
     with explained("building the model"):
         model = build_model_for(case)
+    # a child compiling the solver on a fresh machine (compile_ahead): the model build
+    # above (the property table's compiled functions) ran beside it
+    wait_for_compile_ahead()
     with explained("integrating the periodic state"):
         solution = solve_periodic(model)
     if entry is not None:

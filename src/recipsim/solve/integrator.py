@@ -178,7 +178,7 @@ def _write_stats(stats, result, t, h, i_sample, counts) -> None:
     stats[ST_NJAC] = counts[5]
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def integrate_scene(
     code,
     t0,
@@ -358,9 +358,9 @@ def integrate_scene(
 
 
 # ---- one compiled entry per scene ------------------------------------------------------
-# Each passes its scene to integrate_scene as a compile-time constant, so it compiles (and
-# numba caches, in its own file) the code of that scene only: a case on the rigid crank
-# never compiles the flexible crank train.
+# Each inlines integrate_scene with its scene as a compile-time constant: it compiles (and
+# numba caches, in its own file) that scene's code only, once (not inlined, the loop was
+# optimised and compiled to machine code twice: -1.9 s CPU on a first run, docs/speed.md).
 # fmt: off
 @njit(cache=True)
 def integrate_cylinder(t0, t1, y, mode, par, ipar, props, pbuf, rtol, atol, scale, n_err,

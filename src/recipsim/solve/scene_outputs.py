@@ -11,7 +11,8 @@ from recipsim.model.scenes import SCENE_COUPLED, SCENE_CYLINDER, SCENE_MECHANISM
 from recipsim.physics.thermo.cylinder import I_SCENE
 
 
-@njit(cache=True)
+# inlined into each scene's entry (one library to compile instead of two)
+@njit(cache=True, inline="always")
 def _evaluate(code, times, samples, sample_modes, par, ipar, props, pbuf, out):
     n = samples.shape[1]
     dydt = np.empty(n)

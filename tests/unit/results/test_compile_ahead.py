@@ -51,3 +51,27 @@ def test_the_child_compiles_the_cases_scene_into_the_cache(fresh_cache) -> None:
     names = {p.name.split("-")[0] for p in fresh_cache.rglob("*.nbi")}
     assert "integrator.integrate_cylinder" in names
     assert "scene_outputs._cylinder_outputs" in names
+
+
+def test_the_parent_builds_its_model_before_it_waits_for_the_child(monkeypatch) -> None:
+    """The model build (the property table's compiled functions, which the child never
+    compiles) runs beside the child: the parent waits only before it integrates."""
+    from recipsim.case.load import load_case
+    from recipsim.results import run
+    from recipsim.solve import drive, periodic
+
+    calls: list[str] = []
+
+    class Stop(Exception):
+        pass
+
+    def solve(model: object) -> None:
+        calls.append("solve")
+        raise Stop
+
+    monkeypatch.setattr(drive, "build_model_for", lambda case: calls.append("model"))
+    monkeypatch.setattr(compile_ahead, "wait_for_compile_ahead", lambda: calls.append("wait"))
+    monkeypatch.setattr(periodic, "solve_periodic", solve)
+    with pytest.raises(Stop):
+        run._solve(load_case("reference_r134a_lbp"))
+    assert calls == ["model", "wait", "solve"]
