@@ -7,6 +7,9 @@ kernels over 80 lines."""
 from __future__ import annotations
 
 import ast
+import importlib
+import inspect
+import re
 import shutil
 import subprocess
 import sys
@@ -192,3 +195,139 @@ def test_the_size_checks_see_what_they_should():
     assert _long_modules([("big.py", "\n" * 401)]) == {"big.py": 401}
     noted = f'"""{SIZE_NOTE}: one piece."""\n' + "\n" * 401
     assert _long_modules([("noted.py", noted)]) == {}
+
+
+# ---- index positions only in model/ and physics/ (issue 13) --------------------------
+#: layers whose plain-Python code reads and writes laid-out arrays by name (bundles,
+#: the accessors of :class:`recipsim.model.scene_model.Model`), never by index constant
+NAMED_ACCESS_LAYERS = ("solve", "results", "report", "studies", "cli")
+#: the layers whose modules declare the layouts (their index constants are theirs)
+LAYOUT_LAYERS = ("physics", "model")
+_UPPER = re.compile(r"^[A-Z][A-Z0-9_]*$")
+
+# What must stay, each with why ("path:qualified.name"; the list can only shrink: an entry
+# that no longer subscripts by a layout constant fails the test, so remove it).
+# Empty: the report's column registries (results/cycle.py, results/bearings.py) name
+# their columns by layout slot through calls (``_column(cyl.A_PRESSURE)``), which are
+# no positions.
+ALLOWED_INDEXING: set[str] = set()
+
+
+def _layout_modules() -> set[str]:
+    """Dotted names of the modules of physics/ and model/ that declare a layout table
+    (a module-level ``NAME = Layout(...)``) or compose one (they import such a module
+    and include its tables: model/scenes.py)."""
+    found = set()
+    for layer in LAYOUT_LAYERS:
+        for path in sorted((PACKAGE / layer).rglob("*.py")):
+            if re.search(r"^[A-Z_0-9]+ = Layout\(", path.read_text(encoding="utf-8"), re.M):
+                rel = path.relative_to(PACKAGE.parent).with_suffix("")
+                found.add(".".join(rel.parts))
+    return found
+
+
+def _layout_aliases(tree: ast.Module, layouts: set[str]) -> set[str]:
+    """Names under which ``tree`` imports a layout module (``cyl``, ``mlay``, ``scenes``;
+    re-exports such as ``from recipsim.model.build import scenes`` resolved by import)."""
+    aliases = set()
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Import):
+            aliases |= {a.asname for a in node.names if a.asname and a.name in layouts}
+        elif isinstance(node, ast.ImportFrom) and node.module and node.level == 0:
+            for a in node.names:
+                target = f"{node.module}.{a.name}"
+                if target not in layouts and node.module.startswith("recipsim."):
+                    value = getattr(importlib.import_module(node.module), a.name, None)
+                    target = getattr(value, "__name__", "") if inspect.ismodule(value) else ""
+                if target in layouts:
+                    aliases.add(a.asname or a.name)
+    return aliases
+
+
+def _indexing(tree: ast.Module, aliases: set[str]) -> dict[str, list[str]]:
+    """Layout constants (``alias.UPPER``) inside the subscripts of every function not
+    compiled by numba, by qualified name: ``{"f": ["line 12: cyl.Y_T"]}``."""
+    found: dict[str, list[str]] = {}
+
+    def constants(node: ast.AST) -> list[str]:
+        # a call's arguments are not positions (``cols[_column(lay.A_CRANK_SPEED)]``
+        # keys a dict by the column name the layout table gives that slot)
+        if isinstance(node, ast.Call):
+            return []
+        if (
+            isinstance(node, ast.Attribute)
+            and isinstance(node.value, ast.Name)
+            and node.value.id in aliases
+            and _UPPER.match(node.attr)
+        ):
+            return [f"line {node.lineno}: {node.value.id}.{node.attr}"]
+        return [hit for child in ast.iter_child_nodes(node) for hit in constants(child)]
+
+    def visit(node: ast.AST, name: str | None, prefix: str) -> None:
+        for child in ast.iter_child_nodes(node):
+            if isinstance(child, ast.FunctionDef | ast.AsyncFunctionDef):
+                if not _is_compiled(child):
+                    visit(child, prefix + child.name, prefix + child.name + ".")
+            elif isinstance(child, ast.ClassDef):
+                visit(child, None, prefix + child.name + ".")
+            else:
+                if name is not None and isinstance(child, ast.Subscript):
+                    hits = constants(child.slice)
+                    if hits:
+                        found.setdefault(name, []).extend(hits)
+                visit(child, name, prefix)
+
+    visit(tree, None, "")
+    return found
+
+
+def _layout_indexing(sources: list[tuple[str, str]]) -> dict[str, list[str]]:
+    layouts = _layout_modules()
+    found = {}
+    for rel, text in sources:
+        if rel.split("/")[0] not in NAMED_ACCESS_LAYERS:
+            continue
+        tree = ast.parse(text)
+        for name, hits in _indexing(tree, _layout_aliases(tree, layouts)).items():
+            found[f"{rel}:{name}"] = hits
+    return found
+
+
+def test_only_model_and_physics_index_laid_out_arrays():
+    """solve/, results/, report/, studies/ and cli/ read states, parameters and outputs
+    by name (issue 13: model/ is the only place that knows index positions); the
+    compiled kernels keep their index constants (docs/speed.md)."""
+    found = _layout_indexing(_sources())
+    new = {name: hits for name, hits in found.items() if name not in ALLOWED_INDEXING}
+    assert not new, (
+        f"subscripts by layout index constants outside model/ and physics/: {new}; read "
+        "through a bundle (Layout.bundle, scenes.named_state) or a Model accessor"
+    )
+    fixed = ALLOWED_INDEXING - set(found)
+    assert not fixed, f"no longer indexing: remove {sorted(fixed)} from ALLOWED_INDEXING"
+
+
+def test_the_indexing_check_sees_what_it_should():
+    """A subscript by a layout constant counts in a plain function (nested ones too), not
+    in a compiled kernel, nor outside a subscript, nor for a module that is no layout."""
+    text = (
+        "from numba import njit\n"
+        "from recipsim.physics.thermo import cylinder as cyl\n"
+        "import numpy as np\n\n"
+        "def plain(y, par):\n"
+        "    def inner():\n        return par[cyl.C_OMEGA]\n"
+        "    return y[cyl.Y_T] + y[1 : cyl.N_STATE] + np.PI + cyl.Y_T\n\n"
+        "@njit(cache=True)\ndef kernel(y):\n    return y[cyl.Y_T]\n\n"
+        "def other(y, cols):\n    return y[np.NEWAXIS], cols[str(cyl.A_THETA)]\n"
+    )
+    tree = ast.parse(text)
+    aliases = _layout_aliases(tree, _layout_modules())
+    assert aliases == {"cyl"}
+    found = _indexing(tree, aliases)
+    assert found == {
+        "plain": ["line 8: cyl.Y_T", "line 8: cyl.N_STATE"],
+        "plain.inner": ["line 7: cyl.C_OMEGA"],
+    }
+    assert _layout_aliases(
+        ast.parse("from recipsim.model.build import scenes"), {"recipsim.model.scenes"}
+    ) == {"scenes"}

@@ -133,6 +133,71 @@ class Model:
         """The mechanism block of ``par`` (layout :mod:`recipsim.physics.mechanics.layout`)."""
         return self.par[scenes.P_MECH : scenes.P_MECH + mlay.N_PAR]
 
+    # ---- named access to the laid-out arrays: the solver, the results and the studies
+    # read and write states and parameters through these, never through index constants
+    @property
+    def shaft_speed(self) -> float:
+        """The nominal crank speed [rad/s] (``par``'s ``shaft_speed``)."""
+        return float(self.par[cyl.C_OMEGA])
+
+    @property
+    def start_angle(self) -> float:
+        """Crank angle at the start of a revolution of the rigid crank [rad]."""
+        return float(self.par[cyl.C_THETA0])
+
+    def state_index(self, name: str) -> int:
+        """Position of the state slot ``name`` in this scene's state vector (its table in
+        :data:`recipsim.model.scenes.STATES`: ``"gas_density"``,
+        ``"mechanism_crank_speed"``, ``"drive_work"``)."""
+        return scenes.STATES[self.scene].entry(name).index
+
+    def gas_state(self, y: np.ndarray) -> np.ndarray:
+        """View of the gas temperature [K] and density [kg/m3] of state(s) ``y`` (the
+        last axis indexes the state vector; writable when ``y`` is)."""
+        return y[..., cyl.Y_T : cyl.Y_RHO + 1]
+
+    def mechanism_state(self, y: np.ndarray) -> np.ndarray:
+        """View of the mechanism block of state(s) ``y`` (layout
+        :data:`recipsim.physics.mechanics.layout.STATES`; flexible scenes)."""
+        m0 = self.mechanism_offset
+        return y[..., m0 : m0 + mlay.N_STATE]
+
+    def mechanism_quadratures(self, y: np.ndarray) -> np.ndarray:
+        """View of the mechanism quadratures of state(s) ``y`` (table
+        :data:`recipsim.model.scenes.MECH_QUAD`; flexible scenes)."""
+        q = self.mechanism_offset + mlay.N_STATE
+        return y[..., q : q + scenes.N_MECH_QUAD]
+
+    def mechanism_outputs(self, aux: np.ndarray) -> np.ndarray:
+        """View of the mechanism block of scene output(s) ``aux`` (layout
+        :data:`recipsim.physics.mechanics.layout.OUTPUTS`)."""
+        return aux[..., scenes.A_MECH : scenes.N_AUX]
+
+    def crank_angle(self, y: np.ndarray) -> float:
+        """Crank angle [rad] of the flexible scene's state ``y``."""
+        return float(y[self.mechanism_offset + mlay.Y_CRANK_ANGLE])
+
+    def unwind_crank(self, y: np.ndarray) -> None:
+        """Take one turn (2 pi) off the crank angle of state ``y`` in place (flexible
+        scenes; the model is 2 pi-periodic in the crank angle)."""
+        y[self.mechanism_offset + mlay.Y_CRANK_ANGLE] -= 2.0 * math.pi
+
+    def detailed_output_par(self) -> np.ndarray:
+        """A copy of ``par`` with the mechanism's post-processing outputs (peak film
+        pressures) switched on; ``par`` itself for the rigid crank, which has none."""
+        if self.scene == scenes.SCENE_CYLINDER:
+            return self.par
+        par = self.par.copy()
+        par[scenes.P_MECH + mlay.P_DETAILED_OUTPUTS] = 1.0
+        return par
+
+    def with_start(self, y0: np.ndarray, start_angle: float) -> Model:
+        """This model (a new one; arrays copied) starting from ``y0`` with the rigid
+        crank's revolutions starting at ``start_angle`` [rad]."""
+        par = self.par.copy()
+        par[cyl.C_THETA0] = start_angle
+        return replace(self, par=par, y0=y0.copy())
+
 
 class WorkingModel(Model):
     """The working copy of a :class:`Model` that one solve moves (module docstring);

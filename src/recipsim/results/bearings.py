@@ -17,17 +17,45 @@ from typing import Any
 import numpy as np
 
 from recipsim.physics.mechanics import layout as lay
-from recipsim.physics.mechanics.pinned import N_PIN_OUT, PIN_DRIVE_TORQUE, pinned_reactions_array
+from recipsim.physics.mechanics.pinned import N_PIN_OUT, pinned_reactions_array
+from recipsim.physics.mechanics.pinned import OUTPUTS as PIN_OUTPUTS
 from recipsim.results.columns import CycleLike
 
 #: Displacement components reported for every bearing (normal to the Z journal axis;
 #: the piston bearings, axis X, report X as 0).
 _DISPLACEMENT_AXES = "xy"
+#: Outputs of the flexible crank reported as they are (the pinned crank reports the speed
+#: and zeros in their place).
+_FLEXIBLE_OUTPUTS = (
+    "crank_speed",
+    "piston_lateral_displacement",
+    "piston_tilt",
+    "bearing_power_loss",
+)
+#: Outputs of a bearing on an oil film (the torque on the journal-side body).
+_FILM_OUTPUTS = (
+    "friction_torque_{}",
+    "bearing_power_loss_{}",
+    "contact_force_{}",
+    "film_peak_pressure_{}",
+)
 
 
-def _column(index: int) -> str:
-    """Report column of mechanism output ``index``: its layout name and unit."""
-    return lay.OUTPUTS.column(index)
+def _column(name: str) -> str:
+    """Report column of the mechanism output ``name``: its layout name and unit."""
+    return lay.OUTPUTS.entry(name).column
+
+
+def _bearing_series(outputs: Any, quantity: str) -> np.ndarray:
+    """The X, Y, Z outputs ``<quantity>_<bearing>_<axis>`` of every bearing, from the
+    named columns ``outputs`` (:meth:`Layout.bundle`), shape (n, 6, 3)."""
+    return np.stack(
+        [
+            np.stack([getattr(outputs, f"{quantity}_{name}_{ax}") for ax in "xyz"], axis=1)
+            for name in lay.BEARING_NAMES
+        ],
+        axis=1,
+    )
 
 
 def bearing_columns(forces: np.ndarray, displacements: np.ndarray) -> dict[str, np.ndarray]:
@@ -35,22 +63,22 @@ def bearing_columns(forces: np.ndarray, displacements: np.ndarray) -> dict[str, 
     cols: dict[str, np.ndarray] = {}
     magnitudes = np.sqrt((forces * forces).sum(axis=2))  # all bearings at once
     for i, name in enumerate(lay.BEARING_NAMES):
-        for k in range(3):
-            cols[_column(lay.A_BEARING_FORCE + 3 * i + k)] = forces[:, i, k]
+        for k, ax in enumerate("xyz"):
+            cols[_column(f"bearing_force_{name}_{ax}")] = forces[:, i, k]
         cols[f"bearing_force_{name} [N]"] = magnitudes[:, i]
         for ax in _DISPLACEMENT_AXES:
             k = "xyz".index(ax)
-            cols[_column(lay.A_BEARING_DISPLACEMENT + 3 * i + k)] = displacements[:, i, k]
+            cols[_column(f"bearing_displacement_{name}_{ax}")] = displacements[:, i, k]
     return cols
 
 
 def film_clearances(mech_par: np.ndarray) -> dict[str, float]:
     """Radial clearance [m] of every bearing that runs on an oil film, by name."""
     out = {}
-    for i, name in enumerate(lay.BEARING_NAMES):
-        row = lay.P_BEARINGS + i * lay.N_BEARING_PAR
-        if int(mech_par[row + lay.BP_LAW]) != lay.LAW_LINEAR:
-            out[name] = float(mech_par[row + lay.BP_CLEARANCE])
+    par = lay.PAR.bundle(mech_par)
+    for name in lay.BEARING_NAMES:
+        if int(getattr(par, f"{name}_law")) != lay.LAW_LINEAR:
+            out[name] = float(getattr(par, f"{name}_clearance"))
     return out
 
 
@@ -58,28 +86,25 @@ def flexible_columns(mech_aux: np.ndarray, mech_par: np.ndarray) -> dict[str, np
     """Columns of the flexible mechanism from its outputs, shape (n, ``layout.N_AUX``),
     and its parameters (film bearings add film thickness, friction torque, absorbed
     power, contact force and peak film pressure)."""
-    nb = lay.N_BEARINGS
-    f = mech_aux[:, lay.A_BEARING_FORCE : lay.A_BEARING_FORCE + 3 * nb].reshape(-1, nb, 3)
-    d = mech_aux[:, lay.A_BEARING_DISPLACEMENT : lay.A_BEARING_DISPLACEMENT + 3 * nb]
-    cols = bearing_columns(f, d.reshape(-1, nb, 3))
-    for index in (lay.A_CRANK_SPEED, lay.A_PISTON_LATERAL, lay.A_PISTON_TILT, lay.A_BEARING_POWER):
-        cols[_column(index)] = mech_aux[:, index]
+    out = lay.OUTPUTS.bundle(mech_aux)
+    cols = bearing_columns(
+        _bearing_series(out, "bearing_force"), _bearing_series(out, "bearing_displacement")
+    )
+    for field in _FLEXIBLE_OUTPUTS:
+        cols[_column(field)] = getattr(out, field)
     films = film_clearances(mech_par)
     for name, clearance in films.items():
-        i = lay.BEARING_NAMES.index(name)
-        e = np.hypot(d[:, 3 * i], d[:, 3 * i + 1])
+        e = np.hypot(
+            getattr(out, f"bearing_displacement_{name}_x"),
+            getattr(out, f"bearing_displacement_{name}_y"),
+        )
         cols[f"film_thickness_{name} [m]"] = clearance - e
         cols[f"eccentricity_ratio_{name} [-]"] = e / clearance
-        for index in (
-            lay.A_BEARING_TORQUE + 2 * i,  # on the journal-side body
-            lay.A_BEARING_DISSIPATION + i,
-            lay.A_BEARING_CONTACT + i,
-            lay.A_BEARING_PEAK_PRESSURE + i,
-        ):
-            cols[_column(index)] = mech_aux[:, index]
+        for pattern in _FILM_OUTPUTS:
+            cols[_column(pattern.format(name))] = getattr(out, pattern.format(name))
     if "piston_skirt" in films:
-        for index in (lay.A_PISTON_FRICTION, lay.A_PISTON_FRICTION_POWER):
-            cols[_column(index)] = mech_aux[:, index]
+        for field in ("piston_friction_force", "piston_friction_power"):
+            cols[_column(field)] = getattr(out, field)
     return cols
 
 
@@ -125,13 +150,13 @@ def pinned_columns(
     pinned_reactions_array(
         np.ascontiguousarray(theta), omega, np.ascontiguousarray(pressure), mech_par, out
     )
-    nb = lay.N_BEARINGS
-    forces = out[:, : 3 * nb].reshape(-1, nb, 3)
+    reactions = PIN_OUTPUTS.bundle(out)
+    forces = _bearing_series(reactions, "bearing_force")
     cols = bearing_columns(forces, np.zeros_like(forces))
-    cols[_column(lay.A_CRANK_SPEED)] = np.full(theta.shape, omega)
-    for index in (lay.A_PISTON_LATERAL, lay.A_PISTON_TILT, lay.A_BEARING_POWER):
-        cols[_column(index)] = np.zeros(theta.shape)  # the same columns as the flexible crank's
-    return cols, out[:, PIN_DRIVE_TORQUE].copy()
+    cols[_column("crank_speed")] = np.full(theta.shape, omega)
+    for field in _FLEXIBLE_OUTPUTS[1:]:
+        cols[_column(field)] = np.zeros(theta.shape)  # the same columns as the flexible crank's
+    return cols, reactions.drive_torque.copy()
 
 
 def mechanism_summary(cycle: CycleLike) -> dict[str, Any]:

@@ -107,7 +107,7 @@ def cycle_columns(solution: PeriodicSolution) -> dict[str, np.ndarray]:
     model = solution.model
     rev = solution.final
     out = sample_outputs(model, rev)
-    theta = np.mod(out[:, cyl.A_THETA], 2.0 * math.pi)
+    theta = np.mod(scenes.OUTPUTS.bundle(out).crank_angle, 2.0 * math.pi)
     # the TDC sample can land a round-off below 2 pi (then it would sort last as 360 deg)
     theta = np.where(theta > 2.0 * math.pi - 1e-9, 0.0, theta)
     if model.free_speed:
@@ -131,7 +131,7 @@ def cycle_columns(solution: PeriodicSolution) -> dict[str, np.ndarray]:
         par = case_mechanism_parameters(model.case)
         mech, _ = pinned_columns(grid, data[_column(cyl.A_PRESSURE)], omega, par)
     else:
-        mech = flexible_columns(values[:, scenes.A_MECH :], model.mechanism_par)
+        mech = flexible_columns(model.mechanism_outputs(values), model.mechanism_par)
     data.update(mech)
     time = _time_from_tdc(grid, np.asarray(data["crank_speed [rad/s]"]))
     columns = {"crank_angle [deg]": np.round(data.pop("crank_angle [deg]"), 9), "time [s]": time}

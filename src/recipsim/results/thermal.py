@@ -17,7 +17,7 @@ import numpy as np
 
 from recipsim.model.scenes import named_state
 from recipsim.physics.thermo.shell_network import node_residuals
-from recipsim.physics.thermo.shell_nodes import GP_DC, GP_SM, NODES, SM
+from recipsim.physics.thermo.shell_nodes import NODES, PRESSURES, TEMPERATURES
 
 if TYPE_CHECKING:
     from recipsim.case.case import Case
@@ -67,6 +67,8 @@ def thermal_columns(solution: PeriodicSolution | None, case: Case) -> dict[str, 
     t = net.temperature
     for i, node in enumerate(NODES):
         row[f"node_temperature_{node} [K]"] = float(t[i])
+    nodes = TEMPERATURES.bundle(np.asarray(t))
+    pressures = PRESSURES.bundle(np.asarray(used.pressures.node))
     end = named_state(solution.model.scene, solution.final.y_end)
     p_in = end.work_on_gas / solution.final.duration + loads.friction_power + loads.motor_loss_power
     q_shell = net.shell_heat_rejection
@@ -75,9 +77,9 @@ def thermal_columns(solution: PeriodicSolution | None, case: Case) -> dict[str, 
     row.update(
         {
             "shell_heat_rejection [W]": q_shell,
-            "cylinder_inlet_temperature [K]": float(t[SM]),
-            "suction_plenum_pressure [Pa]": used.pressures.node[GP_SM],
-            "discharge_plenum_pressure [Pa]": used.pressures.node[GP_DC],
+            "cylinder_inlet_temperature [K]": float(nodes.suction_muffler),
+            "suction_plenum_pressure [Pa]": pressures.suction_muffler,
+            "discharge_plenum_pressure [Pa]": pressures.discharge_chamber,
             "thermal_balance_residual [-]": float(
                 np.max(node_residuals(coupling.parameters, loads, net))
             ),

@@ -14,8 +14,8 @@ import math
 import numpy as np
 
 from recipsim.case.case import Case
+from recipsim.model import scenes
 from recipsim.model.build import Model, build_model, cylinder_model
-from recipsim.physics.thermo import cylinder as cyl
 from recipsim.solve.periodic import sample_outputs, solve_periodic
 
 
@@ -30,9 +30,10 @@ def rigid_crank_pressure(case: Case) -> tuple[np.ndarray, np.ndarray]:
     model = cylinder_model(case)
     rigid = solve_periodic(model)
     out = sample_outputs(rigid.model, rigid.final)
-    theta = np.mod(out[:, cyl.A_THETA], 2.0 * math.pi)
+    named = scenes.OUTPUTS.bundle(out)
+    theta = np.mod(named.crank_angle, 2.0 * math.pi)
     order = np.argsort(theta)
-    return theta[order], out[order, cyl.A_PRESSURE]
+    return theta[order], named.cylinder_pressure[order]
 
 
 def build_model_for(case: Case) -> Model:

@@ -40,7 +40,6 @@ import numpy as np
 
 from recipsim.model.build import Model, scenes
 from recipsim.physics.mechanics import layout as mlay
-from recipsim.physics.thermo import cylinder as cyl
 
 __all__ = [
     "CLOSURE_ALLOWANCE",
@@ -80,13 +79,12 @@ def residual_reference(model: Model, rev: Revolution) -> np.ndarray:
     """
     ref = model.scale[: model.n_err].copy()
     if model.has_gas:
-        ref[cyl.Y_T] = rev.y_start[cyl.Y_T]
-        ref[cyl.Y_RHO] = rev.y_start[cyl.Y_RHO]
+        model.gas_state(ref)[:] = model.gas_state(rev.y_start)
     if model.scene != scenes.SCENE_CYLINDER:
-        m0 = model.mechanism_offset
         # mechanism states relative to their size over the revolution (at least their scale)
-        size = np.abs(rev.samples[:, m0 : m0 + mlay.N_STATE]).max(axis=0)
-        ref[m0 : m0 + mlay.N_STATE] = np.maximum(size, ref[m0 : m0 + mlay.N_STATE])
+        size = np.abs(model.mechanism_state(rev.samples)).max(axis=0)
+        mech = model.mechanism_state(ref)
+        mech[:] = np.maximum(size, mech)
     return ref
 
 
@@ -112,19 +110,21 @@ def closures(model: Model, y_end: np.ndarray) -> tuple[float, float]:
     """
     if not model.has_gas:
         return 0.0, 0.0
-    y = y_end
-    m_suc = y[cyl.Q_MSUC_IN] - y[cyl.Q_MSUC_OUT]
-    m_dis = y[cyl.Q_MDIS_OUT] - y[cyl.Q_MDIS_IN]
-    m_leak = y[cyl.Q_MLEAK_OUT] - y[cyl.Q_MLEAK_IN]
-    work = y[cyl.Q_WORK]
-    h_out = (y[cyl.Q_HDIS_OUT] - y[cyl.Q_HDIS_IN]) + (y[cyl.Q_HLEAK_OUT] - y[cyl.Q_HLEAK_IN])
-    h_in = y[cyl.Q_HSUC_IN] - y[cyl.Q_HSUC_OUT]
+    y = scenes.named_state(model.scene, y_end)
+    m_suc = y.suction_mass_in - y.suction_mass_out
+    m_dis = y.discharge_mass_out - y.discharge_mass_in
+    m_leak = y.leakage_mass_out - y.leakage_mass_in
+    work = y.work_on_gas
+    h_out = (y.discharge_enthalpy_out - y.discharge_enthalpy_in) + (
+        y.leakage_enthalpy_out - y.leakage_enthalpy_in
+    )
+    h_in = y.suction_enthalpy_in - y.suction_enthalpy_out
     op = model.case.operating_point
     swept = model.case.geometry.swept_volume
     m_scale = max(m_suc, CLOSURE_FLOOR * model.compressor_inlet.density * swept)
     w_scale = max(work, CLOSURE_FLOOR * (op.discharge_pressure - op.suction_pressure) * swept)
     mass = (m_suc - m_dis - m_leak) / m_scale
-    energy = (work - (h_out - h_in - y[cyl.Q_HEAT])) / w_scale
+    energy = (work - (h_out - h_in - y.heat_to_gas)) / w_scale
     return float(mass), float(energy)
 
 
@@ -158,18 +158,16 @@ def reciprocating_energy(model: Model) -> float:
     """
     if model.scene == scenes.SCENE_CYLINDER:
         return 0.0
-    mp = model.par[scenes.P_MECH : scenes.P_MECH + mlay.N_PAR]
-    speed = mp[mlay.P_CRANK_RADIUS] * 2.0 * math.pi / model.period
-    return 0.5 * (mp[mlay.P_PISTON_MASS] + mp[mlay.P_ROD_MASS]) * speed * speed
+    mp = mlay.PAR.bundle(model.mechanism_par)
+    speed = mp.crank_radius * 2.0 * math.pi / model.period
+    return 0.5 * (mp.piston_mass + mp.rod_mass) * speed * speed
 
 
 def revolution_totals(model: Model) -> list[tuple[int, float]]:
     """Quadratures whose change between revolutions the cycle residual checks, each with
     the floor of the size its change is judged against (0: its own values only)."""
-    checks = (
-        [(q, 0.0) for q in (cyl.Q_MSUC_IN, cyl.Q_WORK, cyl.Q_HDIS_OUT)] if model.has_gas else []
-    )
+    gas = ("suction_mass_in", "work_on_gas", "discharge_enthalpy_out") if model.has_gas else ()
+    checks = [(model.state_index(name), 0.0) for name in gas]
     if model.scene != scenes.SCENE_CYLINDER:
-        drive = model.mechanism_offset + mlay.N_STATE + scenes.MQ_DRIVE
-        checks.append((drive, reciprocating_energy(model)))
+        checks.append((model.state_index("drive_work"), reciprocating_energy(model)))
     return checks

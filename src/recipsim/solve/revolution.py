@@ -15,8 +15,6 @@ import numpy as np
 from recipsim.errors import SolverError
 from recipsim.model.build import Model, WorkingModel, scenes
 from recipsim.model.scenes import N_AUX
-from recipsim.physics.mechanics import layout as mlay
-from recipsim.physics.thermo import cylinder as cyl
 from recipsim.solve.integrator import (
     CHATTERING,
     METHOD_AUTO,
@@ -128,8 +126,8 @@ def sample_times(model: Model, n: int) -> tuple[np.ndarray, np.ndarray]:
     order : ndarray
         Index that sorts the samples by crank angle.
     """
-    omega = model.par[cyl.C_OMEGA]
-    theta0 = model.par[cyl.C_THETA0]
+    omega = model.shaft_speed
+    theta0 = model.start_angle
     angles = 2.0 * math.pi * np.arange(n) / n
     times = np.mod(angles - theta0, 2.0 * math.pi) / omega
     order_time = np.argsort(times, kind="stable")
@@ -170,7 +168,7 @@ def revolution_setup(
     mode_run = mode.copy()
     t_end = model.period
     if model.free_speed:
-        theta = y_run[model.mechanism_offset + mlay.Y_CRANK_ANGLE]
+        theta = model.crank_angle(y_run)
         model.set_revolution_end(theta + 2.0 * math.pi)
         t_end = 3.0 * model.period
         times = model.period * np.arange(n_samples) / n_samples
@@ -215,7 +213,7 @@ def integrate_revolution(
     y_start = y.copy()
     mode_start = mode.copy()
     stats = np.zeros(N_STATS)
-    omega = model.par[cyl.C_OMEGA]
+    omega = model.shaft_speed
     with model.props.interrupts_deferred():
         integrate(
             0.0,
@@ -247,13 +245,14 @@ def integrate_revolution(
         if stats[ST_T] >= t_end:
             raise SolverError(
                 "the crank did not complete a revolution in three nominal periods "
-                f"(crank speed at the end {y_run[model.mechanism_offset + mlay.Y_CRANK_SPEED]:.4g}"
+                "(crank speed at the end "
+                f"{scenes.named_state(model.scene, y_run).mechanism_crank_speed:.4g}"
                 " rad/s): the drive torque cannot keep the mechanism turning"
             )
         times, samples, sample_modes = times[:n_done], samples[:n_done], sample_modes[:n_done]
     if model.scene != scenes.SCENE_CYLINDER:
         # the model is 2 pi-periodic in the crank angle: keep the state near the start angle
-        y_run[model.mechanism_offset + mlay.Y_CRANK_ANGLE] -= 2.0 * math.pi
+        model.unwind_crank(y_run)
     rev = Revolution(y_start, y_run, mode_start, mode_run, times, samples, sample_modes, stats)
     rev.duration = float(stats[ST_T])
     return rev, next_first_step(model, float(stats[ST_H]))
@@ -278,23 +277,23 @@ def next_first_step(model: Model, h_last: float) -> float:
 
 def _raise_failure(model: Model, status: int, t: float, y: np.ndarray, mode: np.ndarray) -> None:
     if model.scene == scenes.SCENE_CYLINDER:
-        theta_rad = model.par[cyl.C_THETA0] + model.par[cyl.C_OMEGA] * t
+        theta_rad = model.start_angle + model.shaft_speed * t
     else:
-        theta_rad = y[model.mechanism_offset + mlay.Y_CRANK_ANGLE]
+        theta_rad = model.crank_angle(y)
     theta = math.degrees(theta_rad % (2 * math.pi))
     parts = []
+    state = scenes.named_state(model.scene, y)
     if model.has_gas:
         parts.append(
-            f"T = {y[cyl.Y_T]:.6g} K, rho = {y[cyl.Y_RHO]:.6g} kg/m3, suction lift = "
-            f"{y[cyl.Y_XS]:.4g} m (mode {mode[0]}), discharge lift = {y[cyl.Y_XD]:.4g} m "
-            f"(mode {mode[1]})"
+            f"T = {state.gas_temperature:.6g} K, rho = {state.gas_density:.6g} kg/m3, "
+            f"suction lift = {state.suction_valve_lift:.4g} m (mode {mode[0]}), "
+            f"discharge lift = {state.discharge_valve_lift:.4g} m (mode {mode[1]})"
         )
     if model.scene != scenes.SCENE_CYLINDER:
-        m0 = model.mechanism_offset
         parts.append(
-            f"crank speed = {y[m0 + mlay.Y_CRANK_SPEED]:.6g} rad/s, rotor at "
-            f"({y[m0 + mlay.Y_ROTOR_X]:.4g}, {y[m0 + mlay.Y_ROTOR_Y]:.4g}) m, piston lateral "
-            f"{y[m0 + mlay.Y_PISTON_Y]:.4g} m"
+            f"crank speed = {state.mechanism_crank_speed:.6g} rad/s, rotor at "
+            f"({state.mechanism_rotor_x:.4g}, {state.mechanism_rotor_y:.4g}) m, piston lateral "
+            f"{state.mechanism_piston_y:.4g} m"
         )
     raise SolverError(
         f"integration failed at crank angle {theta:.3f} deg (t = {t:.6g} s into the revolution): "
@@ -308,8 +307,9 @@ def discharge_enthalpy(model: Model, rev: Revolution) -> float | None:
     is then the back-flow's source: :mod:`recipsim.model.thermal`)."""
     if not model.has_gas or model.thermal is not None:
         return None
-    m_out = rev.y_end[cyl.Q_MDIS_OUT]
-    return float(rev.y_end[cyl.Q_HDIS_OUT] / m_out) if m_out > 0.0 else None
+    end = scenes.named_state(model.scene, rev.y_end)
+    m_out = end.discharge_mass_out
+    return float(end.discharge_enthalpy_out / m_out) if m_out > 0.0 else None
 
 
 class _Tally:
@@ -339,10 +339,7 @@ def sample_outputs(model: Model, rev: Revolution) -> np.ndarray:
     with the post-processing outputs (peak film pressures) switched on; ``model`` is a
     working copy, e.g. the solution's (:func:`working`)."""
     out = np.zeros((rev.times.shape[0], N_AUX))
-    par = working(model).par
-    if model.scene != scenes.SCENE_CYLINDER:
-        par = par.copy()
-        par[scenes.P_MECH + mlay.P_DETAILED_OUTPUTS] = 1.0
+    par = working(model).detailed_output_par()
     evaluate_samples(
         rev.times,
         rev.samples,

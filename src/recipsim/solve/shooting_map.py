@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from recipsim.model.build import Model, WorkingModel
+from recipsim.model.build import Model, WorkingModel, scenes
 from recipsim.physics.mechanics import layout as mlay
 from recipsim.physics.thermo import cylinder as cyl
 from recipsim.solve.revolution import (
@@ -44,18 +44,19 @@ def shooting_unknowns(model: Model, mode: np.ndarray) -> np.ndarray:
     """
     idx: list[int] = []
     if model.has_gas:
-        idx += [cyl.Y_T, cyl.Y_RHO]
-        if model.ipar[cyl.I_VALVES] == cyl.VALVES_REED:
-            for i in range(2):
+        idx += [model.state_index("gas_temperature"), model.state_index("gas_density")]
+        if scenes.IPAR.bundle(model.ipar).valves == cyl.VALVES_REED:
+            for i, reed in enumerate(("suction", "discharge")):
                 if mode[i] == 1:  # free reed: lift and velocity are unknowns
-                    idx += [cyl.Y_XS + 2 * i, cyl.Y_VS + 2 * i]
+                    idx += [model.state_index(f"{reed}_valve_{s}") for s in ("lift", "velocity")]
     if model.scene != 0:
-        m0 = model.mechanism_offset
         speed_unknown = model.free_speed and model.case.options.drive != "torque_profile"
-        for i in range(mlay.N_STATE):
-            if i == mlay.Y_CRANK_ANGLE or (i == mlay.Y_CRANK_SPEED and not speed_unknown):
-                continue
-            idx.append(m0 + i)
+        fixed = {"crank_angle"} if speed_unknown else {"crank_angle", "crank_speed"}
+        idx += [
+            model.state_index("mechanism_" + e.name)
+            for e in mlay.STATES.entries
+            if e.name not in fixed
+        ]
     return np.array(sorted(idx), dtype=np.int64)
 
 
@@ -100,7 +101,7 @@ class RevolutionMap:
             if self.model.scene != 0:
                 m0 = self.model.mechanism_offset
                 step[idx >= m0] = _FD_STEP_MECHANISM
-                step[idx == m0 + mlay.Y_CRANK_SPEED] = _FD_STEP_SPEED
+                step[idx == self.model.state_index("mechanism_crank_speed")] = _FD_STEP_SPEED
             self.fd_step = np.append(step, _FD_STEP_GAS) if self.gas else step
         return changed
 

@@ -52,7 +52,6 @@ from recipsim.model import scenes
 from recipsim.model.build import START_ANGLE, Model, WorkingModel
 from recipsim.physics.layout_table import Layout
 from recipsim.physics.mechanics import layout as mlay
-from recipsim.physics.thermo import cylinder as cyl
 from recipsim.solve.integrator import (
     N_STATS,
     ST_H,
@@ -179,34 +178,31 @@ def _outputs_at(model: Model, y: np.ndarray, mode: np.ndarray) -> np.ndarray:
 
 def _mechanical_energy(model: Model, aux: np.ndarray) -> tuple[float, float]:
     """Kinetic energy of the crank train and elastic energy of its bearings [J]."""
-    a = scenes.A_MECH
-    kinetic = sum(
-        aux[a + k]
-        for k in (
-            mlay.A_KINETIC_ENERGY_ROTOR,
-            mlay.A_KINETIC_ENERGY_ROD,
-            mlay.A_KINETIC_ENERGY_PISTON,
-        )
+    out = scenes.OUTPUTS.bundle(aux)
+    kinetic = (
+        out.mechanism_kinetic_energy_rotor
+        + out.mechanism_kinetic_energy_rod
+        + out.mechanism_kinetic_energy_piston
     )
-    return float(kinetic), float(aux[a + mlay.A_SPRING_ENERGY])
+    return float(kinetic), float(out.mechanism_spring_energy)
 
 
 def _trace_rows(model: Model, rev: Revolution, t_window: float) -> np.ndarray:
     """The trace columns at the samples of one window."""
-    out = sample_outputs(model, rev)
-    m0 = model.mechanism_offset
-    a = scenes.A_MECH
+    out = scenes.OUTPUTS.bundle(sample_outputs(model, rev))
+    states = scenes.named_state(model.scene, rev.samples)
     rows = np.empty((rev.times.shape[0], N_TRACE))
     rows[:, TR_TIME] = t_window + rev.times
-    rows[:, TR_ANGLE] = rev.samples[:, m0 + mlay.Y_CRANK_ANGLE]
-    rows[:, TR_SPEED] = rev.samples[:, m0 + mlay.Y_CRANK_SPEED]
-    rows[:, TR_MOTOR_TORQUE] = out[:, a + mlay.A_DRIVE_TORQUE]
-    rows[:, TR_PRESSURE] = out[:, cyl.A_PRESSURE]
+    rows[:, TR_ANGLE] = states.mechanism_crank_angle
+    rows[:, TR_SPEED] = states.mechanism_crank_speed
+    rows[:, TR_MOTOR_TORQUE] = out.mechanism_drive_torque
+    rows[:, TR_PRESSURE] = out.cylinder_pressure
     rows[:, TR_SUCTION_PRESSURE] = model.suction.pressure
     rows[:, TR_DISCHARGE_PRESSURE] = model.discharge.pressure
-    for i in range(mlay.N_BEARINGS):
-        f = out[:, a + mlay.A_BEARING_FORCE + 3 * i : a + mlay.A_BEARING_FORCE + 3 * i + 2]
-        rows[:, TR_BEARING_LOAD + i] = np.hypot(f[:, 0], f[:, 1])
+    for i, name in enumerate(mlay.BEARING_NAMES):
+        fx = getattr(out, f"mechanism_bearing_force_{name}_x")
+        fy = getattr(out, f"mechanism_bearing_force_{name}_y")
+        rows[:, TR_BEARING_LOAD + i] = np.hypot(fx, fy)
     return rows
 
 
@@ -220,7 +216,7 @@ def _window(
 ) -> tuple[Revolution, float]:
     """Integrate from ``y`` at time ``t_window`` until the crank angle ``theta_end``."""
     s = model.case.solver
-    omega = model.par[cyl.C_OMEGA]
+    omega = model.shaft_speed
     dt = model.period / SAMPLES_PER_PERIOD
     t_limit = WINDOW_PERIODS * model.period
     k0 = math.ceil(t_window / dt - 1e-9)
@@ -243,13 +239,13 @@ def _window(
     status = int(stats[ST_STATUS])
     if status != 0:
         _raise_failure(model, status, stats[ST_T], y_run, mode_run)
-    m0 = model.mechanism_offset
     if stats[ST_T] >= t_limit:
+        speed = scenes.named_state(model.scene, y_run).mechanism_crank_speed
         raise SolverError(
             f"start-up from rest: the crank did not reach {math.degrees(theta_end):.0f} deg "
             f"within {t_limit:.3g} s after t = {t_window:.4g} s (crank speed "
-            f"{y_run[m0 + mlay.Y_CRANK_SPEED]:.4g} rad/s): the motor cannot start the "
-            f"compressor against the pressures at that time; lengthen "
+            f"{speed:.4g} rad/s): the motor cannot start the compressor "
+            f"against the pressures at that time; lengthen "
             f"solver.pull_down_time or lower solver.standstill_pressure"
         )
     n = int(stats[ST_NSAMPLES])
@@ -278,8 +274,6 @@ def run_startup(model: Model) -> StartupTransient:
     start = time.perf_counter()
     p0 = standstill_pressure(model)
     y, mode = rest_state(model, p0)
-    m0 = model.mechanism_offset
-    q = m0 + mlay.N_STATE
     kinetic0, spring0 = _mechanical_energy(model, _outputs_at(model, y, mode))
     work = np.zeros(scenes.N_MECH_QUAD)
     rows: list[np.ndarray] = []
@@ -291,18 +285,18 @@ def run_startup(model: Model) -> StartupTransient:
     rev: Revolution | None = None
     settled = False
     for count in range(1, s.max_revolutions + 1):
-        theta_start = y[m0 + mlay.Y_CRANK_ANGLE]
+        theta_start = model.crank_angle(y)
         theta_end = START_ANGLE if count == 1 else theta_start + 2.0 * math.pi
         rev, h = _window(model, y, mode, t, theta_end, h)
         rows.append(_trace_rows(model, rev, t))
-        work += rev.y_end[q : q + scenes.N_MECH_QUAD]
+        work += model.mechanism_quadratures(rev.y_end)
         nfev += int(rev.stats[ST_NFEV])
         steps += int(rev.stats[ST_NACCEPT])
         t += rev.duration
         ends.append(t)
         speeds.append((theta_end - theta_start) / rev.duration)
         if count > 1:
-            rev.y_end[m0 + mlay.Y_CRANK_ANGLE] -= 2.0 * math.pi
+            model.unwind_crank(rev.y_end)
         y, mode = rev.y_end.copy(), rev.mode_end.copy()
         ramp_done = ramp_fraction(t - rev.duration, s.pull_down_time) >= 1.0
         if count > 1:
@@ -314,11 +308,12 @@ def run_startup(model: Model) -> StartupTransient:
         previous = rev
     assert rev is not None
     kinetic1, spring1 = _mechanical_energy(model, _outputs_at(model, y, mode))
+    totals = scenes.MECH_QUAD.bundle(work)
     energy = StartupEnergy(
-        motor_work=float(work[scenes.MQ_DRIVE]),
+        motor_work=float(totals.drive_work),
         kinetic_energy_gained=kinetic1 - kinetic0,
-        gas_work=-float(work[scenes.MQ_GAS]),
-        dissipation=float(work[scenes.MQ_BEARINGS]) - (spring1 - spring0),
+        gas_work=-float(totals.gas_work_on_piston),
+        dissipation=float(totals.bearing_dissipation) - (spring1 - spring0),
     )
     enthalpy = discharge_enthalpy(model, rev)
     if enthalpy is not None:
@@ -357,9 +352,9 @@ class StartupRun:
 
 def revolution_flow_and_power(model: Model, rev: Revolution) -> tuple[float, float]:
     """Mean net suction mass flow [kg/s] and mean drive power [W] over ``rev``."""
-    drive = model.mechanism_offset + mlay.N_STATE + scenes.MQ_DRIVE
-    mass = rev.y_end[cyl.Q_MSUC_IN] - rev.y_end[cyl.Q_MSUC_OUT]
-    return float(mass / rev.duration), float(rev.y_end[drive] / rev.duration)
+    end = scenes.named_state(model.scene, rev.y_end)
+    mass = end.suction_mass_in - end.suction_mass_out
+    return float(mass / rev.duration), float(end.drive_work / rev.duration)
 
 
 def solve_from_rest(model: Model) -> StartupRun:

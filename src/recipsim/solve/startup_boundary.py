@@ -13,9 +13,7 @@ import numpy as np
 from recipsim.errors import SolverError
 from recipsim.model import scenes
 from recipsim.model.build import Model, WorkingModel
-from recipsim.physics.mechanics import layout as mlay
 from recipsim.physics.mechanics.flexible_setup import initial_state
-from recipsim.physics.thermo import cylinder as cyl
 
 #: crank angle at standstill [rad]: top dead centre
 REST_ANGLE = 0.0
@@ -92,8 +90,6 @@ def rest_state(model: WorkingModel, p0: float) -> tuple[np.ndarray, np.ndarray]:
     set_plenums(model, p0, 0.0, None)
     y = np.zeros_like(model.y0)
     gas = model.fluid.state_pt(p0, model.suction.temperature)
-    y[cyl.Y_T] = gas["T"]
-    y[cyl.Y_RHO] = gas["rho"]
-    m0 = model.mechanism_offset
-    y[m0 : m0 + mlay.N_STATE] = initial_state(model.mechanism_par, REST_ANGLE, 0.0, p0)
+    model.gas_state(y)[:] = (gas["T"], gas["rho"])
+    model.mechanism_state(y)[:] = initial_state(model.mechanism_par, REST_ANGLE, 0.0, p0)
     return y, np.zeros_like(model.mode0)

@@ -18,7 +18,6 @@ from __future__ import annotations
 import math
 import time
 from collections.abc import Callable
-from dataclasses import replace
 from typing import Any
 
 import numpy as np
@@ -32,7 +31,6 @@ from recipsim.physics.mechanics import layout as mlay
 from recipsim.physics.mechanics.flexible_setup import initial_state
 from recipsim.physics.mechanics.pinned import PinnedLoads
 from recipsim.physics.mechanics.tabulated import PressureCurve, tabulated_pressure
-from recipsim.physics.thermo import cylinder as cyl
 from recipsim.studies.paper_load_run import LoadRun, solve_load, tabulated_case
 from recipsim.studies.paper_runs import CONFIGURATIONS, RunRecord
 from recipsim.studies.paper_tables import cylinder_pressures, pinned_table
@@ -114,15 +112,12 @@ def tdc_start(curve: PressureCurve, deflected: bool) -> Callable[[Model], Model]
     p_tdc = tabulated_pressure(0.0, curve.crank_angle, curve.pressure)
 
     def start(model: Model) -> Model:
-        m0 = model.mechanism_offset
-        par, y0 = model.par.copy(), model.y0.copy()  # the built model's are read-only
-        mpar = par[scenes.P_MECH : scenes.P_MECH + mlay.N_PAR]
-        omega = y0[m0 + mlay.Y_CRANK_SPEED]
-        y0[m0 : m0 + mlay.N_STATE] = initial_state(
-            mpar, 0.0, omega, p_tdc, static_deflection=deflected
+        y0 = model.y0.copy()  # the built model's is read-only
+        omega = scenes.named_state(model.scene, y0).mechanism_crank_speed
+        model.mechanism_state(y0)[:] = initial_state(
+            model.mechanism_par.copy(), 0.0, omega, p_tdc, static_deflection=deflected
         )
-        par[cyl.C_THETA0] = 0.0  # the samples' crank angles at constant speed
-        return replace(model, par=par, y0=y0)
+        return model.with_start(y0, 0.0)  # the samples' crank angles at constant speed
 
     return start
 

@@ -37,7 +37,6 @@ from scipy.integrate import solve_ivp
 from recipsim.errors import SolverError
 from recipsim.model import scenes
 from recipsim.model.build import Model, WorkingModel
-from recipsim.physics.mechanics import layout as mlay
 from recipsim.physics.thermo import cylinder as cyl
 from recipsim.physics.thermo.properties import PROPS_SIGNATURE
 from recipsim.solve.integrator import (
@@ -123,13 +122,13 @@ def _act(k, t, y, ctx):  # type: ignore[no-untyped-def]
 def active_events(model: Model) -> list[int]:
     """Indices of the scene's event functions that can fire (the others are constant -1)."""
     active: list[int] = []
+    ipar = scenes.IPAR.bundle(model.ipar)
     if model.has_gas:
-        valves = int(model.ipar[cyl.I_VALVES])
-        if valves == cyl.VALVES_REED:
+        if ipar.valves == cyl.VALVES_REED:
             active += [0, 1, 2, 3]
-        elif valves == cyl.VALVES_IDEAL:
+        elif ipar.valves == cyl.VALVES_IDEAL:
             active += [0, 2]
-    if model.ipar[scenes.I_STOP_ON_ANGLE] != 0 and model.scene != scenes.SCENE_CYLINDER:
+    if ipar.stop_on_angle != 0 and model.scene != scenes.SCENE_CYLINDER:
         active.append(scenes.EV_THETA_END)
     return active
 
@@ -215,7 +214,7 @@ def integrate_revolution_ivp(
     )
     funcs = _SceneFunctions(model, np.ascontiguousarray(mode_run, dtype=np.int64))
     mode_run = funcs.ctx.mode  # the array the compiled code sees (the same buffer)
-    limits = (_tolerances(model), model.case.solver.max_step / model.par[cyl.C_OMEGA])
+    limits = (_tolerances(model), model.case.solver.max_step / model.shaft_speed)
     run = _Progress(y=y_run)
     while run.t < t_end:
         pending = times[run.i_sample :]
@@ -337,7 +336,7 @@ def _revolution(
         n = run.i_sample
         times, samples, sample_modes = times[:n], samples[:n], sample_modes[:n]
     if model.scene != scenes.SCENE_CYLINDER:
-        run.y[model.mechanism_offset + mlay.Y_CRANK_ANGLE] -= 2.0 * math.pi
+        model.unwind_crank(run.y)
     stats = np.zeros(N_STATS)
     stats[ST_NFEV] = run.nfev
     stats[ST_NACCEPT] = -1  # solve_ivp does not report its steps with t_eval
