@@ -13,8 +13,10 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from recipsim.results.columns import as_table
+
 if TYPE_CHECKING:
-    import pandas as pd
+    pass
 
 #: A cycle table: the DataFrame, or its columns as numpy arrays (what a report process
 #: is sent; it builds the DataFrame, see :func:`as_table`).
@@ -52,15 +54,6 @@ def _moves(cycle: Table, bearing: str) -> bool:
     return all(c in cycle for c in columns) and any(
         bool(np.any(np.asarray(cycle[c]) != 0.0)) for c in columns
     )
-
-
-def as_table(cycle: Table) -> pd.DataFrame:
-    """The cycle table as a DataFrame: ``cycle`` itself, or built from its columns."""
-    if isinstance(cycle, dict):
-        import pandas as pd
-
-        return pd.DataFrame(cycle)
-    return cycle
 
 
 def write_tables(directory: Path, summary_row: Mapping[str, Any], cycle: Table) -> None:

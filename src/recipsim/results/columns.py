@@ -84,3 +84,13 @@ class Columns:
     def columns(self) -> Iterable[str]:
         """The column names, in order."""
         return list(self._data)
+
+
+def as_table(cycle: Any) -> Any:
+    """The cycle table as a pandas DataFrame: ``cycle`` itself, or built from its columns
+    (a dict of numpy arrays: pandas is imported only then, where the table is needed)."""
+    if isinstance(cycle, dict):
+        import pandas as pd
+
+        return pd.DataFrame(cycle)
+    return cycle

@@ -64,10 +64,9 @@ class CaseRun:
     @property
     def cycle(self) -> pd.DataFrame:
         """The cycle table (:func:`recipsim.results.tables.cycle_table`)."""
-        if isinstance(self._cycle, dict):
-            import pandas as pd
+        from recipsim.results.columns import as_table
 
-            self._cycle = pd.DataFrame(self._cycle)
+        self._cycle = as_table(self._cycle)
         return self._cycle
 
     @property
