@@ -31,21 +31,37 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from recipsim.atomic import atomic_file
+from recipsim.atomic import atomic_file, write_bytes_atomically
 from recipsim.errors import CaseError
 from recipsim.studies.sweep.worker import STATUSES, PointTask, run_point
 
 #: A point file larger than this is not read (it was not written by recipsim) [bytes].
 _MAX_RECORD_BYTES = 10_000_000
 
-FORMAT = 2
+#: format of a point record; 2 (checksum over sorted keys) is still read
+FORMAT = 3
+
+
+def _canonical(body: dict[str, Any], sort_keys: bool = False) -> str:
+    """A record's JSON as its checksum reads it: ASCII, NaN allowed, other objects as
+    str; keys in their order (the summary's column order is kept), or sorted (records
+    of format 2)."""
+    return json.dumps(body, sort_keys=sort_keys, allow_nan=True, default=str, ensure_ascii=True)
 
 
 def record_checksum(record: dict[str, Any]) -> str:
-    """SHA-256 of a point record's canonical JSON, its ``checksum`` field left out."""
+    """SHA-256 of a point record's JSON (:func:`_canonical`), its ``checksum`` field left
+    out (keys sorted for a record of format 2)."""
     body = {k: v for k, v in record.items() if k != "checksum"}
-    blob = json.dumps(body, sort_keys=True, allow_nan=True, default=str, ensure_ascii=True)
-    return hashlib.sha256(blob.encode()).hexdigest()
+    return hashlib.sha256(_canonical(body, record.get("format") == 2).encode()).hexdigest()
+
+
+def record_bytes(record: dict[str, Any]) -> bytes:
+    """A point record as its file holds it: its JSON with the ``checksum`` of that text
+    (:func:`record_checksum`) added as the last key, encoded once."""
+    text = _canonical(record)
+    checksum = hashlib.sha256(text.encode()).hexdigest()
+    return f'{text[:-1]}, "checksum": "{checksum}"}}'.encode()
 
 
 class PointStore:
@@ -134,7 +150,7 @@ class PointStore:
             return None
         if (
             not isinstance(record, dict)
-            or record.get("format") != FORMAT
+            or record.get("format") not in (2, FORMAT)
             or record.get("checksum") != record_checksum(record)
             or record.get("point_id") != point_id
             or record.get("overrides") != list(overrides)
@@ -148,10 +164,8 @@ class PointStore:
         """Write a point's record atomically (``format``, ``point_id`` and ``checksum``
         are added)."""
         data = {"format": FORMAT, "point_id": point_id, **record}
-        data["checksum"] = record_checksum(data)
-        with atomic_file(self.path(point_id)) as handle:
-            # one string, one write, C encoder (indent would use the pure-Python one: 2x slower)
-            handle.write(json.dumps(data, allow_nan=True))
+        data.pop("checksum", None)
+        write_bytes_atomically(self.path(point_id), record_bytes(data))
 
 
 def point_record(task: PointTask, result: dict[str, Any], run_id: str) -> dict[str, Any]:

@@ -1,0 +1,75 @@
+"""The point store's record files: one encoding per save, checksum verified on load,
+column order kept, records of the previous format still read."""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import math
+
+from recipsim.studies.sweep.store import FORMAT, PointStore, record_checksum
+
+OVERRIDES = ["operating_point.shaft_speed=3000 rpm"]
+
+
+def _record() -> dict:
+    # summary columns deliberately not in sorted order, and a NaN
+    summary = {"status_z [-]": 1.0, "COP [-]": 1.7, "b [W]": math.nan, "a [W]": 2.0}
+    return {"status": "ok", "message": "", "summary": summary, "overrides": OVERRIDES}
+
+
+def test_a_saved_record_loads_back_with_its_column_order(tmp_path):
+    store = PointStore(tmp_path)
+    store.save("p1", _record())
+    loaded = store.load("p1", OVERRIDES)
+    assert loaded is not None
+    assert loaded["format"] == FORMAT and loaded["point_id"] == "p1"
+    assert list(loaded["summary"]) == list(_record()["summary"])
+    assert math.isnan(loaded["summary"]["b [W]"])
+    assert loaded["checksum"] == record_checksum(loaded)
+    assert list(store.points.glob(".*.tmp")) == []  # the temporary file was renamed
+
+
+def test_an_edited_or_reordered_record_is_not_trusted(tmp_path):
+    store = PointStore(tmp_path)
+    store.save("p1", _record())
+    path = store.path("p1")
+    record = json.loads(path.read_text())
+    record["summary"]["COP [-]"] = 99.0
+    path.write_text(json.dumps(record))
+    assert store.load("p1", OVERRIDES) is None
+    store.save("p1", _record())
+    record = json.loads(path.read_text())
+    record["summary"] = dict(reversed(list(record["summary"].items())))
+    path.write_text(json.dumps(record))
+    assert store.load("p1", OVERRIDES) is None
+    assert store.load("p2", OVERRIDES) is None  # no file at all
+
+
+def test_a_record_of_format_2_is_still_read(tmp_path):
+    """Format 2 summed its checksum over the keys sorted (and wrote them in order)."""
+    store = PointStore(tmp_path)
+    body = {"format": 2, "point_id": "p1", **_record()}
+    blob = json.dumps(body, sort_keys=True, allow_nan=True, default=str, ensure_ascii=True)
+    body["checksum"] = hashlib.sha256(blob.encode()).hexdigest()
+    store.points.mkdir(parents=True)
+    store.path("p1").write_text(json.dumps(body, allow_nan=True))
+    loaded = store.load("p1", OVERRIDES)
+    assert loaded is not None and loaded["summary"]["COP [-]"] == 1.7
+    assert store.load("p1", ["operating_point.shaft_speed=1.0"]) is None  # other inputs
+
+
+def test_write_bytes_atomically_leaves_the_old_file_when_it_fails(tmp_path):
+    from recipsim.atomic import write_bytes_atomically
+
+    target = tmp_path / "new" / "a.json"
+    write_bytes_atomically(target, b"first")  # the missing directory is created
+    assert target.read_bytes() == b"first"
+    try:
+        write_bytes_atomically(target, None)  # type: ignore[arg-type]
+    except TypeError:
+        pass
+    else:  # pragma: no cover - the write must fail
+        raise AssertionError("writing None did not fail")
+    assert target.read_bytes() == b"first"
+    assert [p.name for p in target.parent.iterdir()] == ["a.json"]
