@@ -72,6 +72,10 @@ CYCLE_COLUMNS: list[tuple[str, int]] = [(_column(i), i) for i in _CYCLE_OUTPUTS]
 #: Cycle columns that need the gas state (absent when the pressure is tabulated).
 GAS_COLUMNS = {_column(i) for i in _GAS_OUTPUTS}
 
+#: The scene outputs the cycle table reads on the rigid crank: the first this many (the
+#: cylinder's; the mechanism's block is the pinned mechanism's inverse dynamics there).
+_CYLINDER_WIDTH = 1 + max(i for i in _CYCLE_OUTPUTS)
+
 
 def _uniform_angles(n: int) -> np.ndarray:
     return 2.0 * math.pi * np.arange(n) / n
@@ -101,15 +105,28 @@ def cycle_table(solution: PeriodicSolution) -> pd.DataFrame:
     return pd.DataFrame(cycle_columns(solution))
 
 
-def cycle_columns(solution: PeriodicSolution) -> dict[str, np.ndarray]:
+def cycle_columns(solution: PeriodicSolution, full: bool = True) -> dict[str, np.ndarray]:
     """The columns of :func:`cycle_table`, in its order, as numpy arrays (what the
-    summary of a point whose table is not kept reads, see :mod:`.columns`)."""
+    summary of a point whose table is not kept reads, see :mod:`.columns`).
+
+    Parameters
+    ----------
+    solution : PeriodicSolution
+        The converged run.
+    full : bool
+        Every column of the table; False: only those the summary and
+        :func:`recipsim.results.outcome.classify` read (no ``time [s]``, no X, Y, Z
+        bearing force components), the same values (a sweep point, which keeps only
+        its summary row).
+    """
     model = solution.model
     rev = solution.final
     out = sample_outputs(model, rev)
     theta = np.mod(scenes.OUTPUTS.bundle(out).crank_angle, 2.0 * math.pi)
     # the TDC sample can land a round-off below 2 pi (then it would sort last as 360 deg)
     theta = np.where(theta > 2.0 * math.pi - 1e-9, 0.0, theta)
+    if model.scene == scenes.SCENE_CYLINDER:  # copy (sort) only the columns read
+        out = out[:, :_CYLINDER_WIDTH]
     if model.free_speed:
         grid = _uniform_angles(model.case.solver.samples_per_revolution)
         values = _periodic_resample(theta, out, grid)
@@ -129,12 +146,13 @@ def cycle_columns(solution: PeriodicSolution) -> dict[str, np.ndarray]:
     omega = model.case.operating_point.shaft_speed
     if model.scene == scenes.SCENE_CYLINDER:
         par = case_mechanism_parameters(model.case)
-        mech, _ = pinned_columns(grid, data[_column(cyl.A_PRESSURE)], omega, par)
+        mech, _ = pinned_columns(grid, data[_column(cyl.A_PRESSURE)], omega, par, full)
     else:
-        mech = flexible_columns(model.mechanism_outputs(values), model.mechanism_par)
+        mech = flexible_columns(model.mechanism_outputs(values), model.mechanism_par, full)
     data.update(mech)
-    time = _time_from_tdc(grid, np.asarray(data["crank_speed [rad/s]"]))
-    columns = {"crank_angle [deg]": np.round(data.pop("crank_angle [deg]"), 9), "time [s]": time}
+    columns = {"crank_angle [deg]": np.round(data.pop("crank_angle [deg]"), 9)}
+    if full:
+        columns["time [s]"] = _time_from_tdc(grid, np.asarray(data["crank_speed [rad/s]"]))
     columns.update(data)
     return columns
 

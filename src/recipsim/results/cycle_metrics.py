@@ -25,21 +25,13 @@ def _open_interval(angles: np.ndarray, flowing: np.ndarray) -> tuple[float, floa
     if flowing.all():
         return 0.0, 360.0
     start = int(np.argmin(flowing))  # a closed sample: unroll the circle from here
-    rolled = np.roll(flowing, -start)
-    best = (0, 0, 0)
-    i = 0
-    while i < n:
-        if rolled[i]:
-            j = i
-            while j < n and rolled[j]:
-                j += 1
-            if j - i > best[0]:
-                best = (j - i, i, j - 1)
-            i = j
-        else:
-            i += 1
-    first = angles[(best[1] + start) % n]
-    last = angles[(best[2] + start) % n]
+    rolled = np.concatenate(([False], flowing[start:], flowing[:start], [False]))
+    edges = np.diff(rolled.view(np.int8))
+    starts = np.flatnonzero(edges == 1)  # runs of True: [starts, ends) of the unrolled
+    ends = np.flatnonzero(edges == -1)
+    best = int(np.argmax(ends - starts))  # the first of the longest
+    first = angles[(starts[best] + start) % n]
+    last = angles[(ends[best] - 1 + start) % n]
     return float(first), float(last)
 
 
@@ -113,11 +105,12 @@ def pressure_and_torque(
     op = case.operating_point
     p = cycle["cylinder_pressure [Pa]"].to_numpy()
     torque = cycle["shaft_torque [N m]"].to_numpy()
+    p_max, p_min = float(p.max()), float(p.min())
     return {
-        "peak_cylinder_pressure [Pa]": float(p.max()),
-        "minimum_cylinder_pressure [Pa]": float(p.min()),
-        "discharge_overpressure [-]": float(p.max() / op.discharge_pressure - 1.0),
-        "suction_underpressure [-]": float(1.0 - p.min() / op.suction_pressure),
+        "peak_cylinder_pressure [Pa]": p_max,
+        "minimum_cylinder_pressure [Pa]": p_min,
+        "discharge_overpressure [-]": p_max / op.discharge_pressure - 1.0,
+        "suction_underpressure [-]": 1.0 - p_min / op.suction_pressure,
         # plus the mean friction's torque (options.friction = "mean"; else exactly 0)
         "mean_shaft_torque [N m]": float(
             drive_work / (2.0 * math.pi) + (p_shaft - p_drive) / (2.0 * math.pi * freq)

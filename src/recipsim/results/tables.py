@@ -183,9 +183,10 @@ def _loop_work(cycle: CycleLike) -> float:
 
 
 def summary_row(solution: PeriodicSolution) -> tuple[dict[str, Any], Columns]:
-    """:func:`summary` of ``solution`` read from its cycle table's columns as arrays, no
-    DataFrame built (the same values); returns the row and those columns."""
-    cycle = Columns(cycle_columns(solution))
+    """:func:`summary` of ``solution`` read from the cycle table's columns that it needs
+    as arrays (:func:`cycle_columns` with ``full=False``), no DataFrame built (the same
+    values); returns the row and those columns."""
+    cycle = Columns(cycle_columns(solution, full=False))
     return summary(solution, cycle), cycle
 
 
