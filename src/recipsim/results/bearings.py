@@ -59,6 +59,7 @@ def _series(layout: Any, quantity: str) -> slice:
 _PIN_FORCES = _series(PIN_OUTPUTS, "bearing_force")
 _FORCES = _series(lay.OUTPUTS, "bearing_force")
 _DISPLACEMENTS = _series(lay.OUTPUTS, "bearing_displacement")
+_PIN_DRIVE_TORQUE = PIN_OUTPUTS.entry("drive_torque").index
 
 #: Report columns per bearing: force components X, Y, Z, force magnitude, displacement
 #: components (:data:`_DISPLACEMENT_AXES`).
@@ -74,30 +75,40 @@ _DISPLACEMENT_COLUMNS = tuple(
 
 def _bearing_series(outputs: np.ndarray, series: slice) -> np.ndarray:
     """The X, Y, Z outputs of every bearing in the columns ``series`` of ``outputs``
-    (samples, slots), shape (n, 6, 3) (a view where the rows allow)."""
-    return outputs[:, series].reshape(outputs.shape[0], len(lay.BEARING_NAMES), 3)
+    (samples, slots), shape (6, 3, n): each bearing's component contiguous, as the
+    column it becomes (a view where ``outputs`` is laid out so, else a copy)."""
+    rows = np.ascontiguousarray(outputs[:, series].T)
+    return rows.reshape(len(lay.BEARING_NAMES), 3, outputs.shape[0])
+
+
+def _zeros(n: int) -> np.ndarray:
+    """``n`` zeros, read-only (columns that are 0 share one)."""
+    zero = np.zeros(n)
+    zero.flags.writeable = False
+    return zero
 
 
 def bearing_columns(
-    forces: np.ndarray, displacements: np.ndarray, components: bool = True
+    forces: np.ndarray, displacements: np.ndarray | None, components: bool = True
 ) -> dict[str, np.ndarray]:
-    """Report columns from (n, 6, 3) force [N] and displacement [m] arrays; without
+    """Report columns from force [N] and displacement [m] arrays of shape (6, 3, n)
+    (bearing, X Y Z, sample; displacements None: all 0, one read-only array); without
     ``components``, the forces' magnitudes but not their X, Y, Z columns (what the
     summary reads)."""
     cols: dict[str, np.ndarray] = {}
-    # all bearings at once; x^2 + y^2 + z^2 summed as numpy's sum(axis=2) does (left to
-    # right), which on an axis of 3 costs as much as the rest of the table
+    zero = _zeros(forces.shape[2])
+    # all bearings at once, x^2 + y^2 + z^2 left to right (as a sum over the axis)
     squares = forces * forces
-    magnitudes = np.sqrt(squares[:, :, 0] + squares[:, :, 1] + squares[:, :, 2])
+    magnitudes = np.sqrt(squares[:, 0] + squares[:, 1] + squares[:, 2])
     for i, (axes, magnitude, moved) in enumerate(
         zip(_FORCE_AXIS_COLUMNS, FORCE_COLUMNS, _DISPLACEMENT_COLUMNS, strict=True)
     ):
         if components:
             for k, column in enumerate(axes):
-                cols[column] = forces[:, i, k]
-        cols[magnitude] = magnitudes[:, i]
+                cols[column] = forces[i, k]
+        cols[magnitude] = magnitudes[i]
         for column, ax in zip(moved, _DISPLACEMENT_AXES, strict=True):
-            cols[column] = displacements[:, i, "xyz".index(ax)]
+            cols[column] = zero if displacements is None else displacements[i, "xyz".index(ax)]
     return cols
 
 
@@ -114,7 +125,8 @@ def film_clearances(mech_par: np.ndarray) -> dict[str, float]:
 def flexible_columns(
     mech_aux: np.ndarray, mech_par: np.ndarray, components: bool = True
 ) -> dict[str, np.ndarray]:
-    """Columns of the flexible mechanism from its outputs, shape (n, ``layout.N_AUX``),
+    """Columns of the flexible mechanism from its outputs, shape (n, ``layout.N_AUX``)
+    (fastest as the transpose of a C-contiguous array: the columns are then its rows),
     and its parameters (film bearings add film thickness, friction torque, absorbed
     power, contact force and peak film pressure); ``components`` as in
     :func:`bearing_columns`."""
@@ -189,13 +201,13 @@ def pinned_columns(
     pinned_reactions_array(
         np.ascontiguousarray(theta), omega, np.ascontiguousarray(pressure), mech_par, out
     )
-    reactions = PIN_OUTPUTS.bundle(out)
     forces = _bearing_series(out, _PIN_FORCES)
-    cols = bearing_columns(forces, np.zeros(forces.shape), components)
+    cols = bearing_columns(forces, None, components)
     cols[_column("crank_speed")] = np.full(theta.shape, omega)
+    zero = _zeros(theta.shape[0])
     for field in _FLEXIBLE_OUTPUTS[1:]:
-        cols[_column(field)] = np.zeros(theta.shape)  # the same columns as the flexible crank's
-    return cols, reactions.drive_torque.copy()
+        cols[_column(field)] = zero  # the same columns as the flexible crank's
+    return cols, out[:, _PIN_DRIVE_TORQUE].copy()
 
 
 def mechanism_summary(cycle: CycleLike) -> dict[str, Any]:
@@ -208,10 +220,9 @@ def mechanism_summary(cycle: CycleLike) -> dict[str, Any]:
     f = np.stack([cycle[c].to_numpy() for c in FORCE_COLUMNS])
     rms = np.sqrt(np.mean(f * f, axis=1)).tolist()
     peak = f.max(axis=1).tolist()
-    r2 = sum(
-        np.stack([cycle[moved[k]].to_numpy() for moved in _DISPLACEMENT_COLUMNS]) ** 2
-        for k in range(len(_DISPLACEMENT_AXES))
-    )
+    x = np.stack([cycle[moved[0]].to_numpy() for moved in _DISPLACEMENT_COLUMNS])
+    y = np.stack([cycle[moved[1]].to_numpy() for moved in _DISPLACEMENT_COLUMNS])
+    r2 = x * x + y * y  # the X and Y displacements (_DISPLACEMENT_AXES)
     orbit = np.sqrt(np.max(r2, axis=1)).tolist()
     row: dict[str, Any] = {}
     for i, name in enumerate(lay.BEARING_NAMES):

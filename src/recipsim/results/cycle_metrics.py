@@ -20,19 +20,18 @@ if TYPE_CHECKING:
 def _open_interval(angles: np.ndarray, flowing: np.ndarray) -> tuple[float, float]:
     """Opening and closing crank angle [deg] of the longest circular run of ``flowing``."""
     n = flowing.shape[0]
-    if not flowing.any():
+    closed = np.flatnonzero(~flowing)
+    if closed.size == n:
         return math.nan, math.nan
-    if flowing.all():
+    if closed.size == 0:
         return 0.0, 360.0
-    start = int(np.argmin(flowing))  # a closed sample: unroll the circle from here
-    rolled = np.concatenate(([False], flowing[start:], flowing[:start], [False]))
-    edges = np.diff(rolled.view(np.int8))
-    starts = np.flatnonzero(edges == 1)  # runs of True: [starts, ends) of the unrolled
-    ends = np.flatnonzero(edges == -1)
-    best = int(np.argmax(ends - starts))  # the first of the longest
-    first = angles[(starts[best] + start) % n]
-    last = angles[(ends[best] - 1 + start) % n]
-    return float(first), float(last)
+    start = int(closed[0])  # a closed sample: unroll the circle from here
+    rolled = np.concatenate((flowing[start:], flowing[:start], [False]))
+    # closed at both ends: the changes alternate, the sample before a run and its last
+    change = np.flatnonzero(rolled[1:] != rolled[:-1])
+    before, last = change[0::2], change[1::2]
+    best = int(np.argmax(last - before))  # the first of the longest
+    return float(angles[(before[best] + 1 + start) % n]), float(angles[(last[best] + start) % n])
 
 
 def valve_timing(
@@ -63,11 +62,11 @@ def valve_timing(
             row[f"{side}_valve_opening_angle [deg]"] = math.nan
             row[f"{side}_valve_closing_angle [deg]"] = math.nan
             continue
-        flow = cycle[f"{side}_mass_flow [kg/s]"].to_numpy()
         if case.options.valves == "reed":
             flowing = cycle[f"{side}_valve_lift [m]"].to_numpy() > 0.0
         else:
-            flowing = np.abs(flow) > 1e-12 * max(np.abs(flow).max(), 1e-300)
+            flow = np.abs(cycle[f"{side}_mass_flow [kg/s]"].to_numpy())
+            flowing = flow > 1e-12 * max(flow.max(), 1e-300)
         opening, closing = _open_interval(angles, flowing)
         row[f"{side}_valve_opening_angle [deg]"] = opening
         row[f"{side}_valve_closing_angle [deg]"] = closing
