@@ -11,15 +11,17 @@ from recipsim.model.scenes import SCENE_COUPLED, SCENE_CYLINDER, SCENE_MECHANISM
 from recipsim.physics.thermo.cylinder import I_SCENE
 
 
-# inlined into each scene's entry (one library to compile instead of two); the outputs
-# are written straight into their row of ``out`` (a copy of each row cost a third as much
-# as the right-hand sides themselves)
+# inlined into each scene's entry (one library to compile instead of two)
 @njit(cache=True, inline="always")
 def _evaluate(code, times, samples, sample_modes, par, ipar, props, pbuf, out):
     n = samples.shape[1]
     dydt = np.empty(n)
+    aux = np.empty(out.shape[1])
     for k in range(times.shape[0]):
-        rhs_for(code, times[k], samples[k], sample_modes[k], par, ipar, props, pbuf, dydt, out[k])
+        mode = sample_modes[k]
+        rhs_for(code, times[k], samples[k], mode, par, ipar, props, pbuf, dydt, aux)
+        for j in range(aux.shape[0]):
+            out[k, j] = aux[j]
 
 
 @njit(cache=True)
@@ -51,6 +53,5 @@ def evaluate_samples(
     out: np.ndarray,
 ) -> None:
     """Fill ``out[k]`` with the outputs of the scene in ``ipar[I_SCENE]`` at sample ``k``
-    (times [s], states and modes), evaluating its right-hand side there (slots the
-    scene does not write keep what ``out`` held: the rigid crank's mechanism block)."""
+    (times [s], states and modes), evaluating its right-hand side there."""
     _BY_SCENE[int(ipar[I_SCENE])](times, samples, sample_modes, par, ipar, props, pbuf, out)
