@@ -196,13 +196,13 @@ def summary(
     """Summary metrics of the converged revolution (units in the keys).
 
     ``cycle`` is its cycle table (a DataFrame, or :class:`~recipsim.results.columns.Columns`;
-    built here if left out). ``solution`` is None for the pinned mechanism under a
+    built here from the columns it reads if left out). ``solution`` is None for the pinned mechanism under a
     tabulated pressure (nothing integrated); ``cycle`` and ``case`` are then required.
     """
     if solution is not None:
         case = solution.model.case
         if cycle is None:
-            cycle = Columns(cycle_columns(solution))
+            cycle = Columns(cycle_columns(solution, full=False))
     assert case is not None and cycle is not None
     row = _operating_columns(case)
     mech = mechanism_summary(cycle)
