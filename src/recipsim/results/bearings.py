@@ -46,29 +46,69 @@ def _column(name: str) -> str:
     return lay.OUTPUTS.entry(name).column
 
 
-def _bearing_series(outputs: Any, quantity: str) -> np.ndarray:
-    """The X, Y, Z outputs ``<quantity>_<bearing>_<axis>`` of every bearing, from the
-    named columns ``outputs`` (:meth:`Layout.bundle`), shape (n, 6, 3)."""
-    return np.stack(
-        [
-            np.stack([getattr(outputs, f"{quantity}_{name}_{ax}") for ax in "xyz"], axis=1)
-            for name in lay.BEARING_NAMES
-        ],
-        axis=1,
-    )
+def _series(layout: Any, quantity: str) -> slice:
+    """The slots ``<quantity>_<bearing>_<axis>`` of ``layout`` (bearing after bearing,
+    X, Y, Z): one series (:meth:`Layout.add_series`), so a slice."""
+    names = [f"{quantity}_{b}_{ax}" for b in lay.BEARING_NAMES for ax in "xyz"]
+    first = layout.entry(names[0]).index
+    assert [layout.entry(n).index for n in names] == list(range(first, first + len(names)))
+    return slice(first, first + len(names))
 
 
-def bearing_columns(forces: np.ndarray, displacements: np.ndarray) -> dict[str, np.ndarray]:
-    """Report columns from (n, 6, 3) force [N] and displacement [m] arrays."""
+#: The bearing series of the pinned reactions and of the flexible mechanism's outputs.
+_PIN_FORCES = _series(PIN_OUTPUTS, "bearing_force")
+_FORCES = _series(lay.OUTPUTS, "bearing_force")
+_DISPLACEMENTS = _series(lay.OUTPUTS, "bearing_displacement")
+_PIN_DRIVE_TORQUE = PIN_OUTPUTS.entry("drive_torque").index
+
+#: Report columns per bearing: force components X, Y, Z, force magnitude, displacement
+#: components (:data:`_DISPLACEMENT_AXES`).
+_FORCE_AXIS_COLUMNS = tuple(
+    tuple(_column(f"bearing_force_{name}_{ax}") for ax in "xyz") for name in lay.BEARING_NAMES
+)
+FORCE_COLUMNS = tuple(f"bearing_force_{name} [N]" for name in lay.BEARING_NAMES)
+_DISPLACEMENT_COLUMNS = tuple(
+    tuple(_column(f"bearing_displacement_{name}_{ax}") for ax in _DISPLACEMENT_AXES)
+    for name in lay.BEARING_NAMES
+)
+
+
+def _bearing_series(outputs: np.ndarray, series: slice) -> np.ndarray:
+    """The X, Y, Z outputs of every bearing in the columns ``series`` of ``outputs``
+    (samples, slots), shape (6, 3, n): each bearing's component contiguous, as the
+    column it becomes (a view where ``outputs`` is laid out so, else a copy)."""
+    rows = np.ascontiguousarray(outputs[:, series].T)
+    return rows.reshape(len(lay.BEARING_NAMES), 3, outputs.shape[0])
+
+
+def _zeros(n: int) -> np.ndarray:
+    """``n`` zeros, read-only (columns that are 0 share one)."""
+    zero = np.zeros(n)
+    zero.flags.writeable = False
+    return zero
+
+
+def bearing_columns(
+    forces: np.ndarray, displacements: np.ndarray | None, components: bool = True
+) -> dict[str, np.ndarray]:
+    """Report columns from force [N] and displacement [m] arrays of shape (6, 3, n)
+    (bearing, X Y Z, sample; displacements None: all 0, one read-only array); without
+    ``components``, the forces' magnitudes but not their X, Y, Z columns (what the
+    summary reads)."""
     cols: dict[str, np.ndarray] = {}
-    magnitudes = np.sqrt((forces * forces).sum(axis=2))  # all bearings at once
-    for i, name in enumerate(lay.BEARING_NAMES):
-        for k, ax in enumerate("xyz"):
-            cols[_column(f"bearing_force_{name}_{ax}")] = forces[:, i, k]
-        cols[f"bearing_force_{name} [N]"] = magnitudes[:, i]
-        for ax in _DISPLACEMENT_AXES:
-            k = "xyz".index(ax)
-            cols[_column(f"bearing_displacement_{name}_{ax}")] = displacements[:, i, k]
+    zero = _zeros(forces.shape[2])
+    # all bearings at once, x^2 + y^2 + z^2 left to right (as a sum over the axis)
+    squares = forces * forces
+    magnitudes = np.sqrt(squares[:, 0] + squares[:, 1] + squares[:, 2])
+    for i, (axes, magnitude, moved) in enumerate(
+        zip(_FORCE_AXIS_COLUMNS, FORCE_COLUMNS, _DISPLACEMENT_COLUMNS, strict=True)
+    ):
+        if components:
+            for k, column in enumerate(axes):
+                cols[column] = forces[i, k]
+        cols[magnitude] = magnitudes[i]
+        for column, ax in zip(moved, _DISPLACEMENT_AXES, strict=True):
+            cols[column] = zero if displacements is None else displacements[i, "xyz".index(ax)]
     return cols
 
 
@@ -82,13 +122,19 @@ def film_clearances(mech_par: np.ndarray) -> dict[str, float]:
     return out
 
 
-def flexible_columns(mech_aux: np.ndarray, mech_par: np.ndarray) -> dict[str, np.ndarray]:
-    """Columns of the flexible mechanism from its outputs, shape (n, ``layout.N_AUX``),
+def flexible_columns(
+    mech_aux: np.ndarray, mech_par: np.ndarray, components: bool = True
+) -> dict[str, np.ndarray]:
+    """Columns of the flexible mechanism from its outputs, shape (n, ``layout.N_AUX``)
+    (fastest as the transpose of a C-contiguous array: the columns are then its rows),
     and its parameters (film bearings add film thickness, friction torque, absorbed
-    power, contact force and peak film pressure)."""
+    power, contact force and peak film pressure); ``components`` as in
+    :func:`bearing_columns`."""
     out = lay.OUTPUTS.bundle(mech_aux)
     cols = bearing_columns(
-        _bearing_series(out, "bearing_force"), _bearing_series(out, "bearing_displacement")
+        _bearing_series(mech_aux, _FORCES),
+        _bearing_series(mech_aux, _DISPLACEMENTS),
+        components,
     )
     for field in _FLEXIBLE_OUTPUTS:
         cols[_column(field)] = getattr(out, field)
@@ -139,9 +185,14 @@ def film_summary(cycle: CycleLike) -> dict[str, Any]:
 
 
 def pinned_columns(
-    theta: np.ndarray, pressure: np.ndarray, omega: float, mech_par: np.ndarray
+    theta: np.ndarray,
+    pressure: np.ndarray,
+    omega: float,
+    mech_par: np.ndarray,
+    components: bool = True,
 ) -> tuple[dict[str, np.ndarray], np.ndarray]:
-    """Columns of the pinned mechanism by inverse dynamics at constant speed.
+    """Columns of the pinned mechanism by inverse dynamics at constant speed
+    (``components`` as in :func:`bearing_columns`).
 
     Returns the columns and the driving torque [N m] (which includes the inertia of
     every body, as the flexible model's does).
@@ -150,13 +201,13 @@ def pinned_columns(
     pinned_reactions_array(
         np.ascontiguousarray(theta), omega, np.ascontiguousarray(pressure), mech_par, out
     )
-    reactions = PIN_OUTPUTS.bundle(out)
-    forces = _bearing_series(reactions, "bearing_force")
-    cols = bearing_columns(forces, np.zeros_like(forces))
+    forces = _bearing_series(out, _PIN_FORCES)
+    cols = bearing_columns(forces, None, components)
     cols[_column("crank_speed")] = np.full(theta.shape, omega)
+    zero = _zeros(theta.shape[0])
     for field in _FLEXIBLE_OUTPUTS[1:]:
-        cols[_column(field)] = np.zeros(theta.shape)  # the same columns as the flexible crank's
-    return cols, reactions.drive_torque.copy()
+        cols[_column(field)] = zero  # the same columns as the flexible crank's
+    return cols, out[:, _PIN_DRIVE_TORQUE].copy()
 
 
 def mechanism_summary(cycle: CycleLike) -> dict[str, Any]:
@@ -165,17 +216,20 @@ def mechanism_summary(cycle: CycleLike) -> dict[str, Any]:
     Statistics over the uniform crank-angle samples of the cycle table (an RMS over
     crank angle; at constant speed the same as over time).
     """
+    # one row per bearing: each row's reduction is the column's own (same summation)
+    f = np.stack([cycle[c].to_numpy() for c in FORCE_COLUMNS])
+    rms = np.sqrt(np.mean(f * f, axis=1)).tolist()
+    peak = f.max(axis=1).tolist()
+    x = np.stack([cycle[moved[0]].to_numpy() for moved in _DISPLACEMENT_COLUMNS])
+    y = np.stack([cycle[moved[1]].to_numpy() for moved in _DISPLACEMENT_COLUMNS])
+    r2 = x * x + y * y  # the X and Y displacements (_DISPLACEMENT_AXES)
+    orbit = np.sqrt(np.max(r2, axis=1)).tolist()
     row: dict[str, Any] = {}
-    for name in lay.BEARING_NAMES:
-        f = cycle[f"bearing_force_{name} [N]"].to_numpy()
-        row[f"bearing_rms_{name} [N]"] = float(np.sqrt(np.mean(f * f)))
-        row[f"bearing_max_{name} [N]"] = float(f.max())
-    for name in lay.BEARING_NAMES:
-        r2 = sum(
-            cycle[f"bearing_displacement_{name}_{ax} [m]"].to_numpy() ** 2
-            for ax in _DISPLACEMENT_AXES
-        )
-        row[f"orbit_radius_max_{name} [m]"] = float(np.sqrt(np.max(r2)))
+    for i, name in enumerate(lay.BEARING_NAMES):
+        row[f"bearing_rms_{name} [N]"] = rms[i]
+        row[f"bearing_max_{name} [N]"] = peak[i]
+    for i, name in enumerate(lay.BEARING_NAMES):
+        row[f"orbit_radius_max_{name} [m]"] = orbit[i]
     speed = cycle["crank_speed [rad/s]"].to_numpy()
     # time mean (revolutions per second): the harmonic mean over uniform crank angles
     mean = float(1.0 / np.mean(1.0 / speed))

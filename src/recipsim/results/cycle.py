@@ -72,18 +72,25 @@ CYCLE_COLUMNS: list[tuple[str, int]] = [(_column(i), i) for i in _CYCLE_OUTPUTS]
 #: Cycle columns that need the gas state (absent when the pressure is tabulated).
 GAS_COLUMNS = {_column(i) for i in _GAS_OUTPUTS}
 
+#: The scene outputs the cycle table reads on the rigid crank: the first this many (the
+#: cylinder's; the mechanism's block is the pinned mechanism's inverse dynamics there).
+_CYLINDER_WIDTH = 1 + max(i for i in _CYCLE_OUTPUTS)
+#: The scene output holding the crank angle (by name: a bundle of all 111 costs more).
+_CRANK_ANGLE = scenes.OUTPUTS.entry("crank_angle").index
+
 
 def _uniform_angles(n: int) -> np.ndarray:
     return 2.0 * math.pi * np.arange(n) / n
 
 
 def _periodic_resample(theta: np.ndarray, values: np.ndarray, grid: np.ndarray) -> np.ndarray:
-    """Columns of ``values`` (samples at crank angles ``theta``) at the angles ``grid``."""
+    """Columns of ``values`` (samples at crank angles ``theta``) at the angles ``grid``,
+    as rows (slots, samples)."""
     order = np.argsort(theta, kind="stable")
     th = theta[order]
-    out = np.empty((grid.shape[0], values.shape[1]))
+    out = np.empty((values.shape[1], grid.shape[0]))
     for j in range(values.shape[1]):
-        out[:, j] = np.interp(grid, th, values[order, j], period=2.0 * math.pi)
+        out[j] = np.interp(grid, th, values[order, j], period=2.0 * math.pi)
     return out
 
 
@@ -101,40 +108,56 @@ def cycle_table(solution: PeriodicSolution) -> pd.DataFrame:
     return pd.DataFrame(cycle_columns(solution))
 
 
-def cycle_columns(solution: PeriodicSolution) -> dict[str, np.ndarray]:
+def cycle_columns(solution: PeriodicSolution, full: bool = True) -> dict[str, np.ndarray]:
     """The columns of :func:`cycle_table`, in its order, as numpy arrays (what the
-    summary of a point whose table is not kept reads, see :mod:`.columns`)."""
+    summary of a point whose table is not kept reads, see :mod:`.columns`).
+
+    Parameters
+    ----------
+    solution : PeriodicSolution
+        The converged run.
+    full : bool
+        Every column of the table; False: only those the summary and
+        :func:`recipsim.results.outcome.classify` read (no ``time [s]``, no X, Y, Z
+        bearing force components), the same values (a sweep point, which keeps only
+        its summary row).
+    """
     model = solution.model
     rev = solution.final
     out = sample_outputs(model, rev)
-    theta = np.mod(scenes.OUTPUTS.bundle(out).crank_angle, 2.0 * math.pi)
+    theta = np.mod(out[:, _CRANK_ANGLE], 2.0 * math.pi)
     # the TDC sample can land a round-off below 2 pi (then it would sort last as 360 deg)
     theta = np.where(theta > 2.0 * math.pi - 1e-9, 0.0, theta)
+    if model.scene == scenes.SCENE_CYLINDER:  # copy (sort) only the columns read
+        out = out[:, :_CYLINDER_WIDTH]
+    # the outputs as rows (slot, sample), sorted by crank angle: each column contiguous
     if model.free_speed:
         grid = _uniform_angles(model.case.solver.samples_per_revolution)
-        values = _periodic_resample(theta, out, grid)
+        rows = _periodic_resample(theta, out, grid)
         modes = np.rint(_periodic_resample(theta, rev.sample_modes.astype(float), grid))
     else:
         order = np.argsort(theta, kind="stable")
         grid = theta[order]
-        values = out[order]
-        modes = rev.sample_modes[order]
+        rows = np.ascontiguousarray(out[order].T)
+        modes = rev.sample_modes[order].T
     data: dict[str, Any] = {"crank_angle [deg]": np.degrees(grid)}
+    has_gas = model.has_gas
     for name, idx in CYCLE_COLUMNS:
-        if model.has_gas or name not in GAS_COLUMNS:
-            data[name] = values[:, idx]
-    if model.has_gas:
-        data["suction_valve_state [-]"] = modes[:, 0].astype(np.int64)
-        data["discharge_valve_state [-]"] = modes[:, 1].astype(np.int64)
+        if has_gas or name not in GAS_COLUMNS:
+            data[name] = rows[idx]
+    if has_gas:
+        data["suction_valve_state [-]"] = modes[0].astype(np.int64)
+        data["discharge_valve_state [-]"] = modes[1].astype(np.int64)
     omega = model.case.operating_point.shaft_speed
     if model.scene == scenes.SCENE_CYLINDER:
         par = case_mechanism_parameters(model.case)
-        mech, _ = pinned_columns(grid, data[_column(cyl.A_PRESSURE)], omega, par)
+        mech, _ = pinned_columns(grid, data[_column(cyl.A_PRESSURE)], omega, par, full)
     else:
-        mech = flexible_columns(model.mechanism_outputs(values), model.mechanism_par)
+        mech = flexible_columns(model.mechanism_outputs(rows.T), model.mechanism_par, full)
     data.update(mech)
-    time = _time_from_tdc(grid, np.asarray(data["crank_speed [rad/s]"]))
-    columns = {"crank_angle [deg]": np.round(data.pop("crank_angle [deg]"), 9), "time [s]": time}
+    columns = {"crank_angle [deg]": np.round(data.pop("crank_angle [deg]"), 9)}
+    if full:
+        columns["time [s]"] = _time_from_tdc(grid, np.asarray(data["crank_speed [rad/s]"]))
     columns.update(data)
     return columns
 

@@ -20,27 +20,18 @@ if TYPE_CHECKING:
 def _open_interval(angles: np.ndarray, flowing: np.ndarray) -> tuple[float, float]:
     """Opening and closing crank angle [deg] of the longest circular run of ``flowing``."""
     n = flowing.shape[0]
-    if not flowing.any():
+    closed = np.flatnonzero(~flowing)
+    if closed.size == n:
         return math.nan, math.nan
-    if flowing.all():
+    if closed.size == 0:
         return 0.0, 360.0
-    start = int(np.argmin(flowing))  # a closed sample: unroll the circle from here
-    rolled = np.roll(flowing, -start)
-    best = (0, 0, 0)
-    i = 0
-    while i < n:
-        if rolled[i]:
-            j = i
-            while j < n and rolled[j]:
-                j += 1
-            if j - i > best[0]:
-                best = (j - i, i, j - 1)
-            i = j
-        else:
-            i += 1
-    first = angles[(best[1] + start) % n]
-    last = angles[(best[2] + start) % n]
-    return float(first), float(last)
+    start = int(closed[0])  # a closed sample: unroll the circle from here
+    rolled = np.concatenate((flowing[start:], flowing[:start], [False]))
+    # closed at both ends: the changes alternate, the sample before a run and its last
+    change = np.flatnonzero(rolled[1:] != rolled[:-1])
+    before, last = change[0::2], change[1::2]
+    best = int(np.argmax(last - before))  # the first of the longest
+    return float(angles[(before[best] + 1 + start) % n]), float(angles[(last[best] + start) % n])
 
 
 def valve_timing(
@@ -71,11 +62,11 @@ def valve_timing(
             row[f"{side}_valve_opening_angle [deg]"] = math.nan
             row[f"{side}_valve_closing_angle [deg]"] = math.nan
             continue
-        flow = cycle[f"{side}_mass_flow [kg/s]"].to_numpy()
         if case.options.valves == "reed":
             flowing = cycle[f"{side}_valve_lift [m]"].to_numpy() > 0.0
         else:
-            flowing = np.abs(flow) > 1e-12 * max(np.abs(flow).max(), 1e-300)
+            flow = np.abs(cycle[f"{side}_mass_flow [kg/s]"].to_numpy())
+            flowing = flow > 1e-12 * max(flow.max(), 1e-300)
         opening, closing = _open_interval(angles, flowing)
         row[f"{side}_valve_opening_angle [deg]"] = opening
         row[f"{side}_valve_closing_angle [deg]"] = closing
@@ -113,11 +104,12 @@ def pressure_and_torque(
     op = case.operating_point
     p = cycle["cylinder_pressure [Pa]"].to_numpy()
     torque = cycle["shaft_torque [N m]"].to_numpy()
+    p_max, p_min = float(p.max()), float(p.min())
     return {
-        "peak_cylinder_pressure [Pa]": float(p.max()),
-        "minimum_cylinder_pressure [Pa]": float(p.min()),
-        "discharge_overpressure [-]": float(p.max() / op.discharge_pressure - 1.0),
-        "suction_underpressure [-]": float(1.0 - p.min() / op.suction_pressure),
+        "peak_cylinder_pressure [Pa]": p_max,
+        "minimum_cylinder_pressure [Pa]": p_min,
+        "discharge_overpressure [-]": p_max / op.discharge_pressure - 1.0,
+        "suction_underpressure [-]": 1.0 - p_min / op.suction_pressure,
         # plus the mean friction's torque (options.friction = "mean"; else exactly 0)
         "mean_shaft_torque [N m]": float(
             drive_work / (2.0 * math.pi) + (p_shaft - p_drive) / (2.0 * math.pi * freq)

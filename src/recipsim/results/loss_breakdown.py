@@ -57,20 +57,30 @@ LOSS_COLUMNS = (
 )
 
 
+_SIDES = ("suction", "discharge")
+
+
+def _next(a: np.ndarray) -> np.ndarray:
+    """``a`` one sample on round the revolution, along its last axis
+    (``numpy.roll(a, -1, axis=-1)``)."""
+    return np.concatenate((a[..., 1:], a[..., :1]), axis=-1)
+
+
 def _valve_areas(cycle: CycleLike, p_suction: float, p_discharge: float) -> tuple[float, float]:
     """p-V areas of one revolution [J]: below ``p_suction`` while the suction valve
     flows, above ``p_discharge`` while the discharge valve flows (trapezoids)."""
     p = cycle["cylinder_pressure [Pa]"].to_numpy()
     v = cycle["cylinder_volume [m3]"].to_numpy()
-    dv = np.roll(v, -1) - v
-    p_mid = 0.5 * (p + np.roll(p, -1))
-    areas = []
-    # suction: (p_s - p) dV with dV > 0; discharge: (p - p_d)(-dV), the same form
-    for side, plenum in (("suction", p_suction), ("discharge", p_discharge)):
-        flow = cycle[f"{side}_mass_flow [kg/s]"].to_numpy()
-        flowing = (flow != 0.0) | (np.roll(flow, -1) != 0.0)
-        areas.append(float(np.sum(np.where(flowing, (plenum - p_mid) * dv, 0.0))))
-    return areas[0], areas[1]
+    dv = _next(v) - v
+    p_mid = 0.5 * (p + _next(p))
+    # one row per valve: suction (p_s - p) dV with dV > 0; discharge (p - p_d)(-dV), the
+    # same form; each row summed as the 1-D array would be
+    flows = np.stack([cycle[f"{side}_mass_flow [kg/s]"].to_numpy() for side in _SIDES])
+    passing = flows != 0.0
+    flowing = passing | _next(passing)
+    plenum = np.array([[p_suction], [p_discharge]])
+    suction, discharge = np.sum(np.where(flowing, (plenum - p_mid) * dv, 0.0), axis=1).tolist()
+    return suction, discharge
 
 
 def loss_breakdown(

@@ -183,9 +183,10 @@ def _loop_work(cycle: CycleLike) -> float:
 
 
 def summary_row(solution: PeriodicSolution) -> tuple[dict[str, Any], Columns]:
-    """:func:`summary` of ``solution`` read from its cycle table's columns as arrays, no
-    DataFrame built (the same values); returns the row and those columns."""
-    cycle = Columns(cycle_columns(solution))
+    """:func:`summary` of ``solution`` read from the cycle table's columns that it needs
+    as arrays (:func:`cycle_columns` with ``full=False``), no DataFrame built (the same
+    values); returns the row and those columns."""
+    cycle = Columns(cycle_columns(solution, full=False))
     return summary(solution, cycle), cycle
 
 
@@ -195,13 +196,13 @@ def summary(
     """Summary metrics of the converged revolution (units in the keys).
 
     ``cycle`` is its cycle table (a DataFrame, or :class:`~recipsim.results.columns.Columns`;
-    built here if left out). ``solution`` is None for the pinned mechanism under a
+    built here from the columns it reads if left out). ``solution`` is None for the pinned mechanism under a
     tabulated pressure (nothing integrated); ``cycle`` and ``case`` are then required.
     """
     if solution is not None:
         case = solution.model.case
         if cycle is None:
-            cycle = Columns(cycle_columns(solution))
+            cycle = Columns(cycle_columns(solution, full=False))
     assert case is not None and cycle is not None
     row = _operating_columns(case)
     mech = mechanism_summary(cycle)

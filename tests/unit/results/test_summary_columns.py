@@ -49,8 +49,31 @@ def test_the_summary_from_columns_equals_the_one_from_the_table(name, overrides)
     assert list(row) == list(by_table)
     differ = [k for k in row if k != "wall_time [s]" and not _same(row[k], by_table[k])]
     assert not differ
-    again = simulate_row(case)
-    assert list(again) == list(run.row)
+    # the summary's columns (a sweep point's) are the table's, the same arrays, fewer
+    cheap = cycle_columns(run.solution, full=False)
+    assert set(cheap) < set(columns) and "time [s]" not in cheap
+    for key, values in cheap.items():
+        assert np.array_equal(values, columns[key], equal_nan=True), key
+
+
+@pytest.mark.parametrize(
+    ("name", "overrides"),
+    [
+        ("reference_r134a_lbp", {}),  # rigid crank (the sweep maps' scene)
+        ("reference_r134a_lbp_coupled", _SHORT),  # flexible crank train, free speed
+        ("reference_r134a_lbp_lubricated", _SHORT),  # oil films
+    ],
+)
+def test_a_sweep_points_row_is_the_runs_summary_row(name, overrides) -> None:
+    """``simulate_row`` (a sweep point: the summary from the columns it reads) and
+    ``simulate_case`` (``recipsim run``: from the whole table) give the same row, value for
+    value, so the cheap path cannot drift from the report's."""
+    case = load_case(name).with_(overrides)
+    full = simulate_case(case).row
+    point = simulate_row(case)
+    assert list(point) == list(full)
+    differ = [k for k in full if k != "wall_time [s]" and not _same(point[k], full[k])]
+    assert not differ, {k: (point[k], full[k]) for k in differ}
 
 
 def test_a_column_skips_nan_as_pandas_does() -> None:
