@@ -315,9 +315,9 @@ def save_map_plots(
     return written
 
 
-#: Measured CPU cost of each map plot of the 100-point map [s] (warm), used only to
-#: share the plots between figure processes.
-MAP_COST = {name: 0.057 for name in MAP_NAMES} | {"bearing_loads": 0.2}
+#: Measured CPU cost of each map plot of the 100-point map [s] (warm, 2-core machine;
+#: each drawn alone, median of 5), used only to share the plots between figure processes.
+MAP_COST = {name: 0.125 for name in MAP_NAMES} | {"bearing_loads": 0.34}
 
 #: What a figure process of the map plots imports while the sweep runs.
 MAP_PRELOAD = ("matplotlib.figure", "recipsim.report.plotting", "recipsim.studies.sweep.plots")
