@@ -26,17 +26,19 @@ from collections.abc import Collection, Mapping
 from pathlib import Path
 from typing import Any
 
-#: Measured CPU cost of each figure of the default case [s] (warm, 2-core machine),
-#: used only to share the figures evenly between the children.
+#: Measured CPU cost of each figure of the default case [s] (warm, 2-core machine; each
+#: drawn alone in a process that had drawn none, median of 6), used only to share the
+#: figures evenly between the children. A one-panel figure drawn after another in the
+#: same child costs less (it reuses its Axes, :func:`recipsim.report.plotting.save_cycle_figures`).
 FIGURE_COST = {
-    "p_V": 0.057,
-    "p_V_loglog": 0.073,
-    "p_theta": 0.071,
-    "torque": 0.077,
-    "valves": 0.087,
-    "bearing_loads": 0.25,
+    "p_V": 0.070,
+    "p_V_loglog": 0.061,
+    "p_theta": 0.069,
+    "torque": 0.072,
+    "valves": 0.094,
+    "bearing_loads": 0.20,
     "orbits": 0.25,
-    "loss_breakdown": 0.08,
+    "loss_breakdown": 0.083,
 }
 
 

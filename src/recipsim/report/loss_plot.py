@@ -8,6 +8,7 @@ from typing import Any
 
 from matplotlib.figure import Figure
 
+from recipsim.report.figure_kit import fewer_ticks
 from recipsim.report.figure_names import TITLE_Y
 from recipsim.results.loss_breakdown import LOSS_COLUMNS
 
@@ -54,6 +55,7 @@ def plot_loss_breakdown(row: Mapping[str, Any], ax: Any = None, title: str = "")
     ax.set_yticks(y, labels)
     ax.set_xlim(0.0, 1.25 * total)
     ax.set_xlabel("power [W]")
+    fewer_ticks(ax, y=False)
     ax.set_title(title or "where the electrical power goes", fontsize=9, y=TITLE_Y)
     ax.grid(True, axis="x", alpha=0.3)
     return fig

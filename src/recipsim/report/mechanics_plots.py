@@ -22,6 +22,7 @@ import pandas as pd
 from matplotlib.figure import Figure
 
 from recipsim.physics.mechanics.layout import BEARING_NAMES
+from recipsim.report.figure_kit import angle_axis
 from recipsim.report.figure_names import TITLE_Y
 
 ANGLE_COLUMN = "crank_angle [deg]"
@@ -143,8 +144,7 @@ def _closed(angle: np.ndarray, values: np.ndarray) -> tuple[np.ndarray, np.ndarr
 
 
 def _angle_axis(ax: Any) -> None:
-    ax.set_xlim(0.0, 360.0)
-    ax.set_xticks(np.arange(0.0, 361.0, 90.0))
+    angle_axis(ax)
     ax.grid(True, alpha=0.3)
 
 
@@ -183,7 +183,10 @@ def plot_bearing_loads(
             ax.plot(a, f, ls=LINE_STYLES[k % len(LINE_STYLES)], lw=1.2, label=label)
         ax.set_title(bearing, y=TITLE_Y)
         ax.set_ylabel("force [N]")
-        _angle_axis(ax)
+        ax.grid(True, alpha=0.3)
+    # the panels share their angle axis: its limits and ticks set once (set on each
+    # panel, every setting made the ticks of all six anew)
+    angle_axis(axes[0])
     for ax in axes[n:]:
         ax.set_visible(False)
     for ax in axes[max(0, n - ncols) : n]:

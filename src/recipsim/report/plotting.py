@@ -14,6 +14,7 @@ from typing import Any
 import pandas as pd
 from matplotlib.figure import Figure
 
+from recipsim.report.figure_kit import angle_axis, clear_axes, fewer_ticks
 from recipsim.report.figure_names import FIGURE_NAMES, TITLE_Y, check_figure_names
 
 
@@ -33,20 +34,22 @@ def plot_pv(cycle: pd.DataFrame, ax: Any = None, log: bool = False, label: str =
     ax.set_xlabel("cylinder volume [cm3]")
     ax.set_ylabel("cylinder pressure [bar]")
     if log:
-        from matplotlib.ticker import FormatStrFormatter, LogLocator, NullFormatter
+        from matplotlib.ticker import FormatStrFormatter, LogLocator, NullLocator
 
         ax.set_xscale("log")
         ax.set_yscale("log")
-        # labels at 1, 2, 5 x 10^k in plain numbers; the default labelled minor ticks
-        # overlapped on the volume axis and cost a third of the figure's drawing time
+        # labels and grid lines at 1, 2, 5 x 10^k in plain numbers; the default labelled
+        # minor ticks overlapped on the volume axis, and unlabelled minor ticks (six a
+        # decade, with their grid lines) were a third of the figure's drawing time
         for axis in (ax.xaxis, ax.yaxis):
             axis.set_major_locator(LogLocator(subs=(1.0, 2.0, 5.0)))
             axis.set_major_formatter(FormatStrFormatter("%g"))
-            axis.set_minor_formatter(NullFormatter())
+            axis.set_minor_locator(NullLocator())
         ax.set_title("p-V diagram (log-log)", y=TITLE_Y)
     else:
         ax.set_title("p-V diagram", y=TITLE_Y)
-    ax.grid(True, which="both", alpha=0.3)
+        fewer_ticks(ax)
+    ax.grid(True, alpha=0.3)
     return fig
 
 
@@ -62,7 +65,8 @@ def plot_pressure(
         ax.axhline(plenum[1] / 1e5, ls="--", lw=0.8, color="tab:red", label="discharge")
     ax.set_xlabel("crank angle from TDC [deg]")
     ax.set_ylabel("pressure [bar]")
-    ax.set_xlim(0, 360)
+    angle_axis(ax)
+    fewer_ticks(ax, x=False)
     ax.set_title("cylinder pressure", y=TITLE_Y)
     ax.grid(True, alpha=0.3)
     ax.legend()
@@ -77,11 +81,13 @@ def plot_valves(cycle: pd.DataFrame, ax: Any = None) -> Figure:
     ax.plot(theta, cycle["discharge_valve_lift [m]"] * 1e3, label="discharge lift")
     ax.set_xlabel("crank angle from TDC [deg]")
     ax.set_ylabel("valve lift [mm]")
-    ax.set_xlim(0, 360)
+    angle_axis(ax)
+    fewer_ticks(ax, x=False)
     ax2 = ax.twinx()
     ax2.plot(theta, cycle["suction_mass_flow [kg/s]"] * 1e3, ":", color="tab:blue")
     ax2.plot(theta, cycle["discharge_mass_flow [kg/s]"] * 1e3, ":", color="tab:orange")
     ax2.set_ylabel("mass flow [g/s] (dotted)")
+    fewer_ticks(ax2, x=False)
     ax.set_title("valves", y=TITLE_Y)
     ax.grid(True, alpha=0.3)
     ax.legend(loc="upper left")
@@ -107,7 +113,8 @@ def plot_torque(cycle: pd.DataFrame, ax: Any = None, label: str = "") -> Figure:
     ax.axhline(0.0, color="0.5", lw=0.6)
     ax.set_xlabel("crank angle from TDC [deg]")
     ax.set_ylabel("torque on the crankshaft [N m]")
-    ax.set_xlim(0, 360)
+    angle_axis(ax)
+    fewer_ticks(ax, x=False)
     ax.set_title("torques (positive: along the rotation)", y=TITLE_Y)
     ax.grid(True, alpha=0.3)
     ax.legend()
@@ -124,6 +131,7 @@ PNG_OPTIONS = {"compress_level": 1}
 # The loss waterfall's are those its constrained layout found for its fixed labels.
 _MARGINS = {
     "single": (0.85, 0.25, 0.6, 0.65),
+    "panels": (0.85, 0.25, 0.6, 0.65),
     "twin": (0.85, 0.8, 0.6, 0.65),
     "waterfall": (1.83, 0.09, 0.48, 0.23),
 }
@@ -165,19 +173,28 @@ def save_cycle_figures(
     ``title`` (what was run: case, mechanics, drive, pressure source) heads every figure.
     ``only`` (names of :data:`FIGURE_NAMES`) draws just those of them that apply.
     Each figure is drawn and written before the next is built, with fixed margins
-    (:func:`fixed_margins`) and fast PNG compression (:data:`PNG_OPTIONS`).
+    (:func:`fixed_margins`) and fast PNG compression (:data:`PNG_OPTIONS`); the
+    single-panel ones are drawn in turn on one Axes (:func:`clear_axes`).
     """
     from pathlib import Path
 
     directory = Path(directory)
     wanted = set(FIGURE_NAMES if only is None else check_figure_names(only))
     written = []
+    shared: Any = None  # the Axes of the single-panel figures
     for name, kind, make in _figure_makers(cycle, plenum):
         if name not in wanted:
             continue
-        fig = make()
-        if kind is not None:
-            fixed_margins(fig, kind)
+        if kind == "single":
+            if shared is None:
+                shared = single_axes()
+            else:
+                clear_axes(shared)
+            fig = make(shared)
+        else:
+            fig = make()
+            if kind is not None:
+                fixed_margins(fig, kind)
         if title:
             fig.suptitle(title, fontsize="medium")
         fig.savefig(directory / f"{name}.png", dpi=110, pil_kwargs=PNG_OPTIONS)
@@ -185,16 +202,30 @@ def save_cycle_figures(
     return written
 
 
+def single_axes(figsize: tuple[float, float] = (6.4, 4.4)) -> Any:
+    """The Axes of a new one-panel figure in the fixed margins ``"single"``, for figures
+    drawn on it in turn (:func:`recipsim.report.figure_kit.clear_axes` between them)."""
+    fig = Figure(figsize=figsize)
+    ax = fig.add_subplot()
+    fixed_margins(fig, "single")
+    return ax
+
+
+#: Makes one figure, on the given Axes where it has one panel (else it ignores it).
+Maker = Callable[..., Figure]
+
+
 def _figure_makers(
     cycle: pd.DataFrame, plenum: tuple[float, float] | None
-) -> list[tuple[str, str | None, Callable[[], Figure]]]:
+) -> list[tuple[str, str | None, Maker]]:
     """(name, margins or None to keep the figure's layout, maker) of the figures that
-    apply to ``cycle``."""
-    makers: list[tuple[str, str | None, Callable[[], Figure]]] = [
-        ("p_V", "single", lambda: plot_pv(cycle)),
-        ("p_V_loglog", "single", lambda: plot_pv(cycle, log=True)),
-        ("p_theta", "single", lambda: plot_pressure(cycle, plenum=plenum)),
-        ("torque", "single", lambda: plot_torque(cycle)),
+    apply to ``cycle``. Margins ``"single"``: one panel, the maker takes an optional Axes
+    to draw on."""
+    makers: list[tuple[str, str | None, Maker]] = [
+        ("p_V", "single", lambda ax=None: plot_pv(cycle, ax=ax)),
+        ("p_V_loglog", "single", lambda ax=None: plot_pv(cycle, ax=ax, log=True)),
+        ("p_theta", "single", lambda ax=None: plot_pressure(cycle, ax=ax, plenum=plenum)),
+        ("torque", "single", lambda ax=None: plot_torque(cycle, ax=ax)),
     ]
     if "suction_valve_lift [m]" in cycle:  # the gas is simulated (not a tabulated pressure)
         makers.append(("valves", "twin", lambda: plot_valves(cycle)))
@@ -207,7 +238,7 @@ def _figure_makers(
         )
 
         label = "flexible" if has_orbits(cycle) else "pinned"
-        makers.append(("bearing_loads", "single", lambda: plot_bearing_loads({label: cycle})))
+        makers.append(("bearing_loads", "panels", lambda: plot_bearing_loads({label: cycle})))
         if label == "flexible":
             # lubricated journals: every film bearing inside its clearance circle
             orbit_bearings = film_bearings(cycle) or ("primary", "secondary")

@@ -150,8 +150,12 @@ def plot_map(
     groups: list[str],
     ylabel: str = "",
     ax: Any = None,
+    legend: bool = True,
 ) -> Figure:
-    """One quantity against ``x``, a line per combination of the ``groups`` columns."""
+    """One quantity against ``x``, a line per combination of the ``groups`` columns
+    (their legend in the axes with ``legend``), about five ticks a side."""
+    from recipsim.report.figure_kit import fewer_ticks
+
     if ax is None:
         from matplotlib.figure import Figure
 
@@ -169,10 +173,11 @@ def plot_map(
     ax.set_xlabel(xlabel)
     ax.set_ylabel(ylabel or y)
     ax.grid(True, alpha=0.3)
+    fewer_ticks(ax)
     lines = len(ax.get_lines())
-    if groups and lines > MAX_LEGEND_LINES:
+    if groups and legend and lines > MAX_LEGEND_LINES:
         ax.legend(*legend_entries(table, groups), fontsize=6, ncol=2)
-    elif groups:
+    elif groups and legend:
         ax.legend(fontsize=7, ncol=2 if lines > 6 else 1)
     return fig
 
@@ -205,11 +210,8 @@ def plot_bearing_loads(table: pd.DataFrame, x: str, groups: list[str]) -> Figure
     axes = fig.subplots(nrows, ncols, squeeze=False)
     for ax, column in zip(axes.flat, columns, strict=False):
         name = BEARING_COLUMN.match(column).group(1)  # type: ignore[union-attr]
-        plot_map(table, column, x, groups, ylabel="peak load [N]", ax=ax)
+        plot_map(table, column, x, groups, ylabel="peak load [N]", ax=ax, legend=False)
         ax.set_title(name.replace("_", " "), y=TITLE_Y)
-        legend = ax.get_legend()
-        if legend is not None:
-            legend.remove()
     for ax in list(axes.flat)[len(columns) :]:
         ax.set_visible(False)
     fig.suptitle("peak bearing loads")
@@ -275,7 +277,8 @@ def save_map_plots(
     list of Path
         The files written (none when no point is ``ok`` or nothing numeric varies).
     """
-    from recipsim.report.plotting import PNG_OPTIONS, fixed_margins
+    from recipsim.report.figure_kit import clear_axes
+    from recipsim.report.plotting import PNG_OPTIONS, single_axes
 
     wanted = set(MAP_NAMES if only is None else check_map_names(only))
     ok = table[table["status"] == "ok"] if "status" in table else table
@@ -286,14 +289,18 @@ def save_map_plots(
         return []
     groups = group_columns(ok, axes, x)
     written = []
+    shared: Any = None  # the Axes the one-panel plots are drawn on in turn
     for column, label, name in (*MAP_QUANTITIES, ("", "", "map_bearing_loads.png")):
         if name[4:-4] not in wanted or (column and column not in ok):
             continue
         if column:
-            fig = plot_map(ok, column, x, groups, ylabel=label)
-            fig.axes[0].set_title(label.rsplit(" [", 1)[0], y=TITLE_Y)
-            fixed_margins(fig, "single")
-        else:  # panels and a legend: left to the layout engine
+            if shared is None:
+                shared = single_axes(figsize=(7.0, 4.8))
+            else:
+                clear_axes(shared)
+            fig = plot_map(ok, column, x, groups, ylabel=label, ax=shared)
+            shared.set_title(label.rsplit(" [", 1)[0], y=TITLE_Y)
+        else:  # panels and a legend below them, in fixed margins
             panels = plot_bearing_loads(ok, x, groups)
             if panels is None:
                 continue
@@ -308,9 +315,9 @@ def save_map_plots(
     return written
 
 
-#: Measured CPU cost of each map plot of the 100-point map [s] (warm), used only to
-#: share the plots between figure processes.
-MAP_COST = {name: 0.057 for name in MAP_NAMES} | {"bearing_loads": 0.2}
+#: Measured CPU cost of each map plot of the 100-point map [s] (warm, 2-core machine;
+#: each drawn alone, median of 5), used only to share the plots between figure processes.
+MAP_COST = {name: 0.125 for name in MAP_NAMES} | {"bearing_loads": 0.34}
 
 #: What a figure process of the map plots imports while the sweep runs.
 MAP_PRELOAD = ("matplotlib.figure", "recipsim.report.plotting", "recipsim.studies.sweep.plots")
