@@ -11,9 +11,9 @@ from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field, replace
 from typing import Any
 
-from recipsim.case.build import case_sections
+from recipsim.case.build import case_sections, derived_sections
 from recipsim.case.mechanism import MechanismSpec
-from recipsim.case.overrides import apply_overrides, override_texts
+from recipsim.case.overrides import apply_overrides, override_tables, override_texts
 from recipsim.case.refrigerant import RefrigerantSpec
 from recipsim.case.sections import (
     Geometry,
@@ -84,14 +84,17 @@ class Case:
         texts = override_texts(overrides)
         texts += override_texts({key.replace("__", "."): value for key, value in keys.items()})
         raw = apply_overrides(self.raw, texts, self.path)
-        case = case_from_dict(
-            raw, self.path, self.source_text, allow_external_paths=self.allow_external_paths
-        )
-        return replace(
-            case,
-            overrides=self.overrides + tuple(texts),
-            allow_external_paths=self.allow_external_paths,
-        )
+        overrides_now = self.overrides + tuple(texts)
+        try:  # only the sections that the overrides reach are validated again
+            changed = derived_sections(vars(self), raw, override_tables(texts))
+        except Exception:  # validated whole again: the error the file gives first
+            case = case_from_dict(
+                raw, self.path, self.source_text, allow_external_paths=self.allow_external_paths
+            )
+            return replace(
+                case, overrides=overrides_now, allow_external_paths=self.allow_external_paths
+            )
+        return replace(self, **changed, raw=raw, overrides=overrides_now)
 
 
 def case_from_dict(
