@@ -16,6 +16,7 @@ from __future__ import annotations
 from collections.abc import Callable, Mapping
 from collections.abc import Set as AbstractSet
 from dataclasses import dataclass, replace
+from functools import lru_cache
 from typing import Any, NamedTuple
 
 from recipsim.case import builders
@@ -77,10 +78,20 @@ def derived_sections(
     """
     check_keys(raw, TOP_KEYS, base["path"], "")
     build = _Build(raw, base["path"], base["allow_external_paths"], base)
-    for step in STEPS:
-        if step.reads & touched or any(used in build.changed for used in step.uses):
-            build.run(step)
+    for step in _reached(frozenset(touched)):
+        build.run(step)
     return build.fields()
+
+
+@lru_cache(maxsize=64)
+def _reached(touched: frozenset[str]) -> tuple[_Step, ...]:
+    """The steps that read a table of ``touched`` or use the result of such a step
+    (found once per set of tables: a sweep's points change the same few)."""
+    reached: list[_Step] = []
+    for step in STEPS:
+        if step.reads & touched or any(used.name in step.uses for used in reached):
+            reached.append(step)
+    return tuple(reached)
 
 
 class _In(NamedTuple):
@@ -130,10 +141,11 @@ STEPS: tuple[_Step, ...] = (
         frozenset({"options"}),
         kept=False,
     ),
+    _Step("properties", lambda s, opt: opt.properties, uses=("options0",)),
     _Step(
         "fluid",
-        lambda s, ref, opt: case_fluid(ref, opt.properties),
-        uses=("refrigerant", "options0"),
+        lambda s, ref, properties: case_fluid(ref, properties),
+        uses=("refrigerant", "properties"),
         kept=False,
     ),
     _Step(
@@ -262,20 +274,28 @@ class _Build:
         """Keyword arguments of ``Case`` from the steps that ran."""
         out: dict[str, Any] = {}
         for name in self.changed:
-            value = self.results[name]
-            if name == "top":
-                out.update(name=value["name"], description=value["description"])
-            elif name == "motor":
-                out.update(motor=value[0], motor_circuit=value[1])
+            if name in _TO_CASE:
+                out.update(_TO_CASE[name](self.results[name]))
             elif _BY_NAME[name].kept:
-                out[name] = value
+                out[name] = self.results[name]
         return out
 
 
 def _base_result(base: Mapping[str, Any], name: str) -> Any:
     """The result of step ``name`` (kept) in the case of fields ``base``."""
-    if name == "top":  # its refrigerant is only used by a step that reads it again
-        return {"name": base["name"], "description": base["description"]}
-    if name == "motor":
-        return base["motor"], base["motor_circuit"]
-    return base[name]
+    return _FROM_CASE[name](base) if name in _FROM_CASE else base[name]
+
+
+#: the fields of the case from a kept step's result, where not the field of its name
+_TO_CASE: dict[str, Callable[[Any], dict[str, Any]]] = {
+    "top": lambda top: {"name": top["name"], "description": top["description"]},
+    "properties": lambda _: {},  # held by the options
+    "motor": lambda pair: {"motor": pair[0], "motor_circuit": pair[1]},
+}
+#: a kept step's result from the fields of the case, where not the field of its name
+_FROM_CASE: dict[str, Callable[[Mapping[str, Any]], Any]] = {
+    # the header's refrigerant is used only by a step that runs after the header ran
+    "top": lambda case: {"name": case["name"], "description": case["description"]},
+    "properties": lambda case: case["options"].properties,  # the friction step keeps it
+    "motor": lambda case: (case["motor"], case["motor_circuit"]),
+}
