@@ -62,6 +62,14 @@ class Case:
     ) -> Case:
         """A new case with some values changed, validated exactly like the file.
 
+        Only the sections the overrides reach are validated again (the tables they
+        change, and the sections and checks that use those:
+        :func:`recipsim.case.build.derived_sections`); the others are this case's own,
+        which validating them again would give (a case is built from its raw data). The
+        result equals ``load_case(path, self.overrides + overrides)``, and so do its
+        errors: where the overrides make the case invalid, it is validated whole again
+        for the error the file gives first.
+
         Parameters
         ----------
         overrides : mapping or sequence of str, optional
