@@ -90,7 +90,8 @@ class Case:
             Naming the key and what is allowed, as for the file.
         """
         texts = override_texts(overrides)
-        texts += override_texts({key.replace("__", "."): value for key, value in keys.items()})
+        if keys:
+            texts += override_texts({key.replace("__", "."): value for key, value in keys.items()})
         raw = apply_overrides(self.raw, texts, self.path)
         overrides_now = self.overrides + tuple(texts)
         try:  # only the sections that the overrides reach are validated again

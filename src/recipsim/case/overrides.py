@@ -108,7 +108,9 @@ def apply_overrides(raw: dict[str, Any], overrides: list[str], file: str) -> dic
     """
     data = dict(raw)
     for text in overrides:
-        path, value = parse_override(text)
+        path, value = _parsed_override(text)
+        if isinstance(value, (list, dict)):  # a TOML array or table: the cache's own
+            value = copy.deepcopy(value)
         node = data
         for part in path[:-1]:
             nxt = node.get(part, {})
