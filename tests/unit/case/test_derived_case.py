@@ -3,18 +3,19 @@ reach (:func:`recipsim.case.build.derived_sections`); it must be the case that v
 the whole file with the same overrides gives (:func:`load_case`).
 
 Checked over the shipped cases and many override combinations: every section's keys,
-valid and invalid values, and keys whose checks cross sections (options against the
-valves, the motor or the shell; the operating point against the refrigerant; geometry
-against the valves and the mechanism). For each: the same case (dataclass ``==``, raw
-data, overrides, path) or the same error (type and message); and the derived steps
-themselves accept exactly what the whole validation accepts, so that ``with_`` never
-needs its fall-back to the whole case for a valid point.
+valid and invalid values, random values of numeric keys, and keys whose checks cross
+sections (options against the valves, the motor or the shell; the operating point
+against the refrigerant; geometry against the valves and the mechanism). For each: the
+same case (dataclass ``==``, raw data, overrides, path) or the same error (type and
+message); and the derived steps themselves accept exactly what the whole validation
+accepts, so that ``with_`` never needs its fall-back to the whole case for a valid point.
 """
 
 from __future__ import annotations
 
 import dataclasses
 import math
+import os
 from functools import cache
 from typing import Any
 
@@ -260,7 +261,31 @@ def test_every_single_override(name: str) -> None:
         _check(name, (text,))
 
 
-@settings(max_examples=300, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+#: numeric keys of several sections, their unit and a range wider than the allowed one
+#: (not the motor's: each new rated point fits the equivalent circuit again, seconds)
+NUMBERS: dict[str, tuple[str, float, float]] = {
+    "operating_point.evaporating_temperature": ("degC", -90.0, 120.0),
+    "operating_point.condensing_temperature": ("degC", -40.0, 140.0),
+    "operating_point.suction_temperature": ("degC", -60.0, 80.0),
+    "operating_point.shaft_speed": ("rpm", -100.0, 12000.0),
+    "operating_point.shell_pressure": ("bar", -1.0, 200.0),
+    "geometry.bore": ("mm", 0.5, 40.0),
+    "geometry.liner_length": ("mm", 1.0, 80.0),
+    "valves.suction.port_diameter": ("mm", 0.5, 30.0),
+    "mechanism.piston.length": ("mm", 1.0, 40.0),
+    "bearings.piston_top.position_from_crown": ("mm", -1.0, 30.0),
+}
+#: the project's fuzz settings (tests/unit/cli/test_hardening.py): the same draws on every
+#: run unless RECIPSIM_FUZZ_RANDOM is set
+FUZZ = settings(
+    max_examples=300,
+    deadline=None,
+    derandomize=os.environ.get("RECIPSIM_FUZZ_RANDOM") is None,
+    suppress_health_check=[HealthCheck.too_slow],
+)
+
+
+@FUZZ
 @given(
     name=st.sampled_from(SHIPPED),
     texts=st.lists(st.sampled_from(ALL_TEXTS), min_size=1, max_size=4),
@@ -268,6 +293,26 @@ def test_every_single_override(name: str) -> None:
 def test_random_combinations(name: str, texts: list[str]) -> None:
     """One to four overrides from any sections, in any order, repeats included."""
     _check(name, tuple(texts))
+
+
+@st.composite
+def _number_override(draw: st.DrawFn) -> str:
+    key = draw(st.sampled_from(sorted(NUMBERS)))
+    unit, lo, hi = NUMBERS[key]
+    value = draw(st.floats(lo, hi, allow_nan=False))
+    return f'{key}="{value:.5g} {unit}"'
+
+
+@FUZZ
+@given(
+    name=st.sampled_from(SHIPPED),
+    numbers=st.lists(_number_override(), min_size=1, max_size=3),
+    text=st.one_of(st.none(), st.sampled_from(ALL_TEXTS)),
+)
+def test_random_values(name: str, numbers: list[str], text: str | None) -> None:
+    """Random values of numeric keys across sections (near and across the bounds their
+    checks put on each other), with or without one text of the pool."""
+    _check(name, tuple(numbers) + (() if text is None else (text,)))
 
 
 def test_with_of_a_derived_case() -> None:
