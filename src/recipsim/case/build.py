@@ -1,59 +1,40 @@
-"""The sections of a case from its raw TOML data, one builder per table, in the order
-the checks run: the header and refrigerant, options, operating point, geometry, valves,
+"""The validation of a case's raw TOML data as steps (:data:`STEPS`), in the order the
+checks run: the header and refrigerant, options, operating point, geometry, valves,
 leakage, heat transfer, solver, mechanism, then the checks across sections
-(:mod:`.consistency`), the pressure curve, motor and shell.
+(:mod:`.consistency`), the pressure curve, motor and shell. Each step names the
+top-level tables it reads and the steps whose results it uses.
 
-:func:`case_sections` returns the keyword arguments of
-:class:`~recipsim.case.case.Case`; :func:`recipsim.case.case.case_from_dict` builds it.
+:func:`case_sections` runs every step: the keyword arguments of
+:class:`~recipsim.case.case.Case`, which :func:`recipsim.case.case.case_from_dict` builds.
+:func:`derived_sections` runs only the steps that some changed tables reach, taking the
+others' results from a case already validated (:meth:`recipsim.case.case.Case.with_`:
+a sweep point changes one to three keys of the operating point).
 """
 
 from __future__ import annotations
 
-import math
-from dataclasses import replace
+from collections.abc import Callable, Mapping
+from collections.abc import Set as AbstractSet
+from dataclasses import dataclass, replace
 from functools import lru_cache
-from pathlib import Path
-from typing import Any
+from typing import Any, NamedTuple
 
-from recipsim.atomic import checked_name, name_from_stem
-from recipsim.case.case_schema import (
-    GEOMETRY_SPEC,
-    HEADER_SPEC,
-    HEAT_TRANSFER_SPEC,
-    LEAKAGE_SPEC,
-    OPTION_SPEC,
-    PRESSURE_CURVE_SPEC,
-    SOLVER_SPEC,
-    TOP_KEYS,
-    VALVE_SPEC,
-    VALVES_TOP_SPEC,
-)
+from recipsim.case import builders
+from recipsim.case.case_schema import HEADER_SPEC, LEAKAGE_SPEC, OPTION_SPEC, TOP_KEYS
 from recipsim.case.consistency import (
     check_buildable,
     check_shell_pressure,
     check_solver,
     check_supported,
 )
-from recipsim.case.files import resolve_reference
 from recipsim.case.mechanism import MechanismSpec, mechanism_from_dict
-from recipsim.case.motor import case_motor
+from recipsim.case.motor import case_motor, check_motor_speed
 from recipsim.case.motor_losses import friction_option
 from recipsim.case.operating_point import operating_point
-from recipsim.case.pressure_curve import read_pressure_curve
 from recipsim.case.refrigerant import case_fluid, load_refrigerant
 from recipsim.case.schema import check_keys, read_table
-from recipsim.case.sections import (
-    Geometry,
-    HeatTransfer,
-    Leakage,
-    Options,
-    SolverSettings,
-    Valves,
-    ValveSpec,
-)
+from recipsim.case.sections import Geometry, Leakage, Options
 from recipsim.case.thermal import parse_thermal
-from recipsim.errors import CaseError
-from recipsim.physics.mechanics.tabulated import PressureCurve
 
 
 def case_sections(
@@ -62,190 +43,259 @@ def case_sections(
     """Validate the raw TOML data of a case: the keyword arguments of its ``Case``
     (all but ``raw`` and ``source_text``)."""
     check_keys(raw, TOP_KEYS, file, "")
-    top = _header(raw, file)
-    search = list(_refrigerant_search(file))
-    refrigerant = load_refrigerant(top["refrigerant"], file, "refrigerant", search)
-    options = Options(**read_table(raw.get("options"), OPTION_SPEC, file, "options"))
-    fluid = case_fluid(refrigerant, options.properties)
-    op = operating_point(raw.get("operating_point"), refrigerant, fluid, file)
-    geometry = _geometry(raw.get("geometry"), file)
-    valves = _valves(raw.get("valves"), options, file)
-    leakage = Leakage(**read_table(raw.get("leakage"), LEAKAGE_SPEC, file, "leakage"))
-    heat = _heat_transfer(raw.get("heat_transfer"), options, file)
-    solver = _solver(raw.get("solver"), file)
-    check_solver(solver, options, file)
-    mechanism = mechanism_from_dict(raw, file, bore=geometry.bore, default_law=options.bearing_law)
-    geometry = _with_liner_length(geometry, mechanism)
-    options = replace(options, friction=friction_option(options, mechanism, file))
-    check_supported(options, file)
-    check_buildable(geometry, valves, options, file)
-    curve = _pressure_curve(raw.get("pressure_curve"), options, file, allow_external_paths)
-    motor, circuit = case_motor(
-        raw.get("motor"), options.drive, options.motor, op.shaft_speed, file
-    )
-    thermal = parse_thermal(raw.get("thermal"), file)
-    check_shell_pressure(op, options, file)
-    return {
-        "name": top["name"],
-        "description": top["description"],
-        "path": file,
-        "refrigerant": refrigerant,
-        "options": options,
-        "operating_point": op,
-        "geometry": geometry,
-        "valves": valves,
-        "leakage": leakage,
-        "heat_transfer": heat,
-        "solver": solver,
-        "mechanism": mechanism,
-        "pressure_curve": curve,
-        "motor": motor,
-        "motor_circuit": circuit,
-        "thermal": thermal,
-    }
+    build = _Build(raw, file, allow_external_paths)
+    for step in STEPS:
+        build.run(step)
+    return {"path": file, **build.fields()}
+
+
+def derived_sections(
+    base: Mapping[str, Any], raw: dict[str, Any], touched: AbstractSet[str]
+) -> dict[str, Any]:
+    """The sections of ``base`` that change when its raw data becomes ``raw``, where only
+    the top-level tables (or keys) ``touched`` differ: the steps that read them, and the
+    steps that use what those build, run again; the others' results are ``base``'s.
+
+    Parameters
+    ----------
+    base : mapping
+        The fields of a validated case (``vars(case)``), built from its ``raw``.
+    raw : dict
+        ``base.raw`` with some top-level tables changed.
+    touched : set of str
+        The top-level keys of ``raw`` that may differ from ``base.raw``.
+
+    Returns
+    -------
+    dict
+        Keyword arguments of ``dataclasses.replace(base, ...)``: the changed sections.
+
+    Raises
+    ------
+    CaseError
+        Where validating ``raw`` raises; not necessarily the same error that
+        :func:`case_sections` raises first (validate the whole case for that message).
+    """
+    check_keys(raw, TOP_KEYS, base["path"], "")
+    build = _Build(raw, base["path"], base["allow_external_paths"], base)
+    for step in _reached(frozenset(touched)):
+        build.run(step)
+    return build.fields()
 
 
 @lru_cache(maxsize=64)
-def _refrigerant_search(file: str) -> tuple[Path, Path]:
-    """The case file's folder and its parent, where its refrigerant file may lie (resolved
-    once per file: a sweep validates a case at every point)."""
-    folder = Path(file).resolve().parent
-    return folder, folder.parent
+def _reached(touched: frozenset[str]) -> tuple[_Step, ...]:
+    """The steps that read a table of ``touched`` or use the result of such a step
+    (found once per set of tables: a sweep's points change the same few)."""
+    reached: list[_Step] = []
+    for step in STEPS:
+        if step.reads & touched or any(used.name in step.uses for used in reached):
+            reached.append(step)
+    return tuple(reached)
 
 
-def _header(raw: dict[str, Any], file: str) -> dict[str, Any]:
-    """Name, description and refrigerant; the name becomes a directory name."""
-    top = read_table({k: raw[k] for k in HEADER_SPEC if k in raw}, HEADER_SPEC, file, "")
-    # the name becomes a directory name: a plain file name or refused
-    top["name"] = (
-        name_from_stem(Path(file).stem) if top["name"] is None else checked_name(top["name"], file)
-    )
-    return top
+class _In(NamedTuple):
+    """What every step reads: the raw data, the case file, whether files outside its
+    folder may be read."""
+
+    raw: dict[str, Any]
+    file: str
+    allow_external: bool
 
 
-def _heat_transfer(raw: dict[str, Any] | None, options: Options, file: str) -> HeatTransfer:
-    ht = read_table(raw, HEAT_TRANSFER_SPEC, file, "heat_transfer")
-    network = options.thermal == "network"  # the network gives the wall temperature
-    if options.heat_transfer != "adiabatic" and ht["wall_temperature"] is None and not network:
-        raise CaseError(
-            file,
-            "heat_transfer.wall_temperature",
-            f"required with options.heat_transfer = {options.heat_transfer!r} (e.g. '60 degC')",
-        )
-    return HeatTransfer(
-        wall_temperature=ht["wall_temperature"] or math.nan,
-        coefficient=math.nan if ht["coefficient"] is None else ht["coefficient"],
-    )
+@dataclass(frozen=True)
+class _Step:
+    """One step of the validation: ``run(source, *results of uses)``; ``reads``: the
+    top-level tables of the raw data it reads itself; ``kept``: the case holds its result
+    (else it is an intermediate, or a check whose result is None)."""
+
+    name: str
+    run: Callable[..., Any]
+    reads: frozenset[str] = frozenset()
+    uses: tuple[str, ...] = ()
+    kept: bool = True
 
 
-def _solver(raw: dict[str, Any] | None, file: str) -> SolverSettings:
-    sv = read_table(raw, SOLVER_SPEC, file, "solver")
-    return SolverSettings(
-        method=sv["method"],
-        rtol=sv["rtol"],
-        atol=sv["atol"] if sv["atol"] is not None else sv["rtol"],
-        cycle_tolerance=sv["cycle_tolerance"],
-        max_revolutions=int(sv["max_revolutions"]),
-        min_revolutions=int(sv["min_revolutions"]),
-        samples_per_revolution=int(sv["samples_per_revolution"]),
-        max_step=sv["max_step"],
-        periodic=sv["periodic"],
-        start=sv["start"],
-        standstill_pressure=math.nan
-        if sv["standstill_pressure"] is None
-        else sv["standstill_pressure"],
-        pull_down_time=sv["pull_down_time"],
-        envelope=sv["envelope"],
-    )
+def _liner_step(_: _In, geometry: Geometry, mechanism: MechanismSpec) -> Geometry:
+    return builders.with_liner_length(geometry, mechanism)
 
 
-def _with_liner_length(geometry: Geometry, mechanism: MechanismSpec) -> Geometry:
-    """The liner's length where the case gives none: stroke, piston and clearance height."""
-    if geometry.liner_length is not None:
-        return geometry
-    return replace(
-        geometry,
-        liner_length=geometry.stroke
-        + mechanism.piston.length
-        + geometry.clearance_volume / geometry.piston_area,
-    )
+def _friction_step(source: _In, options: Options, mechanism: MechanismSpec) -> Options:
+    return replace(options, friction=friction_option(options, mechanism, source.file))
 
 
-def _geometry(raw: dict[str, Any] | None, file: str) -> Geometry:
-    g = read_table(raw, GEOMETRY_SPEC, file, "geometry")
-    area = math.pi * g["bore"] ** 2 / 4.0
-    swept = area * g["stroke"]
-    if (g["clearance_ratio"] is None) == (g["clearance_volume"] is None):
-        raise CaseError(
-            file,
-            "geometry.clearance_ratio",
-            "give exactly one of clearance_ratio and clearance_volume",
-        )
-    vc = (
-        g["clearance_volume"] if g["clearance_volume"] is not None else g["clearance_ratio"] * swept
-    )
-    if g["connecting_rod_length"] <= 0.5 * g["stroke"]:
-        raise CaseError(
-            file,
-            "geometry.connecting_rod_length",
-            f"must exceed the crank radius {0.5 * g['stroke']:.4g} m",
-        )
-    return Geometry(
-        bore=g["bore"],
-        stroke=g["stroke"],
-        connecting_rod_length=g["connecting_rod_length"],
-        clearance_volume=vc,
-        liner_length=g["liner_length"],  # None: set from the piston length by the caller
-    )
-
-
-def _valves(raw: dict[str, Any] | None, options: Options, file: str) -> Valves:
-    raw = dict(raw or {})
-    top = read_table(
-        {k: v for k, v in raw.items() if k not in ("suction", "discharge")},
-        VALVES_TOP_SPEC,
-        file,
+#: The validation of a case, in the order its checks run (the first error is the one
+#: reported); a step's ``reads`` and ``uses`` must name everything it depends on.
+STEPS: tuple[_Step, ...] = (
+    _Step("top", lambda s: builders.header(s.raw, s.file), frozenset(HEADER_SPEC)),
+    _Step(
+        "refrigerant",
+        lambda s, top: load_refrigerant(
+            top["refrigerant"], s.file, "refrigerant", list(builders.refrigerant_search(s.file))
+        ),
+        uses=("top",),
+    ),
+    _Step(
+        "options0",
+        lambda s: Options(**read_table(s.raw.get("options"), OPTION_SPEC, s.file, "options")),
+        frozenset({"options"}),
+        kept=False,
+    ),
+    _Step("properties", lambda s, opt: opt.properties, uses=("options0",)),
+    _Step(
+        "fluid",
+        lambda s, ref, properties: case_fluid(ref, properties),
+        uses=("refrigerant", "properties"),
+        kept=False,
+    ),
+    _Step(
+        "operating_point",
+        lambda s, ref, fluid: operating_point(s.raw.get("operating_point"), ref, fluid, s.file),
+        frozenset({"operating_point"}),
+        ("refrigerant", "fluid"),
+    ),
+    _Step(
+        "geometry0",
+        lambda s: builders.geometry(s.raw.get("geometry"), s.file),
+        frozenset({"geometry"}),
+        kept=False,
+    ),
+    _Step(
         "valves",
-    )
-    specs = {}
-    for side in ("suction", "discharge"):
-        table = raw.get(side)
-        if table is None and options.valves == "ideal":
-            table = _IDEAL_PLACEHOLDER
-        v = read_table(table, VALVE_SPEC, file, f"valves.{side}")
-        if v["port_position"] is None:
-            v["port_position"] = v["reed_length"] - 0.5 * v["reed_width"]
-        if v["port_position"] > v["reed_length"]:
-            raise CaseError(file, f"valves.{side}.port_position", "must not exceed reed_length")
-        specs[side] = ValveSpec(**v)
-    return Valves(suction=specs["suction"], discharge=specs["discharge"], **top)
+        lambda s, opt: builders.valves(s.raw.get("valves"), opt, s.file),
+        frozenset({"valves"}),
+        ("options0",),
+    ),
+    _Step(
+        "leakage",
+        lambda s: Leakage(**read_table(s.raw.get("leakage"), LEAKAGE_SPEC, s.file, "leakage")),
+        frozenset({"leakage"}),
+    ),
+    _Step(
+        "heat_transfer",
+        lambda s, opt: builders.heat_transfer(s.raw.get("heat_transfer"), opt, s.file),
+        frozenset({"heat_transfer"}),
+        ("options0",),
+    ),
+    _Step(
+        "solver",
+        lambda s: builders.solver_settings(s.raw.get("solver"), s.file),
+        frozenset({"solver"}),
+    ),
+    _Step(
+        "solver_check",
+        lambda s, sv, opt: check_solver(sv, opt, s.file),
+        uses=("solver", "options0"),
+        kept=False,
+    ),
+    _Step(
+        "mechanism",
+        lambda s, geo, opt: mechanism_from_dict(
+            s.raw, s.file, bore=geo.bore, default_law=opt.bearing_law
+        ),
+        frozenset({"mechanism", "bearings", "oil"}),
+        ("geometry0", "options0"),
+    ),
+    _Step("geometry", _liner_step, uses=("geometry0", "mechanism")),
+    _Step("options", _friction_step, uses=("options0", "mechanism")),
+    _Step(
+        "supported_check",
+        lambda s, opt: check_supported(opt, s.file),
+        uses=("options",),
+        kept=False,
+    ),
+    _Step(
+        "buildable_check",
+        lambda s, geo, valves, opt: check_buildable(geo, valves, opt, s.file),
+        uses=("geometry", "valves", "options"),
+        kept=False,
+    ),
+    _Step(
+        "pressure_curve",
+        lambda s, opt: builders.pressure_curve(
+            s.raw.get("pressure_curve"), opt, s.file, s.allow_external
+        ),
+        frozenset({"pressure_curve"}),
+        ("options",),
+    ),
+    _Step(
+        "motor",
+        lambda s, opt: case_motor(s.raw.get("motor"), opt.drive, opt.motor, s.file),
+        frozenset({"motor"}),
+        ("options",),
+    ),
+    _Step(
+        "motor_speed_check",
+        lambda s, pair, opt, op: check_motor_speed(pair[1], opt.drive, op.shaft_speed, s.file),
+        uses=("motor", "options", "operating_point"),
+        kept=False,
+    ),
+    _Step("thermal", lambda s: parse_thermal(s.raw.get("thermal"), s.file), frozenset({"thermal"})),
+    _Step(
+        "shell_check",
+        lambda s, op, opt: check_shell_pressure(op, opt, s.file),
+        uses=("operating_point", "options"),
+        kept=False,
+    ),
+)
+_BY_NAME = {step.name: step for step in STEPS}
 
 
-# the lossless valve model needs no valve data; these values are never used by it
-_IDEAL_PLACEHOLDER = {
-    "port_diameter": 5e-3,
-    "reed_width": 6e-3,
-    "reed_thickness": 2e-4,
-    "reed_length": 1.5e-2,
-    "stop_height": 1.5e-3,
+class _Build:
+    """The results of the steps run so far; a step not run takes the base case's result
+    (or, for an intermediate, runs on the base's inputs when a changed step needs it)."""
+
+    def __init__(
+        self,
+        raw: dict[str, Any],
+        file: str,
+        allow_external: bool,
+        base: Mapping[str, Any] | None = None,
+    ) -> None:
+        self.source = _In(raw, file, allow_external)
+        self.base = base
+        self.results: dict[str, Any] = {}
+        self.changed: list[str] = []
+
+    def run(self, step: _Step) -> None:
+        self.results[step.name] = step.run(self.source, *map(self.result, step.uses))
+        self.changed.append(step.name)
+
+    def result(self, name: str) -> Any:
+        if name not in self.results:
+            step = _BY_NAME[name]
+            if step.kept and self.base is not None:
+                self.results[name] = _base_result(self.base, name)
+            else:  # an intermediate of unchanged inputs
+                self.results[name] = step.run(self.source, *map(self.result, step.uses))
+        return self.results[name]
+
+    def fields(self) -> dict[str, Any]:
+        """Keyword arguments of ``Case`` from the steps that ran."""
+        out: dict[str, Any] = {}
+        for name in self.changed:
+            if name in _TO_CASE:
+                out.update(_TO_CASE[name](self.results[name]))
+            elif _BY_NAME[name].kept:
+                out[name] = self.results[name]
+        return out
+
+
+def _base_result(base: Mapping[str, Any], name: str) -> Any:
+    """The result of step ``name`` (kept) in the case of fields ``base``."""
+    return _FROM_CASE[name](base) if name in _FROM_CASE else base[name]
+
+
+#: the fields of the case from a kept step's result, where not the field of its name
+_TO_CASE: dict[str, Callable[[Any], dict[str, Any]]] = {
+    "top": lambda top: {"name": top["name"], "description": top["description"]},
+    "properties": lambda _: {},  # held by the options
+    "motor": lambda pair: {"motor": pair[0], "motor_circuit": pair[1]},
 }
-
-
-def _pressure_curve(
-    raw: dict[str, Any] | None, options: Options, file: str, allow_external: bool = False
-) -> PressureCurve | None:
-    """The tabulated p(theta) curve: a CSV named relative to the case file."""
-    table = read_table(raw, PRESSURE_CURVE_SPEC, file, "pressure_curve")
-    if options.pressure != "tabulated":
-        return None
-    if table["file"] is None:
-        raise CaseError(
-            file,
-            "pressure_curve.file",
-            "required with options.pressure = 'tabulated': a CSV beside the case with columns "
-            "'crank_angle [deg]' (0 at top dead centre) and 'cylinder_pressure [Pa]'",
-        )
-    path = resolve_reference(
-        table["file"], file, "pressure_curve.file", "pressure curve", allow_external
-    )
-    return read_pressure_curve(path, file)
+#: a kept step's result from the fields of the case, where not the field of its name
+_FROM_CASE: dict[str, Callable[[Mapping[str, Any]], Any]] = {
+    # the header's refrigerant is used only by a step that runs after the header ran
+    "top": lambda case: {"name": case["name"], "description": case["description"]},
+    "properties": lambda case: case["options"].properties,  # the friction step keeps it
+    "motor": lambda case: (case["motor"], case["motor_circuit"]),
+}

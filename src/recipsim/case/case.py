@@ -11,9 +11,9 @@ from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field, replace
 from typing import Any
 
-from recipsim.case.build import case_sections
+from recipsim.case.build import case_sections, derived_sections
 from recipsim.case.mechanism import MechanismSpec
-from recipsim.case.overrides import apply_overrides, override_texts
+from recipsim.case.overrides import apply_overrides, override_tables, override_texts
 from recipsim.case.refrigerant import RefrigerantSpec
 from recipsim.case.sections import (
     Geometry,
@@ -62,6 +62,14 @@ class Case:
     ) -> Case:
         """A new case with some values changed, validated exactly like the file.
 
+        Only the sections the overrides reach are validated again (the tables they
+        change, and the sections and checks that use those:
+        :func:`recipsim.case.build.derived_sections`); the others are this case's own,
+        which validating them again would give (a case is built from its raw data). The
+        result equals ``load_case(path, self.overrides + overrides)``, and so do its
+        errors: where the overrides make the case invalid, it is validated whole again
+        for the error the file gives first.
+
         Parameters
         ----------
         overrides : mapping or sequence of str, optional
@@ -82,16 +90,20 @@ class Case:
             Naming the key and what is allowed, as for the file.
         """
         texts = override_texts(overrides)
-        texts += override_texts({key.replace("__", "."): value for key, value in keys.items()})
+        if keys:
+            texts += override_texts({key.replace("__", "."): value for key, value in keys.items()})
         raw = apply_overrides(self.raw, texts, self.path)
-        case = case_from_dict(
-            raw, self.path, self.source_text, allow_external_paths=self.allow_external_paths
-        )
-        return replace(
-            case,
-            overrides=self.overrides + tuple(texts),
-            allow_external_paths=self.allow_external_paths,
-        )
+        overrides_now = self.overrides + tuple(texts)
+        try:  # only the sections that the overrides reach are validated again
+            changed = derived_sections(vars(self), raw, override_tables(texts))
+        except Exception:  # validated whole again: the error the file gives first
+            case = case_from_dict(
+                raw, self.path, self.source_text, allow_external_paths=self.allow_external_paths
+            )
+            return replace(
+                case, overrides=overrides_now, allow_external_paths=self.allow_external_paths
+            )
+        return replace(self, **changed, raw=raw, overrides=overrides_now)
 
 
 def case_from_dict(

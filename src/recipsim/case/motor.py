@@ -140,7 +140,7 @@ def motor_from_table(raw: Any, file: str) -> MotorSpec:
 
 
 def case_motor(
-    raw: Any, drive: str, motor: str, shaft_speed: float, file: str
+    raw: Any, drive: str, motor: str, file: str
 ) -> tuple[MotorSpec | None, MotorCircuit | None]:
     """The ``[motor]`` table of a case: the torque curve (required by the induction motor
     drive, built whenever its keys are there: a study may switch the drive with ``--set``)
@@ -152,16 +152,13 @@ def case_motor(
         The table as written (None: the case has none).
     drive, motor : str
         ``options.drive`` and ``options.motor``.
-    shaft_speed : float
-        The operating point's shaft speed [rad/s].
     file : str
         The case file, for messages.
 
     Raises
     ------
     CaseError
-        A table missing where needed, its keys invalid, or a constant shaft speed at or
-        above the circuit's synchronous speed.
+        A table missing where needed, or its keys invalid.
     """
     if raw is None:
         if drive == "induction_motor" or motor == "equivalent_circuit":
@@ -182,8 +179,25 @@ def case_motor(
         spec = motor_from_table(raw, file)
     if motor != "equivalent_circuit":
         return spec, None
-    circuit = motor_circuit_from_table(values, raw, file)
-    if drive == "constant_speed" and shaft_speed >= circuit.synchronous_speed:
+    return spec, motor_circuit_from_table(values, raw, file)
+
+
+def check_motor_speed(
+    circuit: MotorCircuit | None, drive: str, shaft_speed: float, file: str
+) -> None:
+    """Refuse a constant shaft speed [rad/s] at or above the synchronous speed of the
+    equivalent circuit (None: the case has none, nothing to check).
+
+    Raises
+    ------
+    CaseError
+        Naming ``operating_point.shaft_speed``.
+    """
+    if (
+        circuit is not None
+        and drive == "constant_speed"
+        and shaft_speed >= circuit.synchronous_speed
+    ):
         raise CaseError(
             file,
             "operating_point.shaft_speed",
@@ -191,4 +205,3 @@ def case_motor(
             f"at or above its synchronous speed {circuit.synchronous_speed * 30 / math.pi:.1f} "
             "rpm ([motor] line_frequency, poles)",
         )
-    return spec, circuit

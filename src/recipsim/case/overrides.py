@@ -92,6 +92,12 @@ def override_texts(overrides: Mapping[str, Any] | Sequence[str] | None) -> list[
     return [str(text) for text in overrides]
 
 
+def override_tables(overrides: list[str]) -> set[str]:
+    """The top-level keys of the case that ``--set`` overrides change (``"operating_point"``
+    for ``operating_point.shaft_speed=...``)."""
+    return {_parsed_override(text)[0][0] for text in overrides}
+
+
 def apply_overrides(raw: dict[str, Any], overrides: list[str], file: str) -> dict[str, Any]:
     """Return a copy of ``raw`` with ``--set`` overrides applied.
 
@@ -102,7 +108,9 @@ def apply_overrides(raw: dict[str, Any], overrides: list[str], file: str) -> dic
     """
     data = dict(raw)
     for text in overrides:
-        path, value = parse_override(text)
+        path, value = _parsed_override(text)
+        if isinstance(value, (list, dict)):  # a TOML array or table: the cache's own
+            value = copy.deepcopy(value)
         node = data
         for part in path[:-1]:
             nxt = node.get(part, {})

@@ -90,6 +90,28 @@ def test_point_case_reads_an_edited_base_again(tmp_path: Path) -> None:
     assert first.solver.rtol != 3e-7
 
 
+def test_point_case_reads_an_edited_refrigerant_file_again(tmp_path: Path) -> None:
+    """The base case is read again when its refrigerant file changes (the sections a
+    point does not override are the base's: its refrigerant too)."""
+    from recipsim.case.files import package_data
+
+    base = tmp_path / "base.toml"
+    base.write_text(REFERENCE.read_text())
+    fluid = tmp_path / "refrigerants" / "R134a.toml"
+    fluid.parent.mkdir()
+    text = (package_data("refrigerants") / "R134a.toml").read_text()
+    fluid.write_text(text)
+    point = ('operating_point.shaft_speed="3000 rpm"',)
+    first = point_case(str(base), point, True)
+    assert first.refrigerant.path == str(fluid)
+    fluid.write_text(text.replace('max_temperature = "180 degC"', 'max_temperature = "170 degC"'))
+    os.utime(fluid, ns=(1, 1))
+    second = point_case(str(base), point, True)
+    assert first.refrigerant.max_temperature == pytest.approx(453.15)
+    assert second.refrigerant.max_temperature == pytest.approx(443.15)
+    assert second == load_case(base, list(point), allow_external_paths=True)
+
+
 def test_point_case_base_invalid_alone(tmp_path: Path) -> None:
     """A base case that only the point's overrides complete still loads per point."""
     base = tmp_path / "incomplete.toml"
