@@ -10,7 +10,7 @@ three-point Gauss-Legendre (exact for the cubic isotherm integrand).
 table evaluations down a 300-node isochore).
 
 :func:`table_entropy` gives the same value (to rounding, about 1e-15 relative) in about
-1 us from :func:`entropy_tables`, computed once per table (about 1 ms):
+1 us from :func:`entropy_tables`, computed once per table (5-15 ms):
 
 * along the anchor isotherm, the integral from the anchor to every ln(rho) node; a state
   adds the integral within its cell;
@@ -72,7 +72,6 @@ from recipsim.physics.thermo.property_table import (
     N_SAT,
     S_LNRHOV,
     _hermite,
-    _line,
     table_props,
 )
 
@@ -154,32 +153,12 @@ def table_entropy_path(temperature, density, buf) -> float:
     return s
 
 
-@njit(cache=True)
-def _dome_limit(temperature, buf) -> float:
-    """Largest ln(rho) (exclusive) at which :func:`table_props` gives a single-phase
-    answer at ``temperature`` as far as the dome is concerned (its dew line, the
-    near-critical band); ``-inf`` where it has no saturation data."""
+def _anchor_isotherm(buf: np.ndarray, nx: int) -> np.ndarray:
+    """Integral of ``(dp/dT)_rho / rho`` along the anchor isotherm from the anchor's ln(rho)
+    to every ln(rho) node (signed; NaN beyond a cell that does not answer)."""
     b = N_PROPS
-    if temperature < buf[b + H_TSAT_MAX]:
-        ns = int(buf[b + H_NS])
-        s = (temperature - buf[b + H_TS0]) / buf[b + H_DTS]
-        k = min(max(int(s), 0), ns - 2)
-        h00, h10, h01, h11 = _hermite(s - k)
-        r0 = int(buf[b + H_OFF_SAT]) + k * 2 * N_SAT
-        limit = _line(buf, r0 + 2 * S_LNRHOV, r0 + 2 * N_SAT + 2 * S_LNRHOV, h00, h10, h01, h11)
-        return limit if limit == limit else -math.inf
-    if temperature < buf[b + H_TCRIT]:
-        return buf[b + H_LNRHOV_BAND]
-    return math.inf
-
-
-@njit(cache=True)
-def _anchor_isotherm(buf, anchor) -> None:
-    """``anchor[q]``: integral of ``(dp/dT)_rho / rho`` along the anchor isotherm from the
-    anchor's ln(rho) to node ``q`` (signed; NaN beyond a cell that does not answer)."""
-    b = N_PROPS
-    nx = anchor.shape[0]
-    t_a, x_a, x0, dx = buf[b + H_S_T], buf[b + H_S_X], buf[b + H_X0], buf[b + H_DX]
+    t_a, x_a, x0, dx = (float(buf[b + h]) for h in (H_S_T, H_S_X, H_X0, H_DX))
+    anchor = np.empty(nx)
     acc, prev = 0.0, x_a
     for q in range(nx):
         xq = x0 + q * dx
@@ -193,66 +172,96 @@ def _anchor_isotherm(buf, anchor) -> None:
         if xq < x_a:
             acc -= _segment_isotherm(t_a, xq, prev, buf)
             anchor[q], prev = acc, xq
+    return anchor
 
 
-@njit(cache=True)
-def entropy_tables(buf) -> np.ndarray:
+def _hermite_weights(t: np.ndarray) -> tuple[np.ndarray, ...]:
+    """:func:`.property_table._hermite` of an array (the same operations)."""
+    t2 = t * t
+    t3 = t2 * t
+    return 2.0 * t3 - 3.0 * t2 + 1.0, t3 - 2.0 * t2 + t, 3.0 * t2 - 2.0 * t3, t3 - t2
+
+
+def _dome_limits(temps: np.ndarray, buf: np.ndarray) -> np.ndarray:
+    """Largest ln(rho) (exclusive) at which :func:`table_props` gives a single-phase
+    answer at ``temps`` as far as the dome is concerned (its dew line below the
+    saturation table's end, the near-critical band up to the critical temperature);
+    ``-inf`` where it has no saturation data."""
+    b = N_PROPS
+    ns = int(buf[b + H_NS])
+    s = (temps - buf[b + H_TS0]) / buf[b + H_DTS]
+    k = np.clip(s.astype(np.int64), 0, ns - 2)
+    h00, h10, h01, h11 = _hermite_weights(s - k)
+    r0 = int(buf[b + H_OFF_SAT]) + k * 2 * N_SAT + 2 * S_LNRHOV
+    r1 = r0 + 2 * N_SAT
+    dew = h00 * buf[r0] + h10 * buf[r0 + 1] + h01 * buf[r1] + h11 * buf[r1 + 1]
+    dew = np.where(np.isnan(dew), -np.inf, dew)
+    band = np.where(temps < buf[b + H_TCRIT], buf[b + H_LNRHOV_BAND], np.inf)
+    return np.where(temps < buf[b + H_TSAT_MAX], dew, band)
+
+
+def entropy_tables(buf: np.ndarray) -> np.ndarray:
     """The sums :func:`table_entropy` reads (layout ``E_*``), for the table in ``buf``.
 
-    Computed once per table (about 1 ms); a cell answers as :func:`table_props` does for
-    the transport flag ``buf`` has now.
+    Computed once per table (a few ms; numpy, so that no further compiled function is
+    built on a first run); a cell answers as :func:`table_props` does for the transport
+    flag ``buf`` has now.
+
+    Parameters
+    ----------
+    buf : ndarray
+        Property buffer with the table (its outputs are overwritten).
+
+    Returns
+    -------
+    ndarray
+        Header ``E_*``, then the anchor isotherm's integrals (one per ln(rho) node), the
+        limits (rows x ln(rho) cells), the sums of ``c_v / T`` and of its ln(rho)
+        derivative (rows x ln(rho) nodes) [J/(kg K)].
     """
     b = N_PROPS
     nt, nx = int(buf[b + H_NT]), int(buf[b + H_NX])
-    t0, dt, t_a = buf[b + H_T0], buf[b + H_DT], buf[b + H_S_T]
+    t0, dt, t_a = float(buf[b + H_T0]), float(buf[b + H_DT]), float(buf[b + H_S_T])
     rows = nt + 1
-    off_a = N_ENTROPY_HEADER
-    off_l = off_a + nx
-    off_p = off_l + rows * (nx - 1)
-    off_r = off_p + rows * nx
-    ent = np.empty(off_r + rows * nx)
-    ent[E_ROWS], ent[E_NX] = rows, nx
-    ent[E_OFF_ANCHOR], ent[E_OFF_LIMIT], ent[E_OFF_P], ent[E_OFF_R] = off_a, off_l, off_p, off_r
-    _anchor_isotherm(buf, ent[off_a : off_a + nx])
-    limit = ent[off_l:off_p].reshape((rows, nx - 1))
-    p_sum = ent[off_p:off_r].reshape((rows, nx))
-    r_sum = ent[off_r:].reshape((rows, nx))
+    # row m of the path: [t0 + m dt, t0 + (m + 1) dt] clipped at the anchor, and the
+    # cell row that table_props reads at each of its three Gauss-Legendre points
+    m = np.arange(rows)
+    lo, hi = np.minimum(t0 + m * dt, t_a), np.minimum(t0 + (m + 1) * dt, t_a)
+    temps = lo[:, None] + _GL_X[None, :] * (hi - lo)[:, None]
+    gt = (temps - t0) / dt
+    i = np.clip(gt.astype(np.int64), 0, nt - 2)
+    a0, c0, a1, c1 = _hermite_weights(gt - i)
     stride = 4 * N_GRID
-    grid, mask = int(buf[b + H_OFF_GRID]) + 4 * G_CV, int(buf[b + H_OFF_MASK])
-    transport = buf[b + H_TRANSPORT] != 0.0
-    p_row, r_row, l_row = np.zeros(nx), np.zeros(nx), np.full(nx - 1, math.inf)
-    for m in range(rows - 1, -1, -1):
-        # row m of the path: [t0 + m dt, t0 + (m + 1) dt], clipped at the anchor
-        lo, hi = min(t0 + m * dt, t_a), min(t0 + (m + 1) * dt, t_a)
-        p_row[:] = 0.0
-        r_row[:] = 0.0
-        for g in range(3 if hi > lo else 0):
-            t = lo + _GL_X[g] * (hi - lo)
-            gt = (t - t0) / dt
-            i = min(max(int(gt), 0), nt - 2)
-            a0, c0, a1, c1 = _hermite(gt - i)
-            w = _GL_W[g] / t
-            for q in range(nx):
-                n0 = grid + (i * nx + q) * stride
-                n1 = n0 + nx * stride
-                p_row[q] += w * (a0 * buf[n0] + c0 * buf[n0 + 1] + a1 * buf[n1] + c1 * buf[n1 + 1])
-                r_row[q] += w * (
-                    a0 * buf[n0 + 2] + c0 * buf[n0 + 3] + a1 * buf[n1 + 2] + c1 * buf[n1 + 3]
-                )
-            dome = _dome_limit(t, buf)
-            for j in range(nx - 1):
-                cell = buf[mask + i * (nx - 1) + j]
-                if cell == 0.0 or (transport and cell != MASK_THERMO + MASK_TRANSPORT):
-                    l_row[j] = -math.inf
-                else:
-                    l_row[j] = min(l_row[j], dome)
-        for q in range(nx):
-            p_row[q] = p_row[q] * (hi - lo) + (p_sum[m + 1, q] if m + 1 < rows else 0.0)
-            r_row[q] = r_row[q] * (hi - lo) + (r_sum[m + 1, q] if m + 1 < rows else 0.0)
-        p_sum[m, :] = p_row
-        r_sum[m, :] = r_row
-        limit[m, :] = l_row  # l_row keeps the minimum over the rows above
-    return ent
+    grid = int(buf[b + H_OFF_GRID])
+    cv = buf[grid : grid + nt * nx * stride].reshape(nt, nx, N_GRID, 4)[:, :, G_CV, :]
+    below, above = cv[i], cv[i + 1]  # (rows, 3, nx, 4): f, f_t, f_u, f_tu
+
+    def row_sums(f: int, ft: int) -> np.ndarray:
+        w = (_GL_W[None, :] / temps)[:, :, None]
+        terms = (a0[:, :, None] * below[..., f] + c0[:, :, None] * below[..., ft]) + (
+            a1[:, :, None] * above[..., f] + c1[:, :, None] * above[..., ft]
+        )
+        return (w * terms).sum(axis=1) * (hi - lo)[:, None]
+
+    p_sum = np.cumsum(row_sums(0, 1)[::-1], axis=0)[::-1]
+    r_sum = np.cumsum(row_sums(2, 3)[::-1], axis=0)[::-1]
+    mask_off = int(buf[b + H_OFF_MASK])
+    cells = buf[mask_off : mask_off + (nt - 1) * (nx - 1)].reshape(nt - 1, nx - 1)[i]
+    bad = cells == 0.0
+    if buf[b + H_TRANSPORT] != 0.0:
+        bad |= cells != MASK_THERMO + MASK_TRANSPORT
+    limits = np.where(bad, -np.inf, _dome_limits(temps, buf)[:, :, None]).min(axis=1)
+    limits[hi <= lo] = np.inf
+    limits = np.minimum.accumulate(limits[::-1], axis=0)[::-1]
+    header = np.zeros(N_ENTROPY_HEADER)
+    off_a = N_ENTROPY_HEADER
+    header[E_ROWS], header[E_NX] = rows, nx
+    header[E_OFF_ANCHOR], header[E_OFF_LIMIT] = off_a, off_a + nx
+    header[E_OFF_P] = off_a + nx + limits.size
+    header[E_OFF_R] = header[E_OFF_P] + p_sum.size
+    return np.concatenate(
+        [header, _anchor_isotherm(buf, nx), limits.ravel(), p_sum.ravel(), r_sum.ravel()]
+    )
 
 
 @njit(cache=True)

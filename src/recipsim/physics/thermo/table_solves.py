@@ -53,9 +53,13 @@ from recipsim.physics.thermo.table_entropy import table_entropy
 NEWTON_TOL = 1e-12
 NEWTON_ITERATIONS = 60
 
-#: what the inverse solves ask Newton for
+#: the questions of :func:`solve_state` (its ``kind``)
 SOLVE_PH = 0
 SOLVE_PS = 1
+SOLVE_RHOS = 2
+SOLVE_TRHO = 3
+SOLVE_PT = 4
+SOLVE_TSAT = 5
 
 # ---- a state written by :func:`fill_state` ---------------------------------------------
 STATE = Layout("table state")
@@ -216,7 +220,7 @@ def _newton_2d(kind, pressure, target, temperature, density, buf, ent) -> tuple[
 
 
 @njit(cache=True)
-def state_at_pressure(
+def _state_at_pressure(
     kind, pressure, target, guess, with_entropy, gas_constant, t_crit, p_crit, buf, ent, out
 ) -> bool:
     """The vapour state at ``pressure`` [Pa] with h (``SOLVE_PH``, [J/kg]) or s
@@ -236,7 +240,7 @@ def state_at_pressure(
 
 
 @njit(cache=True)
-def state_rhos(density, entropy, guess, buf, ent, out) -> bool:
+def _state_rhos(density, entropy, guess, buf, ent, out) -> bool:
     """The state at ``density`` [kg/m3] and ``entropy`` [J/(kg K)] into ``out``: Newton on
     T from ``guess`` [K], residual relative to ``max(|entropy|, 1e3)``, steps limited to
     10 %. False on a table miss."""
@@ -260,15 +264,39 @@ def state_rhos(density, entropy, guess, buf, ent, out) -> bool:
 
 
 @njit(cache=True)
-def state_trho(temperature, density, with_entropy, buf, ent, out) -> bool:
-    """:func:`fill_state` (an entry for Python: one compiled call)."""
-    return fill_state(temperature, density, with_entropy, buf, ent, out)
+def solve_state(kind, a, b, guess, with_entropy, gas_constant, t_crit, p_crit, buf, ent, out):
+    """One question to the table, the one compiled entry of :class:`TableFluid`'s states
+    (one compilation on a first run); False on a table miss (the caller asks HEOS).
 
-
-@njit(cache=True)
-def state_pt(pressure, temperature, with_entropy, gas_constant, buf, ent, out) -> bool:
-    """The vapour state at (p [Pa], T [K]) into ``out``; False on a table miss."""
-    rho = table_vapour_pt(pressure, temperature, gas_constant, buf)[2]
-    if not math.isfinite(rho):
-        return False
-    return fill_state(temperature, rho, with_entropy, buf, ent, out)
+    Parameters
+    ----------
+    kind : int
+        ``SOLVE_PH``: (p [Pa], h [J/kg]); ``SOLVE_PS``: (p, s [J/(kg K)]);
+        ``SOLVE_RHOS``: (rho [kg/m3], s); ``SOLVE_TRHO``: (T [K], rho);
+        ``SOLVE_PT``: (p, T) vapour; ``SOLVE_TSAT``: the saturation temperature at
+        p = ``a`` into ``out[Q_T]``.
+    a, b : float
+        The two inputs, in that order.
+    guess : float
+        Newton's first temperature [K] (``SOLVE_PH``, ``SOLVE_PS``: NaN for 20 K above
+        the dew point; ``SOLVE_RHOS``: required).
+    with_entropy : bool
+        Compute the entropy (``SOLVE_PH``, ``SOLVE_TRHO``, ``SOLVE_PT``; NaN otherwise).
+    gas_constant, t_crit, p_crit : float
+        [J/(kg K)], [K], [Pa].
+    buf, ent, out : ndarray
+        Property buffer with the table, its entropy sums, the state (``Q_*``).
+    """
+    if kind == SOLVE_PH or kind == SOLVE_PS:
+        return _state_at_pressure(
+            kind, a, b, guess, with_entropy, gas_constant, t_crit, p_crit, buf, ent, out
+        )
+    if kind == SOLVE_RHOS:
+        return _state_rhos(a, b, guess, buf, ent, out)
+    if kind == SOLVE_TRHO:
+        return fill_state(a, b, with_entropy, buf, ent, out)
+    if kind == SOLVE_PT:
+        rho = table_vapour_pt(a, b, gas_constant, buf)[2]
+        return math.isfinite(rho) and fill_state(b, rho, with_entropy, buf, ent, out)
+    out[Q_T] = saturation_temperature(a, t_crit, buf)
+    return math.isfinite(out[Q_T])

@@ -66,15 +66,16 @@ from recipsim.physics.thermo.property_table import (
 from recipsim.physics.thermo.table_entropy import entropy_tables
 from recipsim.physics.thermo.table_solves import (
     N_STATE,
+    Q_T,
     SOLVE_PH,
     SOLVE_PS,
+    SOLVE_PT,
+    SOLVE_RHOS,
+    SOLVE_TRHO,
+    SOLVE_TSAT,
     ideal_gas_ratio,
     saturation_row,
-    saturation_temperature,
-    state_at_pressure,
-    state_pt,
-    state_rhos,
-    state_trho,
+    solve_state,
     table_vapour_pt,
 )
 
@@ -137,7 +138,7 @@ class TableFluid:
         self.critical_pressure = critical_pressure
         self._buf = table.property_buffer(transport=False)
         self._buf_transport = table.property_buffer(transport=True)
-        #: the entropy sums of the table (:func:`.table_entropy.entropy_tables`, ~1 ms)
+        #: the entropy sums of the table (:func:`.table_entropy.entropy_tables`, 5-15 ms)
         self._entropy_tables = entropy_tables(self._buf)
         #: a state filled by the compiled solves (:data:`.table_solves.STATE`)
         self._out = np.full(N_STATE, math.nan)
@@ -159,23 +160,38 @@ class TableFluid:
             self._heos = Fluid(self.name)
         return self._heos
 
+    def _solve(
+        self, kind: int, a: float, b: float, guess: float = math.nan, entropy: bool = True
+    ) -> dict[str, float] | None:
+        """:func:`.table_solves.solve_state`: the state, None on a table miss."""
+        found = solve_state(
+            kind,
+            a,
+            b,
+            guess,
+            entropy,
+            self.gas_constant,
+            self.critical_temperature,
+            self.critical_pressure,
+            self._buf,
+            self._entropy_tables,
+            self._out,
+        )
+        return _state(self._out) if found else None
+
     # ---- the Fluid interface --------------------------------------------------------------
     def state_trho(self, temperature: float, density: float) -> dict[str, float]:
         """State from temperature [K] and density [kg/m3]."""
-        if state_trho(temperature, density, True, self._buf, self._entropy_tables, self._out):
-            return _state(self._out)
-        return self.heos().state_trho(temperature, density)
+        state = self._solve(SOLVE_TRHO, temperature, density)
+        return state if state is not None else self.heos().state_trho(temperature, density)
 
     def state_pt(
         self, pressure: float, temperature: float, entropy: bool = True
     ) -> dict[str, float]:
         """Single-phase (vapour or supercritical) state from pressure [Pa] and T [K]
         (entropy NaN unless ``entropy``)."""
-        out = self._out
-        buf, ent = self._buf, self._entropy_tables
-        if state_pt(pressure, temperature, entropy, self.gas_constant, buf, ent, out):
-            return _state(out)
-        return self.heos().state_pt(pressure, temperature)
+        state = self._solve(SOLVE_PT, pressure, temperature, entropy=entropy)
+        return state if state is not None else self.heos().state_pt(pressure, temperature)
 
     def enthalpy_pt(self, pressure: float, temperature: float) -> tuple[float, float, float]:
         """Vapour enthalpy [J/kg], c_p [J/(kg K)] and density [kg/m3] at (p [Pa], T [K]),
@@ -185,59 +201,37 @@ class TableFluid:
             return self.heos().enthalpy_pt(pressure, temperature)
         return float(h), float(cp), float(density)
 
-    def _at_pressure(
-        self, kind: int, pressure: float, target: float, guess: float | None, entropy: bool
-    ) -> bool:
-        """:func:`.table_solves.state_at_pressure` into ``self._out``; False on a miss."""
-        return bool(
-            state_at_pressure(
-                kind,
-                pressure,
-                target,
-                math.nan if guess is None else guess,
-                entropy,
-                self.gas_constant,
-                self.critical_temperature,
-                self.critical_pressure,
-                self._buf,
-                self._entropy_tables,
-                self._out,
-            )
-        )
-
     def state_ph(
         self, pressure: float, enthalpy: float, guess: float | None = None, entropy: bool = True
     ) -> dict[str, float]:
         """State from pressure [Pa] and specific enthalpy [J/kg] (``guess``: T [K], default
         20 K above the dew point; entropy NaN unless ``entropy``)."""
-        if self._at_pressure(SOLVE_PH, pressure, enthalpy, guess, entropy):
-            return _state(self._out)
-        return self.heos().state_ph(pressure, enthalpy)
+        start = math.nan if guess is None else guess
+        state = self._solve(SOLVE_PH, pressure, enthalpy, start, entropy)
+        return state if state is not None else self.heos().state_ph(pressure, enthalpy)
 
     def state_ps(
         self, pressure: float, entropy: float, guess: float | None = None
     ) -> dict[str, float]:
         """State from pressure [Pa] and specific entropy [J/(kg K)] (``guess``: T [K],
         default 20 K above the dew point)."""
-        if self._at_pressure(SOLVE_PS, pressure, entropy, guess, True):
-            return _state(self._out)
-        return self.heos().state_ps(pressure, entropy)
+        start = math.nan if guess is None else guess
+        state = self._solve(SOLVE_PS, pressure, entropy, start)
+        return state if state is not None else self.heos().state_ps(pressure, entropy)
 
     def state_rhos(
         self, density: float, entropy: float, guess: float | None = None
     ) -> dict[str, float]:
         """State from density [kg/m3] and specific entropy [J/(kg K)] (``guess``: T [K],
         default the critical temperature)."""
-        t0 = guess if guess is not None else self.critical_temperature
-        if state_rhos(density, entropy, t0, self._buf, self._entropy_tables, self._out):
-            return _state(self._out)
-        return self.heos().state_rhos(density, entropy)
+        start = guess if guess is not None else self.critical_temperature
+        state = self._solve(SOLVE_RHOS, density, entropy, start)
+        return state if state is not None else self.heos().state_rhos(density, entropy)
 
     def _saturation_temperature(self, pressure: float) -> float:
-        t = float(saturation_temperature(pressure, self.critical_temperature, self._buf))
-        if not math.isfinite(t):
+        if self._solve(SOLVE_TSAT, pressure, math.nan) is None:
             raise TableMiss
-        return t
+        return float(self._out[Q_T])
 
     def _pure_saturation(self) -> None:
         """TableMiss for a pseudo-pure mixture (no ``QT`` saturation data in the table)."""
