@@ -45,6 +45,7 @@ from recipsim.physics.thermo.property_slots import (
 )
 from recipsim.physics.thermo.property_table import (
     G_CV,
+    G_DPDT_RHO,
     H_DT,
     H_DTS,
     H_DX,
@@ -91,25 +92,31 @@ E_OFF_R = _e("r_offset", "index", "per row and node line: the same of d(c_v)/d(l
 N_ENTROPY_HEADER = ENTROPY.size
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
+def single_phase(temperature, density, buf) -> bool:
+    """The table's outputs at (T, rho) into ``buf``; False outside its single phase."""
+    return table_props(temperature, density, buf) == STATUS_OK and buf[PROP_QUALITY] < 0.0
+
+
+@njit(cache=True, inline="always")
 def _segment_isotherm(temperature, x0, x1, buf) -> float:
     """Integral of ``(dp/dT)_rho / rho`` over ln(rho) from x0 to x1 at ``temperature``."""
     total = 0.0
     for q in range(3):
         x = x0 + _GL_X[q] * (x1 - x0)
-        if table_props(temperature, math.exp(x), buf) != STATUS_OK or buf[PROP_QUALITY] >= 0.0:
+        if not single_phase(temperature, math.exp(x), buf):
             return math.nan
         total += _GL_W[q] * buf[PROP_DPDT] / math.exp(x)
     return total * (x1 - x0)
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _segment_isochore(density, t0, t1, buf) -> float:
     """Integral of ``c_v / T`` over T from t0 to t1 at ``density``."""
     total = 0.0
     for q in range(3):
         t = t0 + _GL_X[q] * (t1 - t0)
-        if table_props(t, density, buf) != STATUS_OK or buf[PROP_QUALITY] >= 0.0:
+        if not single_phase(t, density, buf):
             return math.nan
         total += _GL_W[q] * buf[PROP_CV] / t
     return total * (t1 - t0)
@@ -155,23 +162,43 @@ def table_entropy_path(temperature, density, buf) -> float:
 
 def _anchor_isotherm(buf: np.ndarray, nx: int) -> np.ndarray:
     """Integral of ``(dp/dT)_rho / rho`` along the anchor isotherm from the anchor's ln(rho)
-    to every ln(rho) node (signed; NaN beyond a cell that does not answer)."""
+    to every ln(rho) node (signed; NaN beyond a cell that does not answer).
+
+    Cell by cell with the Gauss-Legendre nodes of :func:`_segment_isotherm` (exact: the
+    integrand is the table's cubic in ln(rho)), in numpy.
+    """
     b = N_PROPS
-    t_a, x_a, x0, dx = (float(buf[b + h]) for h in (H_S_T, H_S_X, H_X0, H_DX))
-    anchor = np.empty(nx)
-    acc, prev = 0.0, x_a
-    for q in range(nx):
-        xq = x0 + q * dx
-        if xq >= x_a:
-            if xq > prev:
-                acc += _segment_isotherm(t_a, prev, xq, buf)
-            anchor[q], prev = acc, xq
-    acc, prev = 0.0, x_a
-    for q in range(nx - 1, -1, -1):
-        xq = x0 + q * dx
-        if xq < x_a:
-            acc -= _segment_isotherm(t_a, xq, prev, buf)
-            anchor[q], prev = acc, xq
+    nt = int(buf[b + H_NT])
+    t0, dt, x0, dx = (float(buf[b + h]) for h in (H_T0, H_DT, H_X0, H_DX))
+    t_a, x_a = float(buf[b + H_S_T]), float(buf[b + H_S_X])
+    gt = (t_a - t0) / dt
+    i = min(max(int(gt), 0), nt - 2)
+    a0, c0, a1, c1 = _hermite_weights(np.array(gt - i))
+    # the integrand's node values along the isotherm: (f, f_u) at every ln(rho) node
+    stride = 4 * N_GRID
+    grid = int(buf[b + H_OFF_GRID])
+    g = buf[grid : grid + nt * nx * stride].reshape(nt, nx, N_GRID, 4)[:, :, G_DPDT_RHO, :]
+    f = a0 * g[i, :, 0] + c0 * g[i, :, 1] + a1 * g[i + 1, :, 0] + c1 * g[i + 1, :, 1]
+    fu = a0 * g[i, :, 2] + c0 * g[i, :, 3] + a1 * g[i + 1, :, 2] + c1 * g[i + 1, :, 3]
+    b0, d0, b1, d1 = _hermite_weights(_GL_X)
+    cells = (
+        _GL_W @ (b0[:, None] * f[None, :-1] + d0[:, None] * fu[None, :-1])
+        + _GL_W @ (b1[:, None] * f[None, 1:] + d1[:, None] * fu[None, 1:])
+    ) * dx
+    # a cell answers where table_props does at the anchor temperature
+    mask_off = int(buf[b + H_OFF_MASK])
+    mask = buf[mask_off + i * (nx - 1) : mask_off + (i + 1) * (nx - 1)]
+    bad = mask == 0.0
+    if buf[b + H_TRANSPORT] != 0.0:
+        bad |= mask != MASK_THERMO + MASK_TRANSPORT
+    x_top = x0 + (np.arange(nx - 1) + _GL_X[2]) * dx  # the highest node of each cell
+    bad |= ~(x_top < _dome_limits(np.array([t_a]), buf)[0])
+    cells[bad] = np.nan
+    # signed sums from the anchor's node
+    q_a = int(round((x_a - x0) / dx))
+    anchor = np.zeros(nx)
+    anchor[q_a + 1 :] = np.cumsum(cells[q_a:])
+    anchor[:q_a] = -np.cumsum(cells[:q_a][::-1])[::-1]
     return anchor
 
 

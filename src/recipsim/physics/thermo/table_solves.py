@@ -28,8 +28,6 @@ from recipsim.physics.thermo.property_slots import (
     PROP_K0,
     PROP_KAPPA,
     PROP_PRESSURE,
-    PROP_QUALITY,
-    STATUS_OK,
 )
 from recipsim.physics.thermo.property_table import (
     H_DT,
@@ -46,9 +44,8 @@ from recipsim.physics.thermo.property_table import (
     S_P,
     _hermite,
     _line,
-    table_props,
 )
-from recipsim.physics.thermo.table_entropy import table_entropy
+from recipsim.physics.thermo.table_entropy import single_phase, table_entropy
 
 NEWTON_TOL = 1e-12
 NEWTON_ITERATIONS = 60
@@ -105,12 +102,6 @@ def ideal_gas_ratio(temperature, buf) -> float:
 
 
 @njit(cache=True)
-def _single_phase(temperature, density, buf) -> bool:
-    """The table's outputs at (T, rho) into ``buf``; False outside its single phase."""
-    return table_props(temperature, density, buf) == STATUS_OK and buf[PROP_QUALITY] < 0.0
-
-
-@njit(cache=True)
 def table_vapour_pt(pressure, temperature, gas_constant, buf) -> tuple[float, float, float]:
     """Vapour ``(h [J/kg], c_p [J/(kg K)], rho [kg/m3])`` at (p [Pa], T [K]): Newton on
     ln rho from the ideal gas (steps limited to 0.2), to a relative pressure residual of
@@ -119,7 +110,7 @@ def table_vapour_pt(pressure, temperature, gas_constant, buf) -> tuple[float, fl
     x = math.log(pressure / (gas_constant * temperature))
     for _ in range(NEWTON_ITERATIONS):
         rho = math.exp(x)
-        if not _single_phase(temperature, rho, buf):
+        if not single_phase(temperature, rho, buf):
             break
         f = buf[PROP_PRESSURE] / pressure - 1.0
         if abs(f) < NEWTON_TOL:
@@ -130,7 +121,7 @@ def table_vapour_pt(pressure, temperature, gas_constant, buf) -> tuple[float, fl
     return math.nan, math.nan, math.nan
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def saturation_temperature(pressure, critical_temperature, buf) -> float:
     """Saturation temperature [K] at ``pressure`` [Pa] by Newton on the saturation
     table from 0.9 ``critical_temperature`` (steps limited to 10 %); NaN on a miss."""
@@ -147,7 +138,7 @@ def saturation_temperature(pressure, critical_temperature, buf) -> float:
     return math.nan
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def guess_temperature(pressure, critical_temperature, critical_pressure, buf) -> float:
     """A vapour temperature at ``pressure`` to start Newton from [K]: 20 K above the dew
     point (or 1.1 ``critical_temperature`` above the critical pressure or on a miss)."""
@@ -158,7 +149,7 @@ def guess_temperature(pressure, critical_temperature, critical_pressure, buf) ->
     return 1.1 * critical_temperature
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def fill_state(temperature, density, with_entropy, buf, ent, out) -> bool:
     """Every property at (T, rho) into ``out`` (``Q_*``; the entropy NaN unless
     ``with_entropy``); False where the table has no single-phase answer."""
@@ -167,7 +158,7 @@ def fill_state(temperature, density, with_entropy, buf, ent, out) -> bool:
         s = table_entropy(temperature, density, buf, ent)
         if not math.isfinite(s):
             return False
-    if not _single_phase(temperature, density, buf):
+    if not single_phase(temperature, density, buf):
         return False
     p, h, cv = buf[PROP_PRESSURE], buf[PROP_ENTHALPY], buf[PROP_CV]
     dpdt, dpdrho, kappa = buf[PROP_DPDT], buf[PROP_DPDRHO], buf[PROP_KAPPA]
@@ -181,7 +172,7 @@ def fill_state(temperature, density, with_entropy, buf, ent, out) -> bool:
     return True
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _newton_2d(kind, pressure, target, temperature, density, buf, ent) -> tuple[float, float]:
     """Newton on (T, ln rho) for p = ``pressure`` and h (``SOLVE_PH``) or s
     (``SOLVE_PS``) = ``target``, residuals relative to p and to ``max(|target|, 1e5)``
@@ -191,7 +182,7 @@ def _newton_2d(kind, pressure, target, temperature, density, buf, ent) -> tuple[
     x = math.log(density)
     for _ in range(NEWTON_ITERATIONS):
         rho = math.exp(x)
-        if not _single_phase(temperature, rho, buf):
+        if not single_phase(temperature, rho, buf):
             break
         p, cv, dpdt, dpdrho = buf[PROP_PRESSURE], buf[PROP_CV], buf[PROP_DPDT], buf[PROP_DPDRHO]
         f0 = p / pressure - 1.0
@@ -219,7 +210,7 @@ def _newton_2d(kind, pressure, target, temperature, density, buf, ent) -> tuple[
     return math.nan, math.nan
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _state_at_pressure(
     kind, pressure, target, guess, with_entropy, gas_constant, t_crit, p_crit, buf, ent, out
 ) -> bool:
@@ -239,7 +230,7 @@ def _state_at_pressure(
     return fill_state(t, rho, with_entropy or kind == SOLVE_PS, buf, ent, out)
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _state_rhos(density, entropy, guess, buf, ent, out) -> bool:
     """The state at ``density`` [kg/m3] and ``entropy`` [J/(kg K)] into ``out``: Newton on
     T from ``guess`` [K], residual relative to ``max(|entropy|, 1e3)``, steps limited to
@@ -248,7 +239,7 @@ def _state_rhos(density, entropy, guess, buf, ent, out) -> bool:
     temperature = guess
     rho = math.exp(math.log(density))
     for _ in range(NEWTON_ITERATIONS):
-        if not _single_phase(temperature, rho, buf):
+        if not single_phase(temperature, rho, buf):
             return False
         cv = buf[PROP_CV]
         s = table_entropy(temperature, rho, buf, ent)

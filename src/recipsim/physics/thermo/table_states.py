@@ -162,36 +162,39 @@ class TableFluid:
 
     def _solve(
         self, kind: int, a: float, b: float, guess: float = math.nan, entropy: bool = True
-    ) -> dict[str, float] | None:
-        """:func:`.table_solves.solve_state`: the state, None on a table miss."""
-        found = solve_state(
-            kind,
-            a,
-            b,
-            guess,
-            entropy,
-            self.gas_constant,
-            self.critical_temperature,
-            self.critical_pressure,
-            self._buf,
-            self._entropy_tables,
-            self._out,
+    ) -> bool:
+        """:func:`.table_solves.solve_state` into ``self._out``; False on a table miss."""
+        return bool(
+            solve_state(
+                kind,
+                a,
+                b,
+                guess,
+                entropy,
+                self.gas_constant,
+                self.critical_temperature,
+                self.critical_pressure,
+                self._buf,
+                self._entropy_tables,
+                self._out,
+            )
         )
-        return _state(self._out) if found else None
 
     # ---- the Fluid interface --------------------------------------------------------------
     def state_trho(self, temperature: float, density: float) -> dict[str, float]:
         """State from temperature [K] and density [kg/m3]."""
-        state = self._solve(SOLVE_TRHO, temperature, density)
-        return state if state is not None else self.heos().state_trho(temperature, density)
+        if self._solve(SOLVE_TRHO, temperature, density):
+            return _state(self._out)
+        return self.heos().state_trho(temperature, density)
 
     def state_pt(
         self, pressure: float, temperature: float, entropy: bool = True
     ) -> dict[str, float]:
         """Single-phase (vapour or supercritical) state from pressure [Pa] and T [K]
         (entropy NaN unless ``entropy``)."""
-        state = self._solve(SOLVE_PT, pressure, temperature, entropy=entropy)
-        return state if state is not None else self.heos().state_pt(pressure, temperature)
+        if self._solve(SOLVE_PT, pressure, temperature, entropy=entropy):
+            return _state(self._out)
+        return self.heos().state_pt(pressure, temperature)
 
     def enthalpy_pt(self, pressure: float, temperature: float) -> tuple[float, float, float]:
         """Vapour enthalpy [J/kg], c_p [J/(kg K)] and density [kg/m3] at (p [Pa], T [K]),
@@ -207,8 +210,9 @@ class TableFluid:
         """State from pressure [Pa] and specific enthalpy [J/kg] (``guess``: T [K], default
         20 K above the dew point; entropy NaN unless ``entropy``)."""
         start = math.nan if guess is None else guess
-        state = self._solve(SOLVE_PH, pressure, enthalpy, start, entropy)
-        return state if state is not None else self.heos().state_ph(pressure, enthalpy)
+        if self._solve(SOLVE_PH, pressure, enthalpy, start, entropy):
+            return _state(self._out)
+        return self.heos().state_ph(pressure, enthalpy)
 
     def state_ps(
         self, pressure: float, entropy: float, guess: float | None = None
@@ -216,8 +220,9 @@ class TableFluid:
         """State from pressure [Pa] and specific entropy [J/(kg K)] (``guess``: T [K],
         default 20 K above the dew point)."""
         start = math.nan if guess is None else guess
-        state = self._solve(SOLVE_PS, pressure, entropy, start)
-        return state if state is not None else self.heos().state_ps(pressure, entropy)
+        if self._solve(SOLVE_PS, pressure, entropy, start):
+            return _state(self._out)
+        return self.heos().state_ps(pressure, entropy)
 
     def state_rhos(
         self, density: float, entropy: float, guess: float | None = None
@@ -225,11 +230,12 @@ class TableFluid:
         """State from density [kg/m3] and specific entropy [J/(kg K)] (``guess``: T [K],
         default the critical temperature)."""
         start = guess if guess is not None else self.critical_temperature
-        state = self._solve(SOLVE_RHOS, density, entropy, start)
-        return state if state is not None else self.heos().state_rhos(density, entropy)
+        if self._solve(SOLVE_RHOS, density, entropy, start):
+            return _state(self._out)
+        return self.heos().state_rhos(density, entropy)
 
     def _saturation_temperature(self, pressure: float) -> float:
-        if self._solve(SOLVE_TSAT, pressure, math.nan) is None:
+        if not self._solve(SOLVE_TSAT, pressure, math.nan):
             raise TableMiss
         return float(self._out[Q_T])
 
