@@ -4,7 +4,9 @@
 Each solve takes the property buffer with the table (``buf``, its outputs overwritten)
 and the table's entropy sums (``ent``, :func:`.table_entropy.entropy_tables`), and writes
 a state into ``out`` (layout ``Q_*``) or reports a table miss (``False``, NaN), on which
-the caller asks HEOS. One call from Python replaces a Python loop of compiled calls.
+the caller asks HEOS. One call from Python replaces a Python loop of compiled calls:
+:class:`TableFluid` calls the one entry :func:`solve_state`, into which the helpers
+inline (``inline="always"``), so that a first run compiles them once (3-4 s CPU).
 
 ``(p, h)``, ``(p, s)``: Newton on ``(T, ln rho)`` with the table's derivatives;
 ``(rho, s)``: on ``T``; each to a relative residual of 1e-12 within 60 iterations, steps
