@@ -248,9 +248,11 @@ def test_pinned_against_flexible_rows_equal_direct_runs(tmp_path):
     [
         # lossless valves, adiabatic, no leakage: the cycle in crank angle does not depend
         # on the speed, so the mass per revolution is the same and the flow scales with
-        # the speed exactly (1e-6: the periodic solver's tolerance is 1e-4 on the states,
-        # but both runs take identical paths in crank angle, measured 3e-13)
-        ("ideal", (-1.0 / 7.0 - 1e-6, -1.0 / 7.0 + 1e-6)),
+        # the speed exactly (1e-5: the periodic solver's tolerance is 1e-4 on the states;
+        # both runs take the same path in crank angle to 1e-13 unless a last-bit change
+        # of the start state flips one of the adaptive steps: a start temperature 1 ulp
+        # lower or a suction entropy 4 ulps higher gives 1.5e-6)
+        ("ideal", (-1.0 / 7.0 - 1e-5, -1.0 / 7.0 + 1e-5)),
         # reed valves: the discharge reed closes later (in crank angle) at the higher
         # speed and lets gas flow back, so the volumetric efficiency rises at 3000 rpm
         # (measured 0.695 -> 0.775) and the flow falls less than the speed; it still falls

@@ -456,7 +456,7 @@ def build_raw(
         "dts": float(sat_t[1] - sat_t[0]),
         "t_crit": state.T_critical(),
     }
-    # entropy anchor (table_states.entropy integrates from it): hottest node, a density
+    # entropy anchor (table_entropy integrates from it): hottest node, a density
     # two grid lines above the lowest, where every vapour state is reached by an
     # isotherm then an isochore without crossing the dome
     raw["s_t"] = float(temps[-1])

@@ -14,14 +14,12 @@ How each answer is obtained:
 
 * ``(T, rho)``: the table directly; ``c_p`` and the speed of sound from the identities
   of :func:`.property_table.table_props`.
-* entropy: integrated from an anchor state whose HEOS entropy the table stores
-  (hottest node, low density): along the anchor isotherm
-  ``ds = -(dp/dT)_rho / rho d(ln rho)``, then along the state's isochore
-  ``ds = c_v / T dT``. Every vapour state is reached without crossing the dome. The
-  integrands are the table's own piecewise cubics, integrated cell by cell with
-  three-point Gauss-Legendre (exact for the cubic isotherm integrand).
+* entropy: integrated from an anchor state whose HEOS entropy the table stores, along
+  the anchor isotherm and then the state's isochore (:mod:`.table_entropy`: sums
+  computed once per table, about 1 us a state).
 * ``(p, T)``, ``(p, h)``, ``(p, s)``, ``(rho, s)``: Newton on ``(T, ln rho)`` with the
-  table's derivatives, to a relative residual of 1e-12.
+  table's derivatives, to a relative residual of 1e-12, compiled
+  (:mod:`.table_solves`): one compiled call a state.
 * saturation: the 1-D saturation table (pure fluids; for pseudo-pure mixtures it has no
   ``QT`` data and the question goes to HEOS).
 * subcooled liquid enthalpy (the liquid line): the expansion in pressure at constant T
@@ -36,53 +34,26 @@ How each answer is obtained:
 
 Accuracy: the table's (1e-5); :mod:`tests.test_table_states` measures every answer
 against HEOS.
-
-Size (over the project's 400 lines): one class answering every post-processing
-state from the table with its HEOS fallback; splitting the saturation and liquid-line
-answers out is listed on issue 13.
 """
 
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 import numpy as np
-from numba import njit
 
 from recipsim.physics.thermo.properties import (
-    N_PROPS,
     PROP_CONDUCTIVITY,
-    PROP_CV,
-    PROP_DPDRHO,
-    PROP_DPDT,
-    PROP_ENTHALPY,
-    PROP_K0,
-    PROP_KAPPA,
-    PROP_PRESSURE,
     PROP_QUALITY,
     PROP_VISCOSITY,
     STATUS_OK,
 )
 from recipsim.physics.thermo.property_table import (
-    H_DT,
-    H_DTS,
-    H_DX,
-    H_NS,
-    H_NT,
-    H_OFF_K0,
-    H_OFF_SAT,
-    H_S_T,
-    H_S_VALUE,
-    H_S_X,
-    H_T0,
     H_TS0,
     H_TSAT_MAX,
-    H_X0,
-    N_SAT,
     S_D2HDP2_L,
     S_DHDP_L,
-    S_DPSAT,
     S_HV_DOME,
     S_MUV,
     S_P,
@@ -90,136 +61,52 @@ from recipsim.physics.thermo.property_table import (
     S_VL,
     S_VV,
     PropertyTable,
-    _hermite,
-    _line,
     table_props,
+)
+from recipsim.physics.thermo.table_entropy import entropy_tables
+from recipsim.physics.thermo.table_solves import (
+    N_STATE,
+    Q_T,
+    SOLVE_PH,
+    SOLVE_PS,
+    SOLVE_PT,
+    SOLVE_RHOS,
+    SOLVE_TRHO,
+    SOLVE_TSAT,
+    ideal_gas_ratio,
+    saturation_row,
+    solve_state,
+    table_vapour_pt,
 )
 
 if TYPE_CHECKING:
     from recipsim.physics.thermo.fluid import Fluid
 
-# three-point Gauss-Legendre on [0, 1]
-_GL_X = np.array([0.5 - math.sqrt(0.15), 0.5, 0.5 + math.sqrt(0.15)])
-_GL_W = np.array([5.0 / 18.0, 8.0 / 18.0, 5.0 / 18.0])
-
 #: largest estimated third-order term of the liquid-line expansion [J/kg]
 LIQUID_EXPANSION_LIMIT = 2.5
-
-_NEWTON_TOL = 1e-12
-_NEWTON_ITERATIONS = 60
 
 
 class TableMiss(Exception):
     """The table cannot answer this question (the caller asks HEOS)."""
 
 
-@njit(cache=True)
-def _segment_isotherm(temperature, x0, x1, buf) -> float:
-    """Integral of ``(dp/dT)_rho / rho`` over ln(rho) from x0 to x1 at ``temperature``."""
-    total = 0.0
-    for q in range(3):
-        x = x0 + _GL_X[q] * (x1 - x0)
-        if table_props(temperature, math.exp(x), buf) != STATUS_OK or buf[PROP_QUALITY] >= 0.0:
-            return math.nan
-        total += _GL_W[q] * buf[PROP_DPDT] / math.exp(x)
-    return total * (x1 - x0)
-
-
-@njit(cache=True)
-def _segment_isochore(density, t0, t1, buf) -> float:
-    """Integral of ``c_v / T`` over T from t0 to t1 at ``density``."""
-    total = 0.0
-    for q in range(3):
-        t = t0 + _GL_X[q] * (t1 - t0)
-        if table_props(t, density, buf) != STATUS_OK or buf[PROP_QUALITY] >= 0.0:
-            return math.nan
-        total += _GL_W[q] * buf[PROP_CV] / t
-    return total * (t1 - t0)
-
-
-@njit(cache=True)
-def table_entropy(temperature, density, buf) -> float:
-    """Specific entropy [J/(kg K)] of a single-phase state from the table in ``buf``.
-
-    Integrated from the table's anchor (see the module docstring) in pieces that
-    follow the grid lines, so each piece sees one cubic; NaN where the path leaves the
-    table (the caller asks HEOS).
-    """
-    b = N_PROPS
-    t_a, x_a = buf[b + H_S_T], buf[b + H_S_X]
-    x = math.log(density)
-    s = buf[b + H_S_VALUE]
-    # anchor isotherm, x_a -> x: ds = -(dp/dT)_rho / rho dx
-    x0, dx = buf[b + H_X0], buf[b + H_DX]
-    lo, hi = min(x_a, x), max(x_a, x)
-    sign = 1.0 if x >= x_a else -1.0
-    k = int(math.floor((lo - x0) / dx))
-    start = lo
-    while start < hi:
-        end = min(x0 + (k + 1) * dx, hi)
-        if end > start:
-            s -= sign * _segment_isotherm(t_a, start, end, buf)
-        start = end
-        k += 1
-    # isochore at x, t_a -> T: ds = c_v / T dT
-    t0, dt = buf[b + H_T0], buf[b + H_DT]
-    lo, hi = min(temperature, t_a), max(temperature, t_a)
-    sign = 1.0 if temperature >= t_a else -1.0
-    k = int(math.floor((lo - t0) / dt))
-    start = lo
-    while start < hi:
-        end = min(t0 + (k + 1) * dt, hi)
-        if end > start:
-            s += sign * _segment_isochore(density, start, end, buf)
-        start = end
-        k += 1
-    return s
-
-
-@njit(cache=True)
-def saturation_row(temperature, slot, buf) -> float:
-    """Saturation-table quantity ``slot`` (``S_*``) at ``temperature``; NaN outside it."""
-    b = N_PROPS
-    if not (buf[b + H_TS0] <= temperature <= buf[b + H_TSAT_MAX]):
-        return math.nan
-    ns = int(buf[b + H_NS])
-    s = (temperature - buf[b + H_TS0]) / buf[b + H_DTS]
-    k = min(max(int(s), 0), ns - 2)
-    h00, h10, h01, h11 = _hermite(s - k)
-    r0 = int(buf[b + H_OFF_SAT]) + k * 2 * N_SAT + 2 * slot
-    return _line(buf, r0, r0 + 2 * N_SAT, h00, h10, h01, h11)
-
-
-@njit(cache=True)
-def ideal_gas_ratio(temperature, buf) -> float:
-    """Ideal-gas ``c_p0 / c_v0`` at ``temperature`` from the table's 1-D k0 table."""
-    b = N_PROPS
-    nt = int(buf[b + H_NT])
-    g = (temperature - buf[b + H_T0]) / buf[b + H_DT]
-    i = min(max(int(g), 0), nt - 2)
-    h00, h10, h01, h11 = _hermite(g - i)
-    r0 = int(buf[b + H_OFF_K0]) + 2 * i
-    return _line(buf, r0, r0 + 2, h00, h10, h01, h11)
-
-
-@njit(cache=True)
-def table_vapour_pt(pressure, temperature, gas_constant, buf) -> tuple[float, float, float]:
-    """Vapour ``(h [J/kg], c_p [J/(kg K)], rho [kg/m3])`` at (p [Pa], T [K]): Newton on
-    ln rho from the ideal gas (steps limited to 0.2), to a relative pressure residual of
-    1e-12; all NaN where the table has no single-phase answer. ``buf`` is left holding
-    the table's outputs at the answer."""
-    x = math.log(pressure / (gas_constant * temperature))
-    for _ in range(_NEWTON_ITERATIONS):
-        rho = math.exp(x)
-        if table_props(temperature, rho, buf) != STATUS_OK or buf[PROP_QUALITY] >= 0.0:
-            break
-        f = buf[PROP_PRESSURE] / pressure - 1.0
-        if abs(f) < _NEWTON_TOL:
-            dpdt = buf[PROP_DPDT]
-            cp = buf[PROP_CV] + temperature * dpdt * dpdt / (rho * rho * buf[PROP_DPDRHO])
-            return buf[PROP_ENTHALPY], cp, rho
-        x -= max(-0.2, min(0.2, f * pressure / (rho * buf[PROP_DPDRHO])))
-    return math.nan, math.nan, math.nan
+def _state(out: np.ndarray) -> dict[str, float]:
+    """A state (the keys of :meth:`Fluid.state_trho`, in its order) from a filled ``out``."""
+    p, t, rho, h, s, u, cp, cv, c, kappa, k0 = out.tolist()
+    return {
+        "p": p,
+        "T": t,
+        "rho": rho,
+        "h": h,
+        "s": s,
+        "u": u,
+        "quality": -1.0,
+        "cp": cp,
+        "cv": cv,
+        "speed_of_sound": c,
+        "kappa": kappa,
+        "k0": k0,
+    }
 
 
 class TableFluid:
@@ -251,6 +138,10 @@ class TableFluid:
         self.critical_pressure = critical_pressure
         self._buf = table.property_buffer(transport=False)
         self._buf_transport = table.property_buffer(transport=True)
+        #: the entropy sums of the table (:func:`.table_entropy.entropy_tables`, 5-15 ms)
+        self._entropy_tables = entropy_tables(self._buf)
+        #: a state filled by the compiled solves (:data:`.table_solves.STATE`)
+        self._out = np.full(N_STATE, math.nan)
         self._heos: Fluid | None = None
         # pseudo-pure mixtures have no QT saturation data (NaN rows): their saturation
         # questions go to HEOS
@@ -269,95 +160,41 @@ class TableFluid:
             self._heos = Fluid(self.name)
         return self._heos
 
-    # ---- table primitives -----------------------------------------------------------------
-    def _props(self, temperature: float, density: float) -> np.ndarray:
-        """The table's outputs at (T, rho); TableMiss outside its single-phase region."""
-        buf = self._buf
-        if table_props(temperature, density, buf) != STATUS_OK or buf[PROP_QUALITY] >= 0.0:
-            raise TableMiss
-        return buf
-
-    def _entropy(self, temperature: float, density: float) -> float:
-        s = float(table_entropy(temperature, density, self._buf))
-        if not math.isfinite(s):
-            raise TableMiss
-        return s
-
-    def _snapshot(
-        self, temperature: float, density: float, entropy: bool = True
-    ) -> dict[str, float]:
-        """Every property at (T, rho); the entropy (about 40 us, an integral) NaN unless
-        ``entropy``."""
-        s = self._entropy(temperature, density) if entropy else math.nan
-        buf = self._props(temperature, density)
-        p, h, cv = float(buf[PROP_PRESSURE]), float(buf[PROP_ENTHALPY]), float(buf[PROP_CV])
-        dpdt, dpdrho, kappa = float(buf[PROP_DPDT]), float(buf[PROP_DPDRHO]), float(buf[PROP_KAPPA])
-        k0 = float(buf[PROP_K0])
-        cp = cv + temperature * dpdt * dpdt / (density * density * dpdrho)
-        return {
-            "p": p,
-            "T": temperature,
-            "rho": density,
-            "h": h,
-            "s": s,
-            "u": h - p / density,
-            "quality": -1.0,
-            "cp": cp,
-            "cv": cv,
-            "speed_of_sound": math.sqrt(kappa * p / density),
-            "kappa": kappa,
-            "k0": k0,
-        }
-
-    def _newton(
-        self, residual: Any, temperature: float, density: float, one_d: bool = False
-    ) -> tuple[float, float]:
-        """Newton on (T, ln rho) (or on T alone, ``one_d``) for ``residual(T, rho) ->
-        (f, J)`` with relative residual ``f``; damped to 0.2 in ln rho and 10 % in T."""
-        x = math.log(density)
-        for _ in range(_NEWTON_ITERATIONS):
-            f, jac = residual(temperature, math.exp(x))
-            if max(abs(v) for v in f) < _NEWTON_TOL:
-                return temperature, math.exp(x)
-            if one_d:
-                dt, dx = -f[0] / jac[0][0], 0.0
-            else:
-                (a, b), (c, d) = jac
-                det = a * d - b * c
-                if det == 0.0:
-                    raise TableMiss
-                dt = -(d * f[0] - b * f[1]) / det
-                dx = -(-c * f[0] + a * f[1]) / det
-            scale = min(1.0, 0.2 / max(abs(dx), 1e-300), 0.1 * temperature / max(abs(dt), 1e-300))
-            temperature += scale * dt
-            x += scale * dx
-        raise TableMiss
-
-    def _density_pt(self, pressure: float, temperature: float) -> float:
-        """Vapour density at (p, T) [kg/m3] (:func:`table_vapour_pt`)."""
-        rho = table_vapour_pt(pressure, temperature, self.gas_constant, self._buf)[2]
-        if not math.isfinite(rho):
-            raise TableMiss
-        return float(rho)
+    def _solve(
+        self, kind: int, a: float, b: float, guess: float = math.nan, entropy: bool = True
+    ) -> bool:
+        """:func:`.table_solves.solve_state` into ``self._out``; False on a table miss."""
+        return bool(
+            solve_state(
+                kind,
+                a,
+                b,
+                guess,
+                entropy,
+                self.gas_constant,
+                self.critical_temperature,
+                self.critical_pressure,
+                self._buf,
+                self._entropy_tables,
+                self._out,
+            )
+        )
 
     # ---- the Fluid interface --------------------------------------------------------------
     def state_trho(self, temperature: float, density: float) -> dict[str, float]:
         """State from temperature [K] and density [kg/m3]."""
-        try:
-            return self._snapshot(temperature, density)
-        except TableMiss:
-            return self.heos().state_trho(temperature, density)
+        if self._solve(SOLVE_TRHO, temperature, density):
+            return _state(self._out)
+        return self.heos().state_trho(temperature, density)
 
     def state_pt(
         self, pressure: float, temperature: float, entropy: bool = True
     ) -> dict[str, float]:
         """Single-phase (vapour or supercritical) state from pressure [Pa] and T [K]
         (entropy NaN unless ``entropy``)."""
-        try:
-            density = self._density_pt(pressure, temperature)
-            return self._snapshot(temperature, density, entropy)
-        except TableMiss:
-            return self.heos().state_pt(pressure, temperature)
+        if self._solve(SOLVE_PT, pressure, temperature, entropy=entropy):
+            return _state(self._out)
+        return self.heos().state_pt(pressure, temperature)
 
     def enthalpy_pt(self, pressure: float, temperature: float) -> tuple[float, float, float]:
         """Vapour enthalpy [J/kg], c_p [J/(kg K)] and density [kg/m3] at (p [Pa], T [K]),
@@ -367,100 +204,40 @@ class TableFluid:
             return self.heos().enthalpy_pt(pressure, temperature)
         return float(h), float(cp), float(density)
 
-    def _state_at_pressure(
-        self, pressure: float, residual: Any, guess: float | None, entropy: bool = True
-    ) -> dict[str, float]:
-        """Newton on (T, ln rho) for ``residual`` from ``guess`` (T [K]; default: 20 K
-        above the dew point) and the vapour density there."""
-        t0 = guess if guess is not None else self._guess_temperature(pressure)
-        t, rho = self._newton(residual, t0, self._density_pt(pressure, t0))
-        return self._snapshot(t, rho, entropy)
-
     def state_ph(
         self, pressure: float, enthalpy: float, guess: float | None = None, entropy: bool = True
     ) -> dict[str, float]:
-        """State from pressure [Pa] and specific enthalpy [J/kg] (``guess``: T [K];
-        entropy NaN unless ``entropy``)."""
-        h_scale = max(abs(enthalpy), 1e5)
-
-        def residual(t: float, rho: float) -> Any:
-            buf = self._props(t, rho)
-            p, h = buf[PROP_PRESSURE], buf[PROP_ENTHALPY]
-            dpdt, dpdrho = buf[PROP_DPDT], buf[PROP_DPDRHO]
-            dh_dt = buf[PROP_CV] + dpdt / rho
-            dh_dx = dpdrho - t * dpdt / rho
-            f = (p / pressure - 1.0, (h - enthalpy) / h_scale)
-            jac = ((dpdt / pressure, rho * dpdrho / pressure), (dh_dt / h_scale, dh_dx / h_scale))
-            return f, jac
-
-        try:
-            return self._state_at_pressure(pressure, residual, guess, entropy)
-        except TableMiss:
-            return self.heos().state_ph(pressure, enthalpy)
+        """State from pressure [Pa] and specific enthalpy [J/kg] (``guess``: T [K], default
+        20 K above the dew point; entropy NaN unless ``entropy``)."""
+        start = math.nan if guess is None else guess
+        if self._solve(SOLVE_PH, pressure, enthalpy, start, entropy):
+            return _state(self._out)
+        return self.heos().state_ph(pressure, enthalpy)
 
     def state_ps(
         self, pressure: float, entropy: float, guess: float | None = None
     ) -> dict[str, float]:
-        """State from pressure [Pa] and specific entropy [J/(kg K)] (``guess``: T [K])."""
-        s_scale = max(abs(entropy), 1e3)
-
-        def residual(t: float, rho: float) -> Any:
-            buf = self._props(t, rho)
-            p, cv, dpdt, dpdrho = buf[PROP_PRESSURE], buf[PROP_CV], buf[PROP_DPDT], buf[PROP_DPDRHO]
-            s = self._entropy(t, rho)
-            f = (p / pressure - 1.0, (s - entropy) / s_scale)
-            jac = (
-                (dpdt / pressure, rho * dpdrho / pressure),
-                (cv / t / s_scale, -dpdt / rho / s_scale),
-            )
-            return f, jac
-
-        try:
-            return self._state_at_pressure(pressure, residual, guess)
-        except TableMiss:
-            return self.heos().state_ps(pressure, entropy)
+        """State from pressure [Pa] and specific entropy [J/(kg K)] (``guess``: T [K],
+        default 20 K above the dew point)."""
+        start = math.nan if guess is None else guess
+        if self._solve(SOLVE_PS, pressure, entropy, start):
+            return _state(self._out)
+        return self.heos().state_ps(pressure, entropy)
 
     def state_rhos(
         self, density: float, entropy: float, guess: float | None = None
     ) -> dict[str, float]:
-        """State from density [kg/m3] and specific entropy [J/(kg K)] (``guess``: T [K])."""
-        s_scale = max(abs(entropy), 1e3)
-
-        def residual(t: float, rho: float) -> Any:
-            cv = float(self._props(t, rho)[PROP_CV])  # read before the entropy's quadrature
-            f = (self._entropy(t, rho) - entropy) / s_scale  # reuses the buffer
-            return (f,), ((cv / t / s_scale,),)
-
-        try:
-            t0 = guess if guess is not None else self.critical_temperature
-            t, _ = self._newton(residual, t0, density, one_d=True)
-            return self._snapshot(t, density)
-        except TableMiss:
-            return self.heos().state_rhos(density, entropy)
-
-    def _guess_temperature(self, pressure: float) -> float:
-        """A vapour temperature at ``pressure`` to start Newton from [K]: 20 K above the
-        dew point (or the critical temperature above the critical pressure)."""
-        if pressure < self.critical_pressure:
-            try:
-                return self._saturation_temperature(pressure) + 20.0
-            except TableMiss:
-                pass
-        return 1.1 * self.critical_temperature
+        """State from density [kg/m3] and specific entropy [J/(kg K)] (``guess``: T [K],
+        default the critical temperature)."""
+        start = guess if guess is not None else self.critical_temperature
+        if self._solve(SOLVE_RHOS, density, entropy, start):
+            return _state(self._out)
+        return self.heos().state_rhos(density, entropy)
 
     def _saturation_temperature(self, pressure: float) -> float:
-        buf = self._buf
-        t = 0.9 * self.critical_temperature
-        for _ in range(_NEWTON_ITERATIONS):
-            p = saturation_row(t, S_P, buf)
-            dp = saturation_row(t, S_DPSAT, buf)
-            if not (math.isfinite(p) and math.isfinite(dp)) or dp <= 0.0:
-                raise TableMiss
-            step = (p - pressure) / dp
-            t -= max(-0.1 * t, min(0.1 * t, step))
-            if abs(p / pressure - 1.0) < _NEWTON_TOL:
-                return t
-        raise TableMiss
+        if not self._solve(SOLVE_TSAT, pressure, math.nan):
+            raise TableMiss
+        return float(self._out[Q_T])
 
     def _pure_saturation(self) -> None:
         """TableMiss for a pseudo-pure mixture (no ``QT`` saturation data in the table)."""
@@ -504,7 +281,9 @@ class TableFluid:
     def transport(self, pressure: float, temperature: float) -> dict[str, float]:
         """Viscosity [Pa s] and thermal conductivity [W/(m K)] of a single-phase state."""
         try:
-            density = self._density_pt(pressure, temperature)
+            density = float(table_vapour_pt(pressure, temperature, self.gas_constant, self._buf)[2])
+            if not math.isfinite(density):
+                raise TableMiss
             buf = self._buf_transport
             if table_props(temperature, density, buf) != STATUS_OK or buf[PROP_QUALITY] >= 0.0:
                 raise TableMiss

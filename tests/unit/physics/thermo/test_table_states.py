@@ -13,6 +13,7 @@ it would not be accurate, the question goes to HEOS (within 3 J/kg of HEOS overa
 from __future__ import annotations
 
 import json
+import math
 import subprocess
 import sys
 
@@ -22,6 +23,7 @@ from helpers import REFERENCE
 from recipsim.case.refrigerant import load_refrigerant
 from recipsim.physics.thermo.coolprop_info import coolprop_version, fluid_constants
 from recipsim.physics.thermo.fluid import Fluid
+from recipsim.physics.thermo.property_table import H_TMAX
 from recipsim.physics.thermo.property_table_cache import load_property_table
 from recipsim.physics.thermo.table_states import TableFluid
 
@@ -158,3 +160,85 @@ def test_fluid_constants_are_cached_by_coolprop_version(tmp_path, monkeypatch):
             fluid_constants("NoSuchFluid")
     finally:
         fluid_constants.cache_clear()
+
+
+def _vapour_states(table: TableFluid, heos: Fluid):
+    """Table states (T [K], rho [kg/m3], state) across the compressor's range: 5-60 K of
+    superheat at 0.2-0.9 of the critical pressure, 20 K above the critical temperature
+    at 1.5 times its pressure (where the table has them: not above its range)."""
+    p_c, t_c = heos.critical_pressure, heos.critical_temperature
+    points = [(1.5 * p_c, t_c + 20.0)]
+    for ratio in (0.2, 0.5, 0.9):
+        t_sat = heos.saturation_temperature(ratio * p_c)
+        points += [(ratio * p_c, t_sat + superheat) for superheat in (5.0, 20.0, 60.0)]
+    for p, t in points:
+        rho = heos.state_pt(p, t)["rho"]
+        calls = table.heos_calls
+        state = table.state_trho(t, rho)
+        if table.heos_calls == calls:
+            yield t, rho, state
+
+
+def test_inverse_states_round_trip(fluids):
+    """(p, h), (p, s), (rho, s) of a table state give it back: Newton stops at a relative
+    residual of 1e-12 and then converges quadratically, so T and rho come back to 1e-13
+    or better (measured 4e-13 at 0.9 of the critical pressure, 5 K above the dew line);
+    1e-10 allows for the conditioning."""
+    table, heos = fluids
+    checked = 0
+    for t, rho, state in _vapour_states(table, heos):
+        p, h, s = state["p"], state["h"], state["s"]
+        calls = table.heos_calls
+        for back in (
+            table.state_ph(p, h),
+            table.state_ph(p, h, guess=t + 10.0),
+            table.state_ps(p, s),
+            table.state_rhos(rho, s, guess=t + 10.0),
+        ):
+            assert _rel(back["T"], t) < 1e-10 and _rel(back["rho"], rho) < 1e-10, (t, rho)
+            assert _rel(back["h"], h) < 1e-10 and abs(back["s"] - s) < 1e-10 * abs(s)
+        assert math.isnan(table.state_ph(p, h, entropy=False)["s"])
+        assert table.state_pt(p, t, entropy=False)["rho"] == pytest.approx(rho, rel=1e-10)
+        assert table.heos_calls == calls  # all from the table
+        checked += 1
+    assert checked >= 9
+
+
+def test_table_misses_go_to_heos(fluids):
+    """Out of the table (above its temperature range, the liquid) each question is HEOS's
+    own answer, counted in ``heos_calls``."""
+    table, heos = fluids
+    t_max = table.table.header(H_TMAX)
+    p = 0.5 * heos.critical_pressure
+    hot = heos.state_pt(p, t_max + 15.0)
+    liquid = heos.state_pt(
+        2.0 * heos.saturation_pressure(0.8 * heos.critical_temperature),
+        0.8 * heos.critical_temperature,
+    )
+    cases = [
+        (table.state_ph, heos.state_ph, (p, hot["h"])),
+        (table.state_ps, heos.state_ps, (p, hot["s"])),
+        (table.state_rhos, heos.state_rhos, (hot["rho"], hot["s"])),
+        (table.state_trho, heos.state_trho, (hot["T"], hot["rho"])),
+        (table.state_trho, heos.state_trho, (liquid["T"], liquid["rho"])),
+        (table.state_pt, heos.state_pt, (p, t_max + 15.0)),
+    ]
+    for ours, theirs, args in cases:
+        before = table.heos_calls
+        assert ours(*args) == theirs(*args), ours.__name__
+        assert table.heos_calls == before + 1, ours.__name__
+
+
+def test_pseudo_pure_saturation_goes_to_heos():
+    """R410A's table has no ``QT`` saturation data: its dew point is HEOS's."""
+    ref = load_refrigerant("R410A")
+    table = load_property_table(ref.coolprop_name, ref.min_temperature, ref.max_temperature)
+    k = fluid_constants(ref.coolprop_name)
+    tf, heos = TableFluid(table, k.gas_constant, k.t_crit, k.p_crit), Fluid(ref.coolprop_name)
+    p = heos.saturation_pressure(263.15)
+    assert tf.saturation_temperature(p) == heos.saturation_temperature(p)
+    assert tf.heos_calls == 1
+    # its vapour states are the table's, started from 1.1 T_c (no dew point to start from)
+    s = heos.state_pt(p, 280.0)["s"]
+    assert abs(tf.state_ps(3.0 * p, s)["T"] - heos.state_ps(3.0 * p, s)["T"]) < 1e-5
+    assert tf.heos_calls == 1
