@@ -30,6 +30,7 @@ from typing import TYPE_CHECKING, Any
 import numba.experimental.function_type  # noqa: F401  (registers typeof for WAP objects)
 import numpy as np
 from numba import types
+from numba.extending import typeof_impl
 
 from recipsim.physics.thermo.coolprop_info import fluid_constants
 from recipsim.physics.thermo.property_slots import (
@@ -55,6 +56,9 @@ if TYPE_CHECKING:
     from recipsim.physics.thermo.property_table import PropertyTable
 
 PROPS_SIGNATURE = types.int32(types.float64, types.float64)
+
+#: numba's type of every property callback (:class:`HeosProperties`), made once
+PROPS_TYPE = types.FunctionType(PROPS_SIGNATURE)
 
 
 class HeosProperties(types.WrapperAddressProtocol):
@@ -183,6 +187,14 @@ class HeosProperties(types.WrapperAddressProtocol):
         status = int(self._python_callback(temperature, density))
         self.raise_if_interrupted()
         return status
+
+
+@typeof_impl.register(HeosProperties)
+def _typeof_properties(val: HeosProperties, c: Any) -> types.FunctionType:
+    """numba's type of a property callback: :data:`PROPS_TYPE`, made once. numba's own
+    rule for a function-address object builds a new ``FunctionType`` from its signature
+    at every compiled call it is passed to (about 8 us, a few calls per revolution)."""
+    return PROPS_TYPE
 
 
 def _fill_two_phase(

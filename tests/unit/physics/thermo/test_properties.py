@@ -98,3 +98,19 @@ def test_ctrl_c_inside_the_property_callback_stops_the_solve():
     assert time.perf_counter() - start < 0.3 + 2.0
     # the callback is re-armed: solving works normally afterwards
     assert solve_periodic(build_model(load_case(REFERENCE))).converged
+
+
+def test_numba_types_every_callback_once_as_its_own_rule_would():
+    """The registered typeof returns one cached FunctionType, equal to what numba's
+    generic rule for function-address objects builds at every call, so compiled code
+    finds the same overloads."""
+    from numba.core.typing.typeof import Purpose, typeof
+    from numba.experimental.function_type import typeof_function_type
+
+    from recipsim.physics.thermo.properties import PROPS_TYPE
+
+    first = HeosProperties("R134a", transport=False, t_min=200.0, t_max=450.0)
+    second = HeosProperties("R600a", transport=False, t_min=200.0, t_max=450.0)
+    assert typeof(first, Purpose.argument) is PROPS_TYPE
+    assert typeof(second, Purpose.argument) is PROPS_TYPE
+    assert typeof_function_type(first, None) == PROPS_TYPE
