@@ -11,7 +11,8 @@ report directory is renamed into place, so the report stays atomic.
 
 Only the command line forks (a library never starts processes behind its caller's
 back), only where ``os.fork`` exists, before any thread or numba's compiler has
-started, and only onto cores that other work leaves idle (:func:`idle_cores`). A child
+started, and only onto cores that other work leaves idle
+(:func:`recipsim.machine_load.idle_cores`). A child
 that fails sends its exception back; the parent raises it. A child whose parent dies
 reads end-of-file and exits. The figures are the same files as
 those drawn in-process (:func:`recipsim.report.report_figures.draw_report_figures`).
@@ -25,6 +26,8 @@ import sys
 from collections.abc import Collection, Mapping
 from pathlib import Path
 from typing import Any
+
+from recipsim.machine_load import idle_cores
 
 #: Measured CPU cost of each figure of the default case [s] (warm, 2-core machine; each
 #: drawn alone in a process that had drawn none, median of 6), used only to share the
@@ -267,18 +270,6 @@ def share_by_cost(names: Collection[str], parts: int, cost: Mapping[str, float])
     return [share for share in shares if share]
 
 
-def idle_cores(most: int) -> int:
-    """Cores that other work leaves idle, at most ``most``: the usable cores less the
-    one-minute load average, rounded to the nearest whole core (0 when the machine is
-    busy; ``most`` where the load average is unknown)."""
-    cores = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count()
-    try:
-        load = os.getloadavg()[0]
-    except (AttributeError, OSError):
-        return most
-    return max(0, min(most, int((cores or 1) - load + 0.5)))
-
-
 def start_figure_processes(
     count: int | None = None,
     preload: tuple[str, ...] = REPORT_PRELOAD,
@@ -291,8 +282,9 @@ def start_figure_processes(
     ----------
     count : int, optional
         Children; default ``RECIPSIM_FIGURE_PROCESSES`` when set, else the cores other
-        work leaves idle (:func:`idle_cores`), at most 2 (more do not pay for their
-        start-up on a report's 7 figures), and at least ``at_least``.
+        work leaves idle now (:func:`recipsim.machine_load.idle_cores`), at most 2
+        (more do not pay for their start-up on a report's 7 figures), and at least
+        ``at_least``.
     preload : tuple of str
         Modules the children import while they wait (default: the case report's).
     share_pandas : bool

@@ -9,8 +9,8 @@ either property source, so the parent then loads what the child compiled. The pa
 meanwhile builds the property table and its model (which compiles the table's own
 functions, which the child never needs) and waits for the child only then, before it
 integrates (:func:`wait_for_compile_ahead`). The child only pays where it has a core to itself:
-it starts when the machine has two cores that other work leaves idle (usable cores less
-the one-minute load average, as for the figure processes), nothing of the solver is
+it starts when the machine has two cores that other work leaves idle now
+(:func:`recipsim.machine_load.idle_cores`, as for the figure processes), nothing of the solver is
 cached and ``RECIPSIM_COMPILE_AHEAD`` is not ``0`` (``1`` starts it whatever the load).
 Forced on at a load average of 2 on 2 cores (no idle core) it saved no wall time and
 cost up to 8 s of CPU; on an idle machine it can save at most the case loading and
@@ -58,12 +58,11 @@ def start_compile_ahead(path: str | Path, overrides: list[str], allow_external: 
 
 
 def _idle_cores() -> float:
-    """Usable cores less the one-minute load average (0 where it is unknown)."""
-    cores = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count()
-    try:
-        return (cores or 1) - os.getloadavg()[0]
-    except (AttributeError, OSError):
-        return 0.0
+    """Cores other work leaves idle now (:func:`recipsim.machine_load.idle_cores`; 0
+    where the load is unknown)."""
+    from recipsim.machine_load import idle_cores
+
+    return float(idle_cores(2, unknown=0))
 
 
 def wait_for_compile_ahead() -> None:

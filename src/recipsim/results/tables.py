@@ -196,8 +196,9 @@ def summary(
     """Summary metrics of the converged revolution (units in the keys).
 
     ``cycle`` is its cycle table (a DataFrame, or :class:`~recipsim.results.columns.Columns`;
-    built here from the columns it reads if left out). ``solution`` is None for the pinned mechanism under a
-    tabulated pressure (nothing integrated); ``cycle`` and ``case`` are then required.
+    built here from the columns it reads if left out). ``solution`` is None for the
+    pinned mechanism under a tabulated pressure (nothing integrated); ``cycle`` and
+    ``case`` are then required.
     """
     if solution is not None:
         case = solution.model.case

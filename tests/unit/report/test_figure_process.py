@@ -106,17 +106,20 @@ def test_forked_map_plots_are_the_in_process_files(tmp_path: Path) -> None:
         assert (serial / name).read_bytes() == (forked / name).read_bytes(), name
 
 
-@pytest.mark.parametrize(("load", "expected"), [(0.0, 2), (0.4, 2), (0.6, 1), (1.0, 1), (1.6, 0)])
+@pytest.mark.parametrize(("running", "expected"), [(1, 2), (2, 1), (3, 0)])
 def test_children_only_on_idle_cores(
-    monkeypatch: pytest.MonkeyPatch, load: float, expected: int
+    monkeypatch: pytest.MonkeyPatch, tmp_path: Path, running: int, expected: int
 ) -> None:
-    """Two usable cores less the one-minute load, rounded: the children never compete
-    with other work for a busy core."""
+    """Two usable cores less the tasks runnable besides this one
+    (:mod:`recipsim.machine_load`): the children never compete with other work for a
+    busy core."""
+    from recipsim import machine_load
     from recipsim.report import figure_process
 
+    load_file = tmp_path / "loadavg"
+    load_file.write_text(f"1.90 1.50 1.20 {running}/123 4567\n")
     monkeypatch.setattr(os, "sched_getaffinity", lambda pid: {0, 1}, raising=False)
-    monkeypatch.setattr(os, "getloadavg", lambda: (load, 0.0, 0.0))
-    assert figure_process.idle_cores(2) == expected
+    monkeypatch.setattr(machine_load, "LOADAVG", str(load_file))
     monkeypatch.delenv("RECIPSIM_FIGURE_PROCESSES", raising=False)
     started = figure_process.start_figure_processes()
     assert (started is None) == (expected == 0)
