@@ -2,11 +2,11 @@
 processes (report figures, the compile-ahead child) only onto those.
 
 On Linux it counts the runnable tasks of ``/proc/loadavg`` (its fourth field,
-``running/total``, this process included), read three times 1 ms apart, the largest
-kept: what competes for the cores at this moment. The one-minute load average, the
-fallback elsewhere, lags by a minute: right after a command it still counts that
-command's own processes, so a `recipsim run` started just after another saw one idle
-core of two where both were idle.
+``running/total``) less this process's own runnable threads, read three times 1 ms
+apart, the largest kept: what competes for the cores at this moment. The one-minute
+load average, the fallback elsewhere, lags by a minute: right after a command it still
+counts that command's own processes, so a `recipsim run` started just after another saw
+one idle core of two where both were idle.
 """
 
 from __future__ import annotations
@@ -26,23 +26,42 @@ def usable_cores() -> int:
     return os.cpu_count() or 1
 
 
-def _runnable_now(path: str) -> int:
-    """Runnable tasks in the load file ``path``, the largest of three reads 1 ms apart."""
+def _own_running_tasks() -> int:
+    """This process's threads that are runnable now (numpy's BLAS threads spin for a
+    few ms after numpy is imported); 1 where ``/proc/self/task`` is not readable."""
+    try:
+        tasks = os.listdir("/proc/self/task")
+    except OSError:
+        return 1
     running = 0
+    for task in tasks:
+        try:
+            with open(f"/proc/self/task/{task}/stat", encoding="ascii") as handle:
+                # the state follows the command name, which is in parentheses
+                running += handle.read().rsplit(")", 1)[1].split()[0] == "R"
+        except (OSError, IndexError):
+            continue
+    return max(running, 1)
+
+
+def _runnable_elsewhere(path: str) -> int:
+    """Runnable tasks in the load file ``path`` besides this process's own, the largest
+    of three reads 1 ms apart."""
+    elsewhere = 0
     for read in range(3):
         if read:
             time.sleep(0.001)
         with open(path, encoding="ascii") as handle:
             field = handle.read().split()[3]
-        running = max(running, int(field.split("/", 1)[0]))
-    return running
+        elsewhere = max(elsewhere, int(field.split("/", 1)[0]) - _own_running_tasks())
+    return elsewhere
 
 
 def busy_cores() -> float:
     """Cores other work keeps busy now: the runnable tasks besides this process, or the
     one-minute load average where the kernel does not say (NaN where neither is known)."""
     try:
-        return float(max(_runnable_now(LOADAVG) - 1, 0))
+        return float(max(_runnable_elsewhere(LOADAVG), 0))
     except (OSError, ValueError, IndexError):
         pass
     try:

@@ -18,7 +18,9 @@ written and says so) or the file system failed (disk full, read-only, no permiss
 from __future__ import annotations
 
 import argparse
+import atexit
 import contextlib
+import gc
 import sys
 from collections.abc import Collection
 from pathlib import Path
@@ -180,6 +182,8 @@ def _run_command(args: argparse.Namespace, argv: list[str] | None) -> int:
 def main(argv: list[str] | None = None) -> int:
     """Entry point of the ``recipsim`` command."""
     timeline.mark("imports")
+    atexit.unregister(_quick_exit)  # once per process, however often main() runs
+    atexit.register(_quick_exit)
     compiled_runtime.allow_stand_in()  # numba starts without scipy.linalg (0.1-0.2 s)
     args = _parser().parse_args(argv)
     _show_progress_notes(not getattr(args, "quiet", False))
@@ -188,6 +192,15 @@ def main(argv: list[str] | None = None) -> int:
     finally:
         timeline.flush("parent")
     return status
+
+
+def _quick_exit() -> None:
+    """At the interpreter's exit, before its last garbage collection, move every object
+    to the collector's permanent generation: that collection walked all the objects
+    numba and the solve made (0.3-0.4 s after a warm run, 0.04-0.06 s frozen), to free
+    memory the process's end frees anyway. Registered once by :func:`main`; in a process
+    that calls :func:`main` and goes on (tests, a notebook) it runs only at its end."""
+    gc.freeze()
 
 
 def _show_progress_notes(show: bool) -> None:

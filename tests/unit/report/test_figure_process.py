@@ -120,6 +120,7 @@ def test_children_only_on_idle_cores(
     load_file.write_text(f"1.90 1.50 1.20 {running}/123 4567\n")
     monkeypatch.setattr(os, "sched_getaffinity", lambda pid: {0, 1}, raising=False)
     monkeypatch.setattr(machine_load, "LOADAVG", str(load_file))
+    monkeypatch.setattr(machine_load, "_own_running_tasks", lambda: 1)
     monkeypatch.delenv("RECIPSIM_FIGURE_PROCESSES", raising=False)
     started = figure_process.start_figure_processes()
     assert (started is None) == (expected == 0)
