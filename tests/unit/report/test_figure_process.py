@@ -191,3 +191,26 @@ def test_run_leaves_pandas_and_matplotlib_to_the_report_processes(tmp_path: Path
         )
         has_figures = forked.name == "forked"
         assert bool(list(report.glob("*.png"))) == has_figures
+
+
+@pytest.mark.parametrize(("cores", "expected"), [(2, 1), (3, 2), (16, 2), (1, 1)])
+def test_a_solving_parent_keeps_one_idle_core(
+    monkeypatch: pytest.MonkeyPatch, tmp_path: Path, cores: int, expected: int
+) -> None:
+    """``recipsim run`` solves while its report processes start: they take the idle
+    cores besides one (at least one child, at most two)."""
+    from recipsim import machine_load
+    from recipsim.report import figure_process
+
+    load_file = tmp_path / "loadavg"
+    load_file.write_text("1.90 1.50 1.20 1/123 4567\n")
+    monkeypatch.setattr(os, "sched_getaffinity", lambda pid: set(range(cores)), raising=False)
+    monkeypatch.setattr(machine_load, "LOADAVG", str(load_file))
+    monkeypatch.setattr(machine_load, "_own_running_tasks", lambda: 1)
+    monkeypatch.delenv("RECIPSIM_FIGURE_PROCESSES", raising=False)
+    started = figure_process.start_figure_processes(at_least=1, busy_parent=True)
+    assert started is not None
+    try:
+        assert len(started.pids) == expected
+    finally:
+        started.wait()
