@@ -73,3 +73,21 @@ def test_write_bytes_atomically_leaves_the_old_file_when_it_fails(tmp_path):
         raise AssertionError("writing None did not fail")
     assert target.read_bytes() == b"first"
     assert [p.name for p in target.parent.iterdir()] == ["a.json"]
+
+
+def test_a_stale_temporary_of_the_same_name_is_stepped_over(tmp_path):
+    """A temporary file left by a killed process of the same id takes the next number:
+    the write succeeds and the stale files stay for ``clean_temporaries``."""
+    import os
+    import re
+
+    from recipsim import atomic
+
+    upcoming = int(re.search(r"\d+", repr(atomic._TEMPORARY_NUMBERS)).group())
+    stale = [tmp_path / f".a.{os.getpid()}-{upcoming + k}.json.tmp" for k in range(3)]
+    for path in stale:
+        path.write_bytes(b"stale")
+    atomic.write_bytes_atomically(tmp_path / "a.json", b"fresh")
+    assert (tmp_path / "a.json").read_bytes() == b"fresh"
+    assert all(path.read_bytes() == b"stale" for path in stale)
+    assert len(list(tmp_path.glob(".*.tmp"))) == 3
