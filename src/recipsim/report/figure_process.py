@@ -3,23 +3,33 @@
 A ``recipsim run`` spends about as long drawing its figures (0.6 s of CPU for the
 default case, plus 0.2-0.3 s to import matplotlib) as on everything else. The command
 line therefore forks :class:`FigureProcesses` before it loads anything heavy: each child
-imports matplotlib and the plotting modules while the parent imports numba, loads the
-case and solves, then waits for a job on a pipe. The parent sends the cycle table and
-the names of the figures each child draws (split by their measured cost,
-:data:`FIGURE_COST`), writes its tables meanwhile, and waits for the children before its
-report directory is renamed into place, so the report stays atomic.
+imports pandas, matplotlib and the plotting modules while the parent imports numba,
+loads the case and solves, then waits for a job on a pipe. At the hand-over the parent
+only waits from then on, so the figures and the tables are shared, by their measured
+cost (:data:`FIGURE_COST`, :data:`TABLES_COST`), between as many processes as there are
+idle cores then (:meth:`FigureProcesses.drawing_processes`): a child given several
+shares forks itself for all but one (the forks inherit its imports, and close the pipes
+that are not theirs). The parent writes the rest of the report meanwhile and waits for
+every process before its report directory is renamed into place, so the report stays
+atomic. On the 2-core machine, one report process (a second's imports would take the
+solve's core) that forks a second at the hand-over writes the default case's report in
+0.38-0.61 s (median 0.50 s) instead of 0.67-0.95 s (0.80 s) alone, and the warm
+``recipsim run`` takes 1.64 s instead of 1.92 s (medians of 11, interleaved; see
+docs/speed.md, "Time to answer").
 
 Only the command line forks (a library never starts processes behind its caller's
 back), only where ``os.fork`` exists, before any thread or numba's compiler has
 started, and only onto cores that other work leaves idle
-(:func:`recipsim.machine_load.idle_cores`). A child
-that fails sends its exception back; the parent raises it. A child whose parent dies
-reads end-of-file and exits. The figures are the same files as
-those drawn in-process (:func:`recipsim.report.report_figures.draw_report_figures`).
+(:func:`recipsim.machine_load.idle_cores`). A child or fork that fails sends its
+exception back; the parent raises the first. A child whose parent dies reads
+end-of-file and exits. The figures are the same files as those drawn in-process
+(:func:`recipsim.report.report_figures.draw_report_figures`).
 """
 
 from __future__ import annotations
 
+import contextlib
+import math
 import os
 import pickle
 import sys
@@ -27,7 +37,8 @@ from collections.abc import Collection, Mapping
 from pathlib import Path
 from typing import Any
 
-from recipsim.machine_load import idle_cores
+from recipsim.machine_load import busy_cores, idle_cores, usable_cores
+from recipsim.report.process_pipes import read_all, read_exactly, runnable, write_all
 
 #: Measured CPU cost of each figure of the default case [s] (warm, 2-core machine; each
 #: drawn alone in a process that had drawn none, median of 6), used only to share the
@@ -44,35 +55,22 @@ FIGURE_COST = {
     "loss_breakdown": 0.083,
 }
 
+#: Measured CPU cost of a report's tables, ``summary.csv`` and ``cycle.csv`` [s] (the
+#: default case, in a forked report process, median of 7), shared with the figures.
+TABLES_COST = 0.05
 
-def _read_exactly(fd: int, size: int) -> bytes:
-    chunks, left = [], size
-    while left and (chunk := os.read(fd, min(left, 1 << 20))):
-        chunks.append(chunk)
-        left -= len(chunk)
-    return b"".join(chunks)
-
-
-def _read_all(fd: int) -> bytes:
-    chunks = []
-    while chunk := os.read(fd, 1 << 20):
-        chunks.append(chunk)
-    return b"".join(chunks)
+#: The tables' name among the figures' when they are shared.
+TABLES = "(tables)"
 
 
-def _write_all(fd: int, data: bytes) -> None:
-    view = memoryview(data)
-    while view:
-        view = view[os.write(fd, view) :]
-
-
-def _child(jobs: int, results: int, preload: tuple[str, ...]) -> None:
+def _child(jobs: int, results: int, preload: tuple[str, ...], role: str) -> None:
     """Body of a forked child: import ``preload``, run one job, report.
 
-    A job is a length-prefixed pickle of ``(module, function, kwargs)``; length 0 (or
-    end-of-file: the parent is gone) means none. Length-prefixed rather than read to
-    end-of-file, because processes the parent forks later (sweep workers) inherit the
-    pipe's write end.
+    A job is a length-prefixed pickle of ``(module, function, calls)``, ``calls`` a list
+    of keyword arguments: the child forks one process for each call but its first at
+    once (:func:`_run_calls`). Length 0 (or end-of-file: the parent is gone) means
+    none. Length-prefixed rather than read to end-of-file, because processes the parent
+    forks later (sweep workers) inherit the pipe's write end.
     """
     import importlib
     import signal
@@ -89,20 +87,44 @@ def _child(jobs: int, results: int, preload: tuple[str, ...]) -> None:
         for module in preload:
             importlib.import_module(module)
         timeline.mark("imports")
-        size = int.from_bytes(_read_exactly(jobs, 8) or bytes(8), "little")
+        size = int.from_bytes(read_exactly(jobs, 8) or bytes(8), "little")
         if size:
-            module, function, kwargs = pickle.loads(_read_exactly(jobs, size))
+            module, function, calls = pickle.loads(read_exactly(jobs, size))
             timeline.mark("job received")
-            value = getattr(importlib.import_module(module), function)(**kwargs)
+            values = _run_calls(module, function, calls, (jobs, results))
             timeline.mark("job done")
-            reply = pickle.dumps((True, value))
+            reply = pickle.dumps((True, values))
     except BaseException as exc:  # noqa: BLE001 - everything goes back to the parent
         try:
             reply = pickle.dumps((False, exc))
         except Exception:  # noqa: BLE001 - an exception that cannot be pickled
             reply = pickle.dumps((False, RuntimeError(f"figure process: {exc!r}")))
-    timeline.flush("report process")
-    _write_all(results, reply)
+    timeline.flush(role)
+    write_all(results, reply)
+
+
+def _run_calls(
+    module: str, function: str, calls: list[dict[str, Any]], own: tuple[int, ...]
+) -> list[Any]:
+    """``module.function(**kwargs)`` for each of ``calls``: the first here, the others
+    in processes forked now (they inherit what this one imported, and close
+    its pipes ``own``). Returns the values in the order of ``calls``; raises the first
+    failure, after every fork has ended (they write into the same report)."""
+    import importlib
+
+    target = getattr(importlib.import_module(module), function)
+    forks = None
+    if len(calls) > 1:
+        forks = FigureProcesses(len(calls) - 1, preload=(), inherited=own, role="report fork")
+        forks.submit(module, function, calls[1:])
+    try:
+        first = target(**calls[0])
+    except BaseException:
+        if forks is not None:
+            with contextlib.suppress(BaseException):
+                forks.wait()
+        raise
+    return [first, *(forks.wait() if forks is not None else ())]
 
 
 #: What the children of a case report import before their job arrives: pandas first
@@ -118,20 +140,42 @@ REPORT_PRELOAD = (
 TABLES_PRELOAD = ("pandas", "recipsim.report.report_figures")
 
 
+#: Most processes that draw one report's figures after a fan-out: the costliest figure
+#: (bearing loads, 0.2 s of the 0.65 s of the default case's seven) bounds the time.
+FAN_OUT_MOST = 4
+
+
 class FigureProcesses:
     """Forked children that draw a report's figures (see the module docstring).
 
     Parameters
     ----------
     count : int
-        Children to fork (at least 1).
+        Children to fork (0 or more).
     preload : tuple of str
         Modules each child imports while it waits for its job.
+    fan_out : bool
+        :meth:`draw` shares the figures between as many processes as there are idle
+        cores at the hand-over (at most :data:`FAN_OUT_MOST`): the children fork the
+        others then. False: between the children.
+    inherited : tuple of int
+        File descriptors of the forking process that the children close (a child
+        forking: its own pipes to its parent).
+    role : str
+        The children's name in the timeline (:mod:`recipsim.timeline`).
     """
 
-    def __init__(self, count: int, preload: tuple[str, ...] = REPORT_PRELOAD) -> None:
+    def __init__(
+        self,
+        count: int,
+        preload: tuple[str, ...] = REPORT_PRELOAD,
+        fan_out: bool = False,
+        inherited: tuple[int, ...] = (),
+        role: str = "report process",
+    ) -> None:
         self._children: list[tuple[int, int, int]] = []  # pid, job fd, result fd
         self._jobs_open = True
+        self._fan_out = fan_out
         for _ in range(count):
             job_read, job_write = os.pipe()
             result_read, result_write = os.pipe()
@@ -143,10 +187,12 @@ class FigureProcesses:
                 try:
                     os.close(job_write)
                     os.close(result_read)
+                    for fd in inherited:
+                        os.close(fd)
                     for _pid, job, result in self._children:
                         os.close(job)
                         os.close(result)
-                    _child(job_read, result_write, preload)
+                    _child(job_read, result_write, preload, role)
                 except BaseException:  # noqa: BLE001 - never return into the parent's code
                     status = 1
                 finally:
@@ -160,6 +206,20 @@ class FigureProcesses:
         """Process ids of the children."""
         return [pid for pid, _job, _result in self._children]
 
+    def drawing_processes(self) -> int:
+        """How many processes :meth:`draw` shares the figures between: the children,
+        or with ``fan_out`` the cores that other work leaves idle now, this process's
+        and its children's included (this one only waits from now on), at most
+        :data:`FAN_OUT_MOST`."""
+        children = len(self._children)
+        if not self._fan_out or not children:
+            return children
+        busy = busy_cores()
+        if math.isnan(busy):
+            return children
+        busy -= sum(runnable(pid) for pid in self.pids)  # children still importing
+        return max(children, min(FAN_OUT_MOST, int(usable_cores() - busy + 0.5)))
+
     def draw(
         self,
         directory: Path,
@@ -169,47 +229,53 @@ class FigureProcesses:
         names: Collection[str],
         tables: bool = False,
     ) -> None:
-        """Send the figures ``names`` of one case report to the children, shared by cost,
-        and with ``tables`` its ``summary.csv`` and ``cycle.csv`` to the least loaded one
-        (:func:`recipsim.report.report_figures.write_report_share`). ``cycle``: the cycle
-        table or its columns (numpy arrays, cheaper to send; the child builds the table).
+        """Send the figures ``names`` of one case report, and with ``tables`` its
+        ``summary.csv`` and ``cycle.csv``, to the children, shared by cost between
+        :meth:`drawing_processes` (:func:`recipsim.report.report_figures.write_report_share`).
+        ``cycle``: the cycle table or its columns (numpy arrays, cheaper to send; the
+        child builds the table).
 
         Returns at once; :meth:`wait` waits for the files. Call it (or :meth:`submit`)
         once.
         """
-        shares = share_by_cost(names, len(self.pids), FIGURE_COST)
-        if tables and len(shares) < len(self.pids):
-            shares.append([])  # a child without figures writes the tables
-        loads = [sum(FIGURE_COST.get(name, 0.1) for name in share) for share in shares]
-        lightest = loads.index(min(loads)) if tables else -1
+        items = [*names, TABLES] if tables else list(names)
+        cost = {**FIGURE_COST, TABLES: TABLES_COST}
+        shares = share_by_cost(items, self.drawing_processes(), cost)
+        # the lightest share first, drawn by the child that forks for the others: it
+        # forks and sends their jobs before it draws (CPU of the two shares on 2 cores,
+        # medians of 8 runs: 0.47 and 0.47 s this way, 0.50 and 0.38 s the other)
+        shares.sort(key=lambda share: sum(cost.get(name, 0.1) for name in share))
         jobs = [
             {
                 "directory": Path(directory),
                 "cycle": cycle,
                 "summary_row": dict(summary_row),
                 "plenum": plenum,
-                "names": tuple(share),
-                "tables": index == lightest,
+                "names": tuple(name for name in share if name != TABLES),
+                "tables": TABLES in share,
             }
-            for index, share in enumerate(shares)
+            for share in shares
         ]
         self.submit("recipsim.report.report_figures", "write_report_share", jobs)
 
     def submit(self, module: str, function: str, jobs: list[dict[str, Any]]) -> None:
-        """Run ``module.function(**kwargs)`` for each ``kwargs`` of ``jobs``, one per child
-        (at most as many jobs as children); the other children get none.
+        """Run ``module.function(**kwargs)`` for each ``kwargs`` of ``jobs``: job ``i``
+        goes to child ``i`` modulo the children, and a child given several forks itself
+        for all but one of them when they arrive. Children without a job get none.
 
         Returns at once; :meth:`wait` waits for them.
         """
         if not self._jobs_open:
             raise RuntimeError("the figure processes had their jobs already")
-        if len(jobs) > len(self._children):
-            raise ValueError(f"{len(jobs)} jobs for {len(self._children)} figure processes")
+        if jobs and not self._children:
+            raise ValueError(f"{len(jobs)} jobs for no figure process")
+        count = len(self._children)
         for index, (_pid, job, _result) in enumerate(self._children):
+            calls = jobs[index::count]
             data = b""
-            if index < len(jobs):
-                data = pickle.dumps((module, function, jobs[index]), pickle.HIGHEST_PROTOCOL)
-            _write_all(job, len(data).to_bytes(8, "little") + data)
+            if calls:
+                data = pickle.dumps((module, function, calls), pickle.HIGHEST_PROTOCOL)
+            write_all(job, len(data).to_bytes(8, "little") + data)
             os.close(job)
         self._jobs_open = False
 
@@ -219,13 +285,13 @@ class FigureProcesses:
             self._jobs_open = False
             for _pid, job, _result in self._children:
                 try:
-                    _write_all(job, bytes(8))  # no job
+                    write_all(job, bytes(8))  # no job
                 except OSError:
                     pass  # the child is gone: wait() reports it
                 os.close(job)
 
     def wait(self) -> list[Any]:
-        """Wait for every child; re-raise the first failure of a child.
+        """Wait for every child (and its forks); re-raise the first failure.
 
         Returns
         -------
@@ -235,19 +301,20 @@ class FigureProcesses:
         Raises
         ------
         Exception
-            What a child raised; RuntimeError when a child died.
+            What a child (or a fork of it) raised; RuntimeError when a child died.
         """
         self.close()
         failure: BaseException | None = None
-        values = []
-        for pid, _job, result in self._children:
-            reply = _read_all(result)
+        values: dict[int, Any] = {}
+        count = len(self._children)
+        for index, (pid, _job, result) in enumerate(self._children):
+            reply = read_all(result)
             os.close(result)
             _, status = os.waitpid(pid, 0)
             if reply:
                 ok, value = pickle.loads(reply)
                 if ok:
-                    values.append(value)
+                    values.update((index + call * count, v) for call, v in enumerate(value))
                 elif failure is None:
                     failure = value
             elif failure is None and status != 0:
@@ -255,7 +322,7 @@ class FigureProcesses:
         self._children = []
         if failure is not None:
             raise failure
-        return values
+        return [values[job] for job in sorted(values)]
 
 
 def share_by_cost(names: Collection[str], parts: int, cost: Mapping[str, float]) -> list[list[str]]:
@@ -285,7 +352,9 @@ def start_figure_processes(
         Children; default ``RECIPSIM_FIGURE_PROCESSES`` when set, else the cores other
         work leaves idle now (:func:`recipsim.machine_load.idle_cores`), at most 2
         (more do not pay for their start-up on a report's 7 figures), and at least
-        ``at_least``.
+        ``at_least``. Without either, :meth:`FigureProcesses.draw` fans out onto the
+        cores idle at the hand-over; with them the children alone draw (the setting
+        is the number of processes that draw, 0: none, in-process).
     preload : tuple of str
         Modules the children import while they wait (default: the case report's).
     share_pandas : bool
@@ -308,6 +377,7 @@ def start_figure_processes(
         in-process.
     """
     setting = os.environ.get("RECIPSIM_FIGURE_PROCESSES", "").strip()
+    fan_out = count is None and not setting.isdigit()
     if count is None and setting.isdigit():
         count = int(setting)
     if not hasattr(os, "fork") or count == 0:
@@ -322,4 +392,4 @@ def start_figure_processes(
         # children import only matplotlib (0.25 s each instead of 0.5 s)
         import pandas  # noqa: F401
 
-    return FigureProcesses(count, preload)
+    return FigureProcesses(count, preload, fan_out=fan_out)

@@ -214,3 +214,141 @@ def test_a_solving_parent_keeps_one_idle_core(
         assert len(started.pids) == expected
     finally:
         started.wait()
+
+
+def _fan_out_to(monkeypatch: pytest.MonkeyPatch, cores: int, running: int = 0) -> None:
+    """Make :meth:`FigureProcesses.drawing_processes` see ``cores`` usable cores and
+    ``running`` tasks runnable elsewhere."""
+    from recipsim.report import figure_process
+
+    monkeypatch.setattr(figure_process, "usable_cores", lambda: cores)
+    monkeypatch.setattr(figure_process, "busy_cores", lambda: float(running))
+    monkeypatch.setattr(figure_process, "runnable", lambda pid: False)
+
+
+def test_fanned_out_report_is_the_in_process_report(
+    run, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """One report process that forks two more at the hand-over (three idle cores):
+    the same figures and tables, byte for byte, as the in-process writer's."""
+    from recipsim.report.figure_process import FigureProcesses
+    from recipsim.report.report_figures import (
+        draw_report_figures,
+        report_figure_names,
+        write_tables,
+    )
+
+    _fan_out_to(monkeypatch, cores=3)
+    op = run.case.operating_point
+    plenum = (op.suction_pressure, op.discharge_pressure)
+    serial, forked = tmp_path / "serial", tmp_path / "forked"
+    serial.mkdir()
+    forked.mkdir()
+    names = report_figure_names(run.cycle, run.row)
+    write_tables(serial, run.row, run.cycle)
+    draw_report_figures(serial, run.cycle, run.row, plenum, names)
+
+    figures = FigureProcesses(1, fan_out=True)
+    assert figures.drawing_processes() == 3
+    figures.draw(forked, run.table, run.row, plenum, names, tables=True)
+    assert figures.wait() == [None, None, None]  # three shares, each drawn
+
+    files = sorted(p.name for p in serial.iterdir())
+    assert files == sorted(p.name for p in forked.iterdir()) and len(files) == 9
+    for name in files:
+        assert (serial / name).read_bytes() == (forked / name).read_bytes(), name
+
+
+def test_jobs_beyond_the_children_run_in_forks_of_them() -> None:
+    """Five jobs for two children: each child runs its first job and forks one
+    process per other job; the values come back in the order of the jobs."""
+    from recipsim.report.figure_process import FigureProcesses
+
+    figures = FigureProcesses(2, preload=())
+    children = figures.pids
+    figures.submit("os", "getpid", [{}] * 5)
+    pids = figures.wait()
+    assert pids[:2] == children  # jobs 0 and 1: the children themselves
+    assert len(set(pids)) == 5  # jobs 2, 3 (child 0's forks) and 4 (child 1's)
+
+
+def test_a_forks_failure_is_raised_in_the_parent() -> None:
+    """A fork's exception reaches the parent as a child's does, once every process
+    has ended; the values of the others are not returned."""
+    import json
+
+    from recipsim.report.figure_process import FigureProcesses
+
+    figures = FigureProcesses(1, preload=())
+    figures.submit("json", "loads", [{"s": "1"}, {"s": "{"}])  # the second: a fork's
+    with pytest.raises(json.JSONDecodeError):
+        figures.wait()
+
+
+def _open_pipes() -> set[int]:
+    """Inodes of the pipes this process has open."""
+    import stat
+
+    pipes = set()
+    for fd in os.listdir("/proc/self/fd"):
+        try:
+            status = os.fstat(int(fd))
+        except OSError:
+            continue  # the directory listing's own descriptor
+        if stat.S_ISFIFO(status.st_mode):
+            pipes.add(status.st_ino)
+    return pipes
+
+
+@pytest.mark.skipif(not Path("/proc/self/fd").is_dir(), reason="Linux's /proc")
+def test_forks_close_their_parents_pipes() -> None:
+    """A fork keeps no end of the pipes between its parent (the report process) and the
+    command: the command reads its result pipe to end-of-file."""
+    from recipsim.report.figure_process import FigureProcesses
+
+    figures = FigureProcesses(1, preload=())
+    _pid, job, result = figures._children[0]
+    theirs = {os.fstat(job).st_ino, os.fstat(result).st_ino}
+    figures.submit(__name__, "_open_pipes", [{}, {}])
+    child, fork = figures.wait()
+    assert theirs <= child  # the child holds its own pipes
+    assert not theirs & fork  # its fork does not
+
+
+@pytest.mark.parametrize(
+    ("cores", "running", "children_running", "expected"),
+    [(2, 0, 0, 2), (2, 1, 0, 1), (2, 1, 1, 2), (3, 0, 0, 3), (16, 0, 0, 4), (1, 0, 0, 1)],
+)
+def test_fan_out_onto_the_idle_cores_at_the_hand_over(
+    monkeypatch: pytest.MonkeyPatch, cores: int, running: int, children_running: int, expected: int
+) -> None:
+    """The processes that draw: the cores idle at the hand-over (the command's own
+    included, it only waits; a child still importing counts as idle), at most four and
+    at least the children."""
+    from recipsim.report import figure_process
+
+    _fan_out_to(monkeypatch, cores, running)
+    monkeypatch.setattr(figure_process, "runnable", lambda pid: children_running > 0)
+    figures = figure_process.FigureProcesses(1, preload=(), fan_out=True)
+    try:
+        assert figures.drawing_processes() == expected
+    finally:
+        figures.wait()
+
+
+def test_an_explicit_count_of_figure_processes_does_not_fan_out(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    """``RECIPSIM_FIGURE_PROCESSES`` is the number of processes that draw, as before the
+    fan-out; without it the command line fans out."""
+    from recipsim.report import figure_process
+
+    _fan_out_to(monkeypatch, cores=4)
+    for setting, expected in (("1", 1), ("2", 2), ("", 4)):
+        monkeypatch.setenv("RECIPSIM_FIGURE_PROCESSES", setting)
+        figures = figure_process.start_figure_processes(preload=(), at_least=1)
+        assert figures is not None
+        try:
+            assert figures.drawing_processes() == expected
+        finally:
+            figures.wait()
