@@ -37,6 +37,7 @@ from collections.abc import Collection, Mapping
 from pathlib import Path
 from typing import Any
 
+from recipsim import start_up_collector
 from recipsim.machine_load import busy_cores, idle_cores, usable_cores
 from recipsim.report.process_pipes import read_all, read_exactly, runnable, write_all
 
@@ -86,6 +87,7 @@ def _child(jobs: int, results: int, preload: tuple[str, ...], role: str) -> None
     try:
         for module in preload:
             importlib.import_module(module)
+        start_up_collector.resume()  # forked while the command line's start-up paused it
         timeline.mark("imports")
         size = int.from_bytes(read_exactly(jobs, 8) or bytes(8), "little")
         if size:
