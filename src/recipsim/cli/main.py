@@ -26,7 +26,7 @@ from collections.abc import Collection
 from pathlib import Path
 from typing import Any
 
-from recipsim import __version__, timeline
+from recipsim import __version__, start_up_collector, timeline
 from recipsim.cli.bench import add_bench_parser
 from recipsim.cli.bench_system import add_bench_system_parser
 from recipsim.cli.calibrate import add_calibrate_parser
@@ -187,9 +187,11 @@ def main(argv: list[str] | None = None) -> int:
     compiled_runtime.allow_stand_in()  # numba starts without scipy.linalg (0.1-0.2 s)
     args = _parser().parse_args(argv)
     _show_progress_notes(not getattr(args, "quiet", False))
+    start_up_collector.pause()  # until numba has started (:mod:`recipsim.start_up_collector`)
     try:
         status: int = args.handler(args, argv)
     finally:
+        start_up_collector.resume()
         timeline.flush("parent")
     return status
 

@@ -23,6 +23,8 @@ import os
 import sys
 import types
 
+from recipsim import start_up_collector
+
 #: The module numba imports only to see that it imports.
 _BLAS_MODULE = "scipy.linalg.cython_blas"
 
@@ -50,6 +52,13 @@ def start_compiled_runtime() -> None:
     if _started or not _allowed:
         return
     _started = True
+    try:
+        _start()
+    finally:  # the start-up is over: its objects frozen, the collector on again
+        start_up_collector.resume()
+
+
+def _start() -> None:
     if (
         os.environ.get("NUMBA_DISABLE_JIT") == "1"
         or "numba.np.arraymath" in sys.modules

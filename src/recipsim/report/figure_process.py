@@ -37,27 +37,30 @@ from collections.abc import Collection, Mapping
 from pathlib import Path
 from typing import Any
 
+from recipsim import start_up_collector
 from recipsim.machine_load import busy_cores, idle_cores, usable_cores
 from recipsim.report.process_pipes import read_all, read_exactly, runnable, write_all
 
-#: Measured CPU cost of each figure of the default case [s] (warm, 2-core machine; each
-#: drawn alone in a process that had drawn none, median of 6), used only to share the
-#: figures evenly between the children. A one-panel figure drawn after another in the
-#: same child costs less (it reuses its Axes, :func:`recipsim.report.plotting.save_cycle_figures`).
+#: Measured cost of each figure of the default case [s]: wall time in the report
+#: processes of a warm ``recipsim run`` on the 2-core machine (two drawing processes,
+#: the figures in the order :meth:`FigureProcesses.draw` gave them, 3 runs; the orbits,
+#: which the default case does not draw, measured alone). Used only to share the figures
+#: evenly between the processes. A one-panel figure drawn after another in the same
+#: process costs less (it reuses its Axes, :func:`recipsim.report.plotting.save_cycle_figures`).
 FIGURE_COST = {
-    "p_V": 0.070,
-    "p_V_loglog": 0.061,
-    "p_theta": 0.069,
-    "torque": 0.072,
-    "valves": 0.094,
-    "bearing_loads": 0.20,
+    "p_V": 0.045,
+    "p_V_loglog": 0.052,
+    "p_theta": 0.064,
+    "torque": 0.065,
+    "valves": 0.091,
+    "bearing_loads": 0.19,
     "orbits": 0.25,
-    "loss_breakdown": 0.083,
+    "loss_breakdown": 0.080,
 }
 
-#: Measured CPU cost of a report's tables, ``summary.csv`` and ``cycle.csv`` [s] (the
-#: default case, in a forked report process, median of 7), shared with the figures.
-TABLES_COST = 0.05
+#: Measured cost of a report's tables, ``summary.csv`` and ``cycle.csv`` [s] (as
+#: :data:`FIGURE_COST`), shared with the figures.
+TABLES_COST = 0.048
 
 #: The tables' name among the figures' when they are shared.
 TABLES = "(tables)"
@@ -86,6 +89,7 @@ def _child(jobs: int, results: int, preload: tuple[str, ...], role: str) -> None
     try:
         for module in preload:
             importlib.import_module(module)
+        start_up_collector.resume()  # forked while the command line's start-up paused it
         timeline.mark("imports")
         size = int.from_bytes(read_exactly(jobs, 8) or bytes(8), "little")
         if size:
