@@ -21,19 +21,28 @@ def run():
     return simulate_case(load_case(REFERENCE), [])
 
 
+def _serial_and_forked(
+    run, tmp_path: Path
+) -> tuple[tuple[float, float], Path, Path, tuple[str, ...]]:
+    """The plenum, two empty report directories and the names of the figures that apply."""
+    from recipsim.report.report_figures import report_figure_names
+
+    op = run.case.operating_point
+    serial, forked = tmp_path / "serial", tmp_path / "forked"
+    serial.mkdir()
+    forked.mkdir()
+    plenum = (op.suction_pressure, op.discharge_pressure)
+    return plenum, serial, forked, report_figure_names(run.cycle, run.row)
+
+
 def test_forked_figures_are_the_in_process_files(run, tmp_path: Path) -> None:
     """Every figure that applies (the in-process drawer's own choice, loss chain
     included) is written by the children, and the PNG bytes are identical: the
     children draw with the same code from an exact copy of the cycle table."""
     from recipsim.report.figure_process import FigureProcesses
-    from recipsim.report.report_figures import draw_report_figures, report_figure_names
+    from recipsim.report.report_figures import draw_report_figures
 
-    op = run.case.operating_point
-    plenum = (op.suction_pressure, op.discharge_pressure)
-    serial, forked = tmp_path / "serial", tmp_path / "forked"
-    serial.mkdir()
-    forked.mkdir()
-    names = report_figure_names(run.cycle, run.row)
+    plenum, serial, forked, names = _serial_and_forked(run, tmp_path)
     draw_report_figures(serial, run.cycle, run.row, plenum, names)
 
     figures = FigureProcesses(2)
@@ -232,19 +241,10 @@ def test_fanned_out_report_is_the_in_process_report(
     """One report process that forks two more at the hand-over (three idle cores):
     the same figures and tables, byte for byte, as the in-process writer's."""
     from recipsim.report.figure_process import FigureProcesses
-    from recipsim.report.report_figures import (
-        draw_report_figures,
-        report_figure_names,
-        write_tables,
-    )
+    from recipsim.report.report_figures import draw_report_figures, write_tables
 
     _fan_out_to(monkeypatch, cores=3)
-    op = run.case.operating_point
-    plenum = (op.suction_pressure, op.discharge_pressure)
-    serial, forked = tmp_path / "serial", tmp_path / "forked"
-    serial.mkdir()
-    forked.mkdir()
-    names = report_figure_names(run.cycle, run.row)
+    plenum, serial, forked, names = _serial_and_forked(run, tmp_path)
     write_tables(serial, run.row, run.cycle)
     draw_report_figures(serial, run.cycle, run.row, plenum, names)
 
