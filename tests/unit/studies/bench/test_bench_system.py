@@ -4,6 +4,7 @@ and one run of the stages of ``recipsim run`` in a child interpreter."""
 from __future__ import annotations
 
 import os
+from pathlib import Path
 
 import pytest
 
@@ -156,3 +157,31 @@ def test_scaling_after_start_up_measures_each_worker_count(tmp_path) -> None:
     assert one["efficiency [-]"] == 1.0
     assert two["efficiency [-]"] == pytest.approx(one["wall [s]"] / (2 * two["wall [s]"]))
     assert two["points_per_second"] == pytest.approx(6 / two["wall [s]"])
+
+
+def test_timed_runs_write_into_the_scratch_directory_then_it_is_removed(tmp_path) -> None:
+    """Inside scratch_directory this process's temporary files and those of the
+    commands it starts (TMPDIR) go under the scratch directory; afterwards the
+    environment is as before and the scratch directory is gone."""
+    import subprocess
+    import sys
+    import tempfile
+
+    from recipsim.cli.bench_system import scratch_directory
+
+    scratch = tmp_path / "out" / "system" / "scratch"
+    before = os.environ.get("TMPDIR"), tempfile.gettempdir()
+    with scratch_directory(scratch) as work:
+        assert work.parent == scratch
+        with tempfile.TemporaryDirectory() as inside:
+            assert Path(inside).parent == work
+        child = subprocess.run(
+            [sys.executable, "-c", "import tempfile; print(tempfile.gettempdir())"],
+            capture_output=True,
+            text=True,
+            check=True,
+        )
+        assert Path(child.stdout.strip()) == work
+        (work / "left-over.json").write_text("{}")  # a run's files are removed too
+    assert (os.environ.get("TMPDIR"), tempfile.gettempdir()) == before
+    assert not scratch.exists()
