@@ -156,7 +156,10 @@ def _solve(case: Case) -> tuple[Case, PeriodicSolution | None, StartupRun | None
     periodic solution (None for the pinned mechanism under a tabulated pressure: nothing
     to integrate) and the start-up run before it, if any."""
     from recipsim.case.envelope import check_envelope
-    from recipsim.results.compile_ahead import wait_for_compile_ahead
+    from recipsim.results.compile_ahead import (
+        compile_outputs_while_waiting,
+        wait_for_compile_ahead,
+    )
     from recipsim.results.outcome import explained
     from recipsim.solve.drive import build_model_for
     from recipsim.solve.motor_speed import solve_at_motor_speed
@@ -174,6 +177,7 @@ def _solve(case: Case) -> tuple[Case, PeriodicSolution | None, StartupRun | None
 
         with explained("building the model"):
             model = build_model_for(case)
+        compile_outputs_while_waiting(model)
         wait_for_compile_ahead()
         with explained("integrating the start-up from rest"):
             startup = solve_from_rest(model)
@@ -186,7 +190,9 @@ def _solve(case: Case) -> tuple[Case, PeriodicSolution | None, StartupRun | None
     with explained("building the model"):
         model = build_model_for(case)
     # a child compiling the solver on a fresh machine (compile_ahead): the model build
-    # above (the property table's compiled functions) ran beside it
+    # above (the property table's compiled functions) ran beside it, and so do the
+    # sample outputs' compiled code
+    compile_outputs_while_waiting(model)
     wait_for_compile_ahead()
     with explained("integrating the periodic state"):
         solution = solve_periodic(model)

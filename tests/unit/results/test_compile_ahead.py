@@ -70,8 +70,44 @@ def test_the_parent_builds_its_model_before_it_waits_for_the_child(monkeypatch) 
         raise Stop
 
     monkeypatch.setattr(drive, "build_model_for", lambda case: calls.append("model"))
+    monkeypatch.setattr(
+        compile_ahead, "compile_outputs_while_waiting", lambda model: calls.append("outputs")
+    )
     monkeypatch.setattr(compile_ahead, "wait_for_compile_ahead", lambda: calls.append("wait"))
     monkeypatch.setattr(periodic, "solve_periodic", solve)
     with pytest.raises(Stop):
         run._solve(load_case("reference_r134a_lbp"))
-    assert calls == ["model", "wait", "solve"]
+    assert calls == ["model", "outputs", "wait", "solve"]
+
+
+_OUTPUTS_AHEAD = """
+from recipsim.case.load import load_case
+from recipsim.physics.mechanics.pinned import pinned_reactions_array
+from recipsim.results import compile_ahead
+from recipsim.results.cycle import cycle_columns
+from recipsim.solve.drive import build_model_for
+from recipsim.solve.periodic import solve_periodic
+from recipsim.solve.scene_outputs import _cylinder_outputs
+
+compiled = lambda: (len(_cylinder_outputs.signatures), len(pinned_reactions_array.signatures))
+model = build_model_for(load_case("reference_r134a_lbp"))
+compile_ahead.compile_outputs_while_waiting(model)
+print(*compiled())  # nothing: no child pending
+compile_ahead._pending.append(None)  # as if a child were compiling the solver
+compile_ahead.compile_outputs_while_waiting(model)
+compile_ahead._pending.clear()
+print(*compiled())
+cycle_columns(solve_periodic(model))
+print(*compiled())
+"""
+
+
+def test_the_outputs_compiled_while_waiting_are_those_the_cycle_table_runs() -> None:
+    """The sample outputs and pinned reactions compiled (or loaded) ahead have the
+    argument types of the cycle table's calls: the cycle table adds no second
+    specialisation (in a fresh process, numba's disk cache warm)."""
+    done = subprocess.run(
+        [sys.executable, "-c", _OUTPUTS_AHEAD], capture_output=True, text=True, timeout=600
+    )
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.split("\n")[:3] == ["0 0", "1 1", "1 1"]
