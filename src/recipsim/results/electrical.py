@@ -41,7 +41,6 @@ from recipsim.case.rating import SATURATED_LIQUID_BAND
 from recipsim.case.sections import OperatingPoint
 from recipsim.model.loss_sources import mean_friction_powers, motor_point
 from recipsim.physics.mean_friction import time_mean
-from recipsim.physics.thermo.table_states import TableFluid
 from recipsim.results.columns import CycleLike
 
 #: Loss columns of the motor and the operating-point attribute each one reads.
@@ -68,8 +67,7 @@ def rating_enthalpies(fluid: Any, op: OperatingPoint) -> tuple[float, float]:
     if not math.isnan(op.condensing_temperature):
         bubble = fluid.saturation_temperature(p, 0.0)
         if op.liquid_temperature >= bubble - SATURATED_LIQUID_BAND:
-            heos = fluid.heos() if isinstance(fluid, TableFluid) else fluid
-            return h_gas, float(heos.saturated_liquid_enthalpy(p))
+            return h_gas, float(fluid.saturated_liquid_enthalpy(p))
     return h_gas, float(fluid.liquid_enthalpy(p, op.liquid_temperature))
 
 

@@ -288,7 +288,7 @@ def test_buffer_constants_are_the_tables_indices(
 def test_buffer_sizes_are_unchanged() -> None:
     """The sizes the arrays are allocated with (the compiled code and the cached tables
     depend on them), and how the blocks compose."""
-    assert (ps.N_PROPS, pt.N_HEADER, pt.N_GRID, pt.N_SAT) == (12, 24, 7, 19)
+    assert (ps.N_PROPS, pt.N_HEADER, pt.N_GRID, pt.N_SAT) == (12, 24, 7, 20)
     assert (jt.N_HEADER, jt.N_QUANTITIES, jt.N_NODE_VALUES) == (8, 3, jt.NODE.size)
     assert jt.N_NODE_VALUES == 4 * jt.N_QUANTITIES
     for k, part in enumerate(("value", "d_du", "d_dtheta0", "d2_du_dtheta0")):

@@ -80,7 +80,7 @@ from recipsim.physics.thermo.property_slots import (
 STATUS_FALLBACK = 2
 
 #: bump when the build or the layout changes (part of the cache key)
-TABLE_FORMAT = 4
+TABLE_FORMAT = 5
 
 # ---- header (offsets after N_PROPS) ------------------------------------------------------
 HEADER = Layout("property table header")
@@ -149,6 +149,7 @@ S_CPV = _s("vapour_cp", "J/(kg K)", "saturated vapour isobaric specific heat")
 #: the liquid line's enthalpy by expansion in p (table_states.liquid_enthalpy)
 S_DHDP_L = _s("liquid_dhdp", "m3/kg", "saturated liquid (dh/dp)_T")
 S_D2HDP2_L = _s("liquid_d2hdp2", "m3/(kg Pa)", "saturated liquid (d2h/dp2)_T")
+S_D3HDP3_L = _s("liquid_d3hdp3", "m3/(kg Pa2)", "saturated liquid (d3h/dp3)_T")
 N_SAT = SAT.size
 
 #: buffer slots compared with HEOS by :func:`measure_error`, and their names

@@ -23,14 +23,22 @@ How each answer is obtained:
 * saturation: the 1-D saturation table (pure fluids; for pseudo-pure mixtures it has no
   ``QT`` data and the question goes to HEOS).
 * subcooled liquid enthalpy (the liquid line): the expansion in pressure at constant T
-  from the saturated liquid, ``h = h_l + t1 + t2`` with ``t1 = (dh/dp)_T dp``,
-  ``t2 = (d2h/dp2)_T dp^2 / 2``, ``dp = p - p_sat(T)`` and both derivatives tabulated
-  along saturation. The neglected third-order term is about ``t2^2 / t1`` (measured:
-  within a factor 0.8-4 of the true error for R134a, R290 and R744 from 4 to 20 K of
-  subcooling up to 6 K below the critical point); where that estimate exceeds
-  :data:`LIQUID_EXPANSION_LIMIT` (near-critical liquid, large subcooling close to it)
-  the question goes to HEOS. Accepted answers are within about 3 J/kg of HEOS
-  (1.5e-5 of a 200 kJ/kg refrigerating effect); at the shipped rating points 0.3 J/kg.
+  from the saturated liquid, ``h = h_l + t1 + t2 + t3`` with ``t_n = (d^n h/dp^n)_T
+  dp^n / n!``, ``dp = p - p_sat(T)``, the three derivatives tabulated along saturation
+  (the third by a difference of CoolProp's second). The neglected fourth-order term is
+  about ``t3^2 / t2`` (measured: 0.87-1.18 times the true error for R134a, R290, R600a,
+  R32 and R1234yf, 0.5-40 K of subcooling, condensing up to 1 K below the critical
+  point); where that estimate exceeds :data:`LIQUID_EXPANSION_LIMIT` (near-critical
+  liquid, large subcooling close to it) the question goes to HEOS. Accepted answers are
+  within about 3 J/kg of HEOS (1.5e-5 of a 200 kJ/kg refrigerating effect); at the
+  shipped rating points 0.0004-0.11 J/kg (ASHRAE LBP) and 0.5 J/kg (R32, AHRI). The
+  second-order expansion this replaced (estimate ``t2^2 / t1``, 3-7 times its true
+  error) sent R290's ASHRAE point, R32's AHRI point and R134a above 55 C of condensing
+  to HEOS, and with them a 2 s import of CoolProp into the run or the sweep worker.
+* saturated liquid at a pressure (EN 12900's liquid): the saturation table at the
+  table's saturation temperature.
+* the dense supercritical states of a transcritical gas-cooler exit (R744 at 90 bar and
+  35 C, 660 kg/m3) are outside the table: HEOS.
 
 Accuracy: the table's (1e-5); :mod:`tests.test_table_states` measures every answer
 against HEOS.
@@ -53,6 +61,7 @@ from recipsim.physics.thermo.property_table import (
     H_TS0,
     H_TSAT_MAX,
     S_D2HDP2_L,
+    S_D3HDP3_L,
     S_DHDP_L,
     S_HV_DOME,
     S_MUV,
@@ -82,7 +91,7 @@ from recipsim.physics.thermo.table_solves import (
 if TYPE_CHECKING:
     from recipsim.physics.thermo.fluid import Fluid
 
-#: largest estimated third-order term of the liquid-line expansion [J/kg]
+#: largest estimated fourth-order term of the liquid-line expansion [J/kg]
 LIQUID_EXPANSION_LIMIT = 2.5
 
 
@@ -294,23 +303,43 @@ class TableFluid:
         except TableMiss:
             return self.heos().transport(pressure, temperature)
 
+    def _saturated_liquid(self, temperature: float) -> tuple[float, ...]:
+        """Saturated liquid at ``temperature`` [K]: p_sat [Pa], v_l [m3/kg], u_l [J/kg] and
+        (d^n h / dp^n)_T for n = 1, 2, 3; TableMiss where the table has none."""
+        self._pure_saturation()
+        values = tuple(
+            float(saturation_row(temperature, slot, self._buf))
+            for slot in (S_P, S_VL, S_UL, S_DHDP_L, S_D2HDP2_L, S_D3HDP3_L)
+        )
+        if not all(math.isfinite(v) for v in values):
+            raise TableMiss
+        return values
+
     def liquid_enthalpy(self, pressure: float, temperature: float) -> float:
         """Specific enthalpy [J/kg] of liquid at ``pressure`` [Pa] and ``temperature`` [K]
-        (the liquid line); HEOS above the critical temperature or below saturation."""
+        (the liquid line); HEOS above the critical temperature, below saturation or where
+        the expansion would not be accurate."""
         try:
-            self._pure_saturation()
-            buf = self._buf
-            p_sat, v_l, u_l, dhdp, d2hdp2 = (
-                float(saturation_row(temperature, slot, buf))
-                for slot in (S_P, S_VL, S_UL, S_DHDP_L, S_D2HDP2_L)
-            )
-            values = (p_sat, v_l, u_l, dhdp, d2hdp2)
-            if not all(math.isfinite(v) for v in values) or pressure < p_sat:
+            p_sat, v_l, u_l, d1, d2, d3 = self._saturated_liquid(temperature)
+            if pressure < p_sat:
                 raise TableMiss
             dp = pressure - p_sat
-            t1, t2 = dhdp * dp, 0.5 * d2hdp2 * dp * dp
-            if t2 * t2 > LIQUID_EXPANSION_LIMIT * max(abs(t1), abs(t2)):
+            t2, t3 = 0.5 * d2 * dp * dp, d3 * dp**3 / 6.0
+            if t3 * t3 > LIQUID_EXPANSION_LIMIT * max(abs(t2), abs(t3)):
                 raise TableMiss  # the expansion is not accurate enough here
-            return u_l + p_sat * v_l + t1 + t2
+            return u_l + p_sat * v_l + d1 * dp + t2 + t3
         except TableMiss:
             return self.heos().liquid_enthalpy(pressure, temperature)
+
+    def saturated_liquid_enthalpy(self, pressure: float) -> float:
+        """Specific enthalpy [J/kg] of saturated liquid (bubble point) at ``pressure`` [Pa]:
+        the saturated liquid at the table's saturation temperature, moved to ``pressure``
+        along its isotherm (the two differ by the inverse's round-off, about 1e-3 Pa);
+        HEOS where the table has no saturation data."""
+        try:
+            p_sat, v_l, u_l, d1, _d2, _d3 = self._saturated_liquid(
+                self._saturation_temperature(pressure)
+            )
+            return u_l + p_sat * v_l + d1 * (pressure - p_sat)
+        except TableMiss:
+            return self.heos().saturated_liquid_enthalpy(pressure)
