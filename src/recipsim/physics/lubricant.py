@@ -41,6 +41,8 @@ from typing import Any
 import numpy as np
 from numba import njit
 
+from recipsim.physics.bracketed_root import bracketed_root
+
 #: Law codes for :func:`oil_viscosity`.
 LAW_VOGEL = 0
 LAW_WALTHER = 1
@@ -189,9 +191,7 @@ def fit_vogel(
             f"no Vogel curve passes through {temperatures}, {viscosities}: ln(mu) must be "
             "convex in T (the viscosity must fall more slowly as the temperature rises)"
         )
-    from scipy.optimize import brentq  # lazy: 0.25 s of imports
-
-    c = brentq(mismatch, far, near, xtol=1e-12 * t[0], rtol=1e-15, maxiter=500)
+    c = bracketed_root(mismatch, far, near, xtol=1e-12 * t[0], rtol=1e-15, maxiter=500)
     b = (y[0] - y[1]) / (1.0 / (t[0] - c) - 1.0 / (t[1] - c))
     a = math.exp(y[0] - b / (t[0] - c))
     return Oil(

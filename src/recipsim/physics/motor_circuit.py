@@ -45,6 +45,8 @@ import math
 from collections.abc import Callable
 from dataclasses import dataclass
 
+from recipsim.physics.bracketed_root import bracketed_root
+
 VARIANTS = ("RSIR", "PSC")
 #: Slip at which the forward march of the torque inverse starts [-].
 _FIRST_SLIP = 1e-4
@@ -433,9 +435,7 @@ def motor_operating_point_at_torque(
                 high = peak_slip
                 break
             low, previous, high = high, current, min(high * _SLIP_STEP, 1.0)
-    from scipy.optimize import brentq  # lazy: 0.25 s of imports
-
-    slip = brentq(excess, low, high, xtol=1e-15, rtol=1e-15, maxiter=200)
+    slip = bracketed_root(excess, low, high, xtol=1e-15, rtol=1e-15, maxiter=200)
     return motor_operating_point_at_slip(circuit, float(slip))
 
 
