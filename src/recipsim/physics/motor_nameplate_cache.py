@@ -15,15 +15,13 @@ reproduces the nameplate's rated shaft power, input power and power factor to 1e
 from __future__ import annotations
 
 import hashlib
-import json
-import math
 from dataclasses import asdict, fields
 from functools import lru_cache
 from pathlib import Path
 
-from recipsim.atomic import atomic_write
-from recipsim.cache_dirs import cache_dir, private_dir
+from recipsim.cache_dirs import cache_dir
 from recipsim.physics import bracketed_root, motor_circuit, motor_nameplate
+from recipsim.physics.json_cache import read_record, write_record
 from recipsim.physics.motor_circuit import MotorCircuit, motor_operating_point
 from recipsim.physics.motor_nameplate import MotorNameplate, motor_circuit_from_nameplate
 
@@ -61,14 +59,8 @@ def nameplate_circuit(plate: MotorNameplate) -> MotorCircuit:
     if cached is not None:
         return cached
     circuit = motor_circuit_from_nameplate(plate)
-    text = json.dumps(asdict(circuit))
-
-    def write(tmp: Path) -> None:
-        tmp.write_text(text, encoding="utf-8")
-
     try:
-        private_dir(path.parent)
-        atomic_write(path, write)
+        write_record(path, asdict(circuit))
     except OSError:
         pass  # an unwritable cache costs the fit next time, nothing else
     return circuit
@@ -76,20 +68,8 @@ def nameplate_circuit(plate: MotorNameplate) -> MotorCircuit:
 
 def _read_circuit(path: Path, plate: MotorNameplate) -> MotorCircuit | None:
     """The cached circuit, or None if missing, malformed or not this nameplate's."""
-    try:
-        if path.stat().st_size > 100_000:
-            return None
-        data = json.loads(path.read_text(encoding="utf-8"))
-    except (OSError, ValueError):
-        return None
-    names = {f.name for f in fields(MotorCircuit)}
-    if not isinstance(data, dict) or set(data) != names or data["variant"] != plate.variant:
-        return None
-    numbers = [v for k, v in data.items() if k != "variant"]
-    if not all(
-        isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v)
-        for v in numbers
-    ):
+    data = read_record(path, [f.name for f in fields(MotorCircuit)], ("variant",))
+    if data is None or data["variant"] != plate.variant:
         return None
     try:
         circuit = MotorCircuit(**data)

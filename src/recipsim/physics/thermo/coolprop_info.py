@@ -9,15 +9,13 @@ constant) from a small cache filled by CoolProp the first time a fluid is used.
 
 from __future__ import annotations
 
-import json
-import math
 from dataclasses import asdict, dataclass
 from functools import cache, lru_cache
 from importlib import metadata
 from pathlib import Path
 
-from recipsim.atomic import atomic_write
-from recipsim.cache_dirs import cache_dir, private_dir
+from recipsim.cache_dirs import cache_dir
+from recipsim.physics.json_cache import read_record, write_record
 
 
 @lru_cache(maxsize=1)
@@ -100,33 +98,13 @@ def fluid_constants(coolprop_name: str) -> FluidConstants:
     if cached is not None:
         return cached
     constants = _from_coolprop(coolprop_name)
-    text = json.dumps(asdict(constants), indent=1)
-
-    def write(tmp: Path) -> None:
-        tmp.write_text(text)
-
-    private_dir(path.parent)
-    atomic_write(path, write)
+    write_record(path, asdict(constants))
     return constants
 
 
 def _read_constants(path: Path, coolprop_name: str) -> FluidConstants | None:
     """The cached constants, or None if the file is missing, malformed or not this fluid's."""
-    try:
-        if path.stat().st_size > 100_000:
-            return None
-        data = json.loads(path.read_text(encoding="utf-8"))
-    except (OSError, ValueError):
-        return None
-    fields = set(FluidConstants.__dataclass_fields__)
-    if not isinstance(data, dict) or set(data) != fields:
-        return None
-    if data["coolprop_name"] != coolprop_name:
-        return None
-    numbers = [v for k, v in data.items() if k != "coolprop_name"]
-    if not all(
-        isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v)
-        for v in numbers
-    ):
+    data = read_record(path, FluidConstants.__dataclass_fields__, ("coolprop_name",))
+    if data is None or data["coolprop_name"] != coolprop_name:
         return None
     return FluidConstants(**data)
