@@ -24,6 +24,7 @@ written by recipsim). Nothing is written unless both cases ran.
 from __future__ import annotations
 
 import argparse
+import contextlib
 import json
 import math
 import sys
@@ -37,6 +38,7 @@ from recipsim.cli.options import add_common_options, exit_status
 if TYPE_CHECKING:
     import pandas as pd
 
+    from recipsim.report.figure_process import FigureProcesses
     from recipsim.results.run import CaseRun
 
 #: Rows printed to the console (the rest is in comparison.csv).
@@ -114,17 +116,32 @@ def run_compare_command(args: argparse.Namespace, argv: list[str] | None) -> int
     """``recipsim compare``: returns the exit status (0, 1 or 2)."""
 
     def action() -> int:
-        comparison = run_comparison(
-            args.case_a,
-            args.case_b,
-            overrides=args.overrides,
-            overrides_a=args.overrides_a,
-            overrides_b=args.overrides_b,
-            parent=args.out,
-            plots=not args.no_plots,
-            argv=argv if argv is not None else sys.argv,
-            allow_external_paths=args.allow_external_paths,
-        )
+        figures = None
+        if not args.no_plots:  # they import pandas and matplotlib while this one solves
+            from recipsim.report.compare_figures import COMPARE_PRELOAD
+            from recipsim.report.figure_process import start_figure_processes
+
+            figures = start_figure_processes(
+                None, COMPARE_PRELOAD, share_pandas=False, at_least=1, busy_parent=True
+            )
+        try:
+            comparison = run_comparison(
+                args.case_a,
+                args.case_b,
+                overrides=args.overrides,
+                overrides_a=args.overrides_a,
+                overrides_b=args.overrides_b,
+                parent=args.out,
+                plots=not args.no_plots,
+                argv=argv if argv is not None else sys.argv,
+                allow_external_paths=args.allow_external_paths,
+                figures=figures,
+            )
+        except BaseException:
+            if figures is not None:  # the children exit without drawing; the first error wins
+                with contextlib.suppress(BaseException):
+                    figures.wait()
+            raise
         if not args.quiet:
             print(console_summary(comparison))
         return 0
@@ -154,6 +171,7 @@ def run_comparison(
     argv: list[str] | None = None,
     allow_external_paths: bool = False,
     parent: Path | None = None,
+    figures: FigureProcesses | None = None,
 ) -> Comparison:
     """Run two cases and write their comparison directory atomically.
 
@@ -176,6 +194,11 @@ def run_comparison(
         See :func:`recipsim.case.load.load_case`.
     parent : Path, optional
         Parent of the default output directory (``--out``); default ``reports/compare``.
+    figures : FigureProcesses, optional
+        Forked report processes (:func:`recipsim.report.figure_process.start_figure_processes`)
+        that write both reports' tables and draw every figure, shared by cost
+        (:mod:`recipsim.report.compare_figures`); the same files. None: here, one after
+        the other. The command line's choice, never a library's.
 
     Returns
     -------
@@ -189,7 +212,6 @@ def run_comparison(
     SolverError
         A case failed (the message names its file); nothing is written.
     """
-    from recipsim.atomic import check_replaceable
     from recipsim.case.load import load_case
     from recipsim.studies.compare import case_labels, cases_table, comparison_table
 
@@ -204,15 +226,7 @@ def run_comparison(
         for p, s in zip(paths, sets, strict=True)
     ]  # both before running
     labels = case_labels(cases[0].name, cases[1].name)
-    if out is not None:
-        target = Path(out)
-        check_replaceable(target)  # before anything runs
-    else:
-        from recipsim.report.case_report import report_dir
-
-        sides = [f"{side}.{text}" for side, s in zip("ab", sets, strict=True) for text in s]
-        name = f"{cases[0].name}_vs_{cases[1].name}"
-        target = report_dir(parent or DEFAULT_PARENT, name, sides)
+    target = _output_directory(out, parent, [c.name for c in cases], sets)
     runs = (_simulate(paths[0], cases[0], argv), _simulate(paths[1], cases[1], argv))
     table = comparison_table(runs[0].row, runs[1].row, *labels)
     extra = [
@@ -220,12 +234,28 @@ def run_comparison(
         for p, s, label in zip(paths, sets, labels, strict=True)
     ]
     case_rows = cases_table([r.row for r in runs], labels, extra)
-    _write(target, runs, labels, sets, table, case_rows, plots, argv, start)
+    _write(target, runs, labels, sets, table, case_rows, plots, argv, start, figures)
     return Comparison(runs, labels, table, case_rows, target, time.perf_counter() - start)
 
 
 #: Default ``--out`` of ``recipsim compare`` (the parent of ``<A>_vs_<B>``).
 DEFAULT_PARENT = Path("reports/compare")
+
+
+def _output_directory(
+    out: Path | None, parent: Path | None, names: list[str], sets: list[list[str]]
+) -> Path:
+    """The comparison's directory, checked before anything runs: ``out``, or
+    ``<parent>/<A>_vs_<B>`` (``+<digest>`` of the overrides)."""
+    if out is not None:
+        from recipsim.atomic import check_replaceable
+
+        check_replaceable(Path(out))
+        return Path(out)
+    from recipsim.report.case_report import report_dir
+
+    sides = [f"{side}.{text}" for side, s in zip("ab", sets, strict=True) for text in s]
+    return report_dir(parent or DEFAULT_PARENT, f"{names[0]}_vs_{names[1]}", sides)
 
 
 def _write(
@@ -238,18 +268,20 @@ def _write(
     plots: bool,
     argv: list[str] | None,
     start: float,
+    figures: FigureProcesses | None = None,
 ) -> None:
-    """Build the output directory beside ``target`` and swap it in."""
+    """Build the output directory beside ``target`` and swap it in (``figures``: see
+    :func:`run_comparison`)."""
     from recipsim.atomic import atomic_directory
     from recipsim.report.case_report import write_case_report
 
     with atomic_directory(target) as tmp:
+        reports: list[dict[str, Any]] | None = [] if figures is not None else None
         for run, label, s in zip(runs, labels, sets, strict=True):
-            write_case_report(run, tmp / label, s, plots)
-        table.to_csv(tmp / "comparison.csv", index=False)
-        case_rows.to_csv(tmp / "cases.csv", index=False)
+            write_case_report(run, tmp / label, s, plots, deferred=reports)
+        overlay: dict[str, Any] | None = None
         if plots:
-            from recipsim.report.compare_plots import save_overlay_figures
+            from recipsim.report.figure_names import OVERLAY_NAMES
 
             plenum = {
                 label: (
@@ -258,10 +290,26 @@ def _write(
                 )
                 for run, label in zip(runs, labels, strict=True)
             }
-            save_overlay_figures(
-                {label: run.cycle for run, label in zip(runs, labels, strict=True)}, tmp, plenum
-            )
+            cycles = {label: run.table for run, label in zip(runs, labels, strict=True)}
+            overlay = {
+                "cycles": cycles,
+                "out_dir": tmp,
+                "plenum": plenum,
+                "names": OVERLAY_NAMES,
+            }
+        if figures is not None and reports is not None:
+            from recipsim.report.compare_figures import submit_compare_figures
+
+            submit_compare_figures(figures, reports, overlay)
+        elif overlay is not None:
+            from recipsim.report.compare_plots import save_overlay_figures
+
+            save_overlay_figures(**overlay)
+        table.to_csv(tmp / "comparison.csv", index=False)
+        case_rows.to_csv(tmp / "cases.csv", index=False)
         meta = _provenance(runs, labels, case_rows, argv)
+        if figures is not None:
+            figures.wait()
         meta["wall_time_s"] = time.perf_counter() - start
         (tmp / "provenance.json").write_text(json.dumps(meta, indent=2, default=str))
 

@@ -40,6 +40,7 @@ def write_report(
     plots: bool | Collection[str] = True,
     files: Mapping[str, bytes] | None = None,
     figures: FigureProcesses | None = None,
+    deferred: list[dict[str, Any]] | None = None,
 ) -> Path:
     """Write one case's report into ``out_dir`` atomically.
 
@@ -52,7 +53,12 @@ def write_report(
     its columns as numpy arrays. ``figures``: forked report processes that write the
     tables and draw the figures while this one writes the rest
     (:func:`recipsim.report.figure_process.start_figure_processes`); None writes and
-    draws them here, one after the other.
+    draws them here, one after the other. ``deferred``: neither; the keyword arguments of
+    :func:`recipsim.report.report_figures.write_report_share` that would write the tables
+    and draw the figures into ``out_dir`` (once it is in place) are appended to it, for
+    a caller that shares several reports between its report processes
+    (:mod:`recipsim.report.compare_figures`) and keeps ``out_dir`` inside a directory of
+    its own that it renames into place when they are done.
 
     Returns
     -------
@@ -65,6 +71,17 @@ def write_report(
         if figures is not None:
             figures.draw(tmp, cycle, summary_row, plenum, names, tables=True)
             timeline.mark("report handed over")
+        elif deferred is not None:
+            deferred.append(
+                {
+                    "directory": out_dir,
+                    "cycle": cycle,
+                    "summary_row": dict(summary_row),
+                    "plenum": plenum,
+                    "names": tuple(names),
+                    "tables": True,
+                }
+            )
         else:
             write_tables(tmp, summary_row, cycle)
             timeline.mark("tables written")
@@ -80,7 +97,7 @@ def write_report(
         if figures is not None:
             figures.wait()
             timeline.mark("report processes done")
-        elif names:
+        elif names and deferred is None:
             draw_report_figures(tmp, cycle, summary_row, plenum, names)
             timeline.mark("figures drawn")
     return out_dir
@@ -92,12 +109,13 @@ def write_case_report(
     overrides: list[str],
     plots: bool | Collection[str] = True,
     figures: FigureProcesses | None = None,
+    deferred: list[dict[str, Any]] | None = None,
 ) -> Path:
     """Write the report of ``run`` atomically into ``out_dir`` (see reports/README.md).
 
     Its ``case.toml`` is the case fully resolved (:mod:`recipsim.report.resolved_case`),
-    with the refrigerant file and a tabulated pressure curve beside it. ``figures``: see
-    :func:`write_report`.
+    with the refrigerant file and a tabulated pressure curve beside it. ``figures`` and
+    ``deferred``: see :func:`write_report`.
     """
     from recipsim.report.resolved_case import resolved_case
 
@@ -108,7 +126,7 @@ def write_case_report(
     return write_report(
         out_dir,
         run.row,
-        run.table if figures is not None else run.cycle,
+        run.table if figures is not None or deferred is not None else run.cycle,
         text,
         overrides,
         run.meta,
@@ -116,6 +134,7 @@ def write_case_report(
         plots=plots,
         files=files,
         figures=figures,
+        deferred=deferred,
     )
 
 

@@ -18,6 +18,7 @@ import pandas as pd
 from matplotlib.figure import Figure
 from matplotlib.ticker import NullFormatter, ScalarFormatter
 
+from recipsim.report.figure_names import OVERLAY_NAMES
 from recipsim.report.mechanics_plots import (
     ANGLE_COLUMN,
     LINE_STYLES,
@@ -233,10 +234,23 @@ def plot_orbit_overlay(
     return fig
 
 
+#: The builder of each overlay figure of ``recipsim compare``
+#: (:data:`recipsim.report.figure_names.OVERLAY_NAMES`), from the tables and the plenum.
+OVERLAY_FIGURES: dict[str, Any] = {
+    "overlay_pressure": lambda cycles, plenum: plot_pressure_overlay(cycles, plenum),
+    "overlay_pv": lambda cycles, plenum: plot_pv_overlay(cycles),
+    "overlay_torque": lambda cycles, plenum: plot_torque_overlay(cycles),
+    "overlay_bearing_loads": lambda cycles, plenum: plot_bearing_overlay(cycles),
+    "overlay_orbits": lambda cycles, plenum: plot_orbit_overlay(cycles),
+}
+assert tuple(OVERLAY_FIGURES) == OVERLAY_NAMES
+
+
 def save_overlay_figures(
     cycles: Mapping[str, pd.DataFrame],
     out_dir: str | Path,
     plenum: Mapping[str, tuple[float, float]] | None = None,
+    names: Sequence[str] | None = None,
 ) -> list[Path]:
     """Write the overlay figures of labelled cycle tables as PNG files.
 
@@ -247,23 +261,28 @@ def save_overlay_figures(
     Parameters
     ----------
     cycles : mapping of str to pandas.DataFrame
-        Cycle tables by case label.
+        Cycle tables by case label (or their columns as numpy arrays).
     out_dir : str or pathlib.Path
         Existing directory.
     plenum : mapping of str to (float, float), optional
         Suction and discharge pressure [Pa] per label (:func:`plot_pressure_overlay`).
+    names : sequence of str, optional
+        Only these of :data:`~recipsim.report.figure_names.OVERLAY_NAMES`; default all.
 
     Returns
     -------
     list of pathlib.Path
         The files written.
     """
+    from recipsim.results.columns import as_table
+
     out = Path(out_dir)
-    figures = {
-        "overlay_pressure.png": plot_pressure_overlay(cycles, plenum),
-        "overlay_pv.png": plot_pv_overlay(cycles),
-        "overlay_torque.png": plot_torque_overlay(cycles),
-        "overlay_bearing_loads.png": plot_bearing_overlay(cycles),
-        "overlay_orbits.png": plot_orbit_overlay(cycles),
-    }
-    return [save_figure(fig, out / name) for name, fig in figures.items() if fig is not None]
+    tables = {label: as_table(cycle) for label, cycle in cycles.items()}
+    written = []
+    for name, build in OVERLAY_FIGURES.items():
+        if names is not None and name not in names:
+            continue
+        fig = build(tables, plenum)
+        if fig is not None:
+            written.append(save_figure(fig, out / f"{name}.png"))
+    return written

@@ -15,6 +15,10 @@ from typing import Any
 
 import numpy as np
 
+#: PNG compression of the report's figures: zlib level 1 writes a figure in a third of
+#: the default level's time (6) for files about 20 % larger.
+PNG_OPTIONS = {"compress_level": 1}
+
 #: Most intervals between the major ticks of a linear axis.
 NBINS = 5
 

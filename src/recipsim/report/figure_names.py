@@ -1,5 +1,5 @@
-"""Names of the figures of a case report, checked without importing matplotlib (the
-command line checks ``--plots`` before it solves anything)."""
+"""Names of the figures of a case report and of a comparison, checked without importing
+matplotlib (the command line checks ``--plots`` before it solves anything)."""
 
 from __future__ import annotations
 
@@ -12,6 +12,13 @@ from collections.abc import Iterable
 FIGURE_NAMES = (
     "p_V", "p_V_loglog", "p_theta", "torque", "valves", "bearing_loads", "orbits",
     "loss_breakdown", "startup",
+)  # fmt: skip
+
+#: Overlay figures of ``recipsim compare`` (file ``<name>.png``), in the order they are
+#: drawn; ``overlay_orbits`` only where a case has flexible bearings.
+OVERLAY_NAMES = (
+    "overlay_pressure", "overlay_pv", "overlay_torque", "overlay_bearing_loads",
+    "overlay_orbits",
 )  # fmt: skip
 
 

@@ -22,7 +22,7 @@ import pandas as pd
 from matplotlib.figure import Figure
 
 from recipsim.physics.mechanics.layout import BEARING_NAMES
-from recipsim.report.figure_kit import angle_axis
+from recipsim.report.figure_kit import PNG_OPTIONS, angle_axis
 from recipsim.report.figure_names import TITLE_Y
 
 ANGLE_COLUMN = "crank_angle [deg]"
@@ -344,7 +344,7 @@ def save_figure(fig: Figure, path: str | Path, dpi: int = DPI) -> Path:
     pathlib.Path
     """
     path = Path(path)
-    fig.savefig(path, dpi=dpi, format="png")
+    fig.savefig(path, dpi=dpi, format="png", pil_kwargs=PNG_OPTIONS)
     return path
 
 

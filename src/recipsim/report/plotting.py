@@ -14,7 +14,7 @@ from typing import Any
 import pandas as pd
 from matplotlib.figure import Figure
 
-from recipsim.report.figure_kit import angle_axis, clear_axes, fewer_ticks
+from recipsim.report.figure_kit import PNG_OPTIONS, angle_axis, clear_axes, fewer_ticks
 from recipsim.report.figure_names import FIGURE_NAMES, TITLE_Y, check_figure_names
 
 
@@ -120,10 +120,6 @@ def plot_torque(cycle: pd.DataFrame, ax: Any = None, label: str = "") -> Figure:
     ax.legend()
     return fig
 
-
-#: PNG compression of the report's figures: zlib level 1 writes a figure in a third of
-#: the default level's time (6) for files about 20 % larger.
-PNG_OPTIONS = {"compress_level": 1}
 
 # Fixed margins of the report's figures [inch] (left, right, bottom, top): the
 # constrained layout engine, which measures every label at every draw, took about a

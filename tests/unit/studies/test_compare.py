@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import json
 import math
+import os
+from pathlib import Path
 
 import numpy as np
 import pandas as pd
@@ -185,6 +187,58 @@ def test_output_directory_layout(tab_vs_coupled):
     assert set(meta["cases"]) == {label_a, label_b}
     assert meta["cases"][label_b]["options"]["mechanics"] == "flexible"
     assert meta["command"] == ["test"] and "recipsim" in meta and "CoolProp" in meta
+
+
+def test_report_processes_write_the_in_process_files(tab_vs_coupled, tmp_path):
+    """The command line's report processes (here two, sharing both reports' tables and
+    figures and the overlays by cost) write the files the in-process writer writes: every
+    figure byte for byte, every table the same but for the measured wall times."""
+    from recipsim.report.compare_figures import COMPARE_PRELOAD
+    from recipsim.report.figure_process import FigureProcesses
+
+    figures = FigureProcesses(2, COMPARE_PRELOAD)
+    forked = run_comparison(
+        PAPER, _coupled_twin(tmp_path), out=tmp_path / "out", argv=["test"], figures=figures
+    )
+    serial = tab_vs_coupled.out
+
+    def files(root):
+        return sorted(str(p.relative_to(root)) for p in root.rglob("*") if p.is_file())
+
+    assert files(forked.out) == files(serial)
+    pngs = [name for name in files(serial) if name.endswith(".png")]
+    # the overlays; the tabulated-pressure report (no valves, no loss chain); the coupled
+    assert len(pngs) == 5 + 6 + 8, pngs
+    for name in pngs:
+        assert (forked.out / name).read_bytes() == (serial / name).read_bytes(), name
+    for label in tab_vs_coupled.labels:
+        for table in ("summary.csv", "cycle.csv"):
+            a, b = (pd.read_csv(root / label / table) for root in (serial, forked.out))
+            timing = [c for c in a.columns if c == "wall_time [s]"]
+            pd.testing.assert_frame_equal(a.drop(columns=timing), b.drop(columns=timing))
+    a, b = (
+        pd.read_csv(root / "comparison.csv").set_index("quantity").drop(index="wall_time [s]")
+        for root in (serial, forked.out)
+    )
+    pd.testing.assert_frame_equal(a, b)
+
+
+def test_solver_failure_with_report_processes_writes_nothing(tmp_path, capsys):
+    """A failing case B with the report processes started (plots on): exit 1, no output,
+    and the processes are gone (they exit without a job)."""
+    hot = tmp_path / "hot.toml"
+    hot.write_text(f'extends = "{REFERENCE}"\n[solver]\nmax_step = "-1 deg"\n')
+    out = tmp_path / "cmp"
+    before = _children()
+    assert main(["compare", str(REFERENCE), str(hot), "--out", str(out)]) == 2
+    assert not out.exists()
+    assert _children() <= before  # every report process ended and was reaped
+
+
+def _children() -> set[int]:
+    """Process ids of this process's children, zombies included (Linux)."""
+    tasks = Path(f"/proc/{os.getpid()}/task")
+    return {int(pid) for task in tasks.iterdir() for pid in (task / "children").read_text().split()}
 
 
 # ------------------------------------------------------------------------- physics
