@@ -19,7 +19,7 @@ if TYPE_CHECKING:
 
 #: Measured CPU time of each overlay figure of ``recipsim compare`` [s] (the reference
 #: case against its coupled variant, medians of 3), as
-#: :data:`recipsim.report.figure_process.FIGURE_COST`.
+#: :data:`recipsim.report.figure_costs.FIGURE_COST`.
 OVERLAY_COST = {
     "overlay_pressure": 0.10,
     "overlay_pv": 0.23,
@@ -60,7 +60,7 @@ def submit_compare_figures(
         Keyword arguments of :func:`recipsim.report.compare_plots.save_overlay_figures`
         (``cycles``, ``out_dir``, ``plenum``, ``names``), or None for no overlays.
     """
-    from recipsim.report.figure_process import FIGURE_COST, TABLES, TABLES_COST, share_by_cost
+    from recipsim.report.figure_costs import FIGURE_COST, TABLES, TABLES_COST
 
     cost: dict[str, float] = {}
     for k, report in enumerate(reports):
@@ -70,11 +70,12 @@ def submit_compare_figures(
             cost[f"{k}:{TABLES}"] = TABLES_COST
     for name in overlay["names"] if overlay is not None else ():
         cost[f"{_OVERLAY}:{name}"] = OVERLAY_COST.get(name, 0.15)
-    shares = share_by_cost(list(cost), figures.drawing_processes(), cost)
-    # the lightest share first: its process forks for the others before it draws
-    shares.sort(key=lambda share: sum(cost[item] for item in share))
-    jobs = [{"tasks": _tasks(share, reports, overlay)} for share in shares]
-    figures.submit("recipsim.report.compare_figures", "draw_compare_share", jobs)
+    figures.submit_shared(
+        "recipsim.report.compare_figures",
+        "draw_compare_share",
+        cost,
+        lambda share: {"tasks": _tasks(share, reports, overlay)},
+    )
 
 
 def _tasks(
@@ -82,7 +83,7 @@ def _tasks(
 ) -> list[tuple[str, dict[str, Any]]]:
     """One process's calls: per report, its share of that report's tables and figures;
     its share of the overlays."""
-    from recipsim.report.figure_process import TABLES
+    from recipsim.report.figure_costs import TABLES
 
     owners = [item.split(":", 1) for item in share]
     tasks: list[tuple[str, dict[str, Any]]] = []

@@ -6,10 +6,10 @@ line therefore forks :class:`FigureProcesses` before it loads anything heavy: ea
 imports pandas, matplotlib and the plotting modules while the parent imports numba,
 loads the case and solves, then waits for a job on a pipe. At the hand-over the parent
 only waits from then on, so the figures and the tables are shared, by their measured
-cost (:data:`FIGURE_COST`, :data:`TABLES_COST`), between as many processes as there are
-idle cores then (:meth:`FigureProcesses.drawing_processes`): a child given several
-shares forks itself for all but one (the forks inherit its imports, and close the pipes
-that are not theirs). The parent writes the rest of the report meanwhile and waits for
+cost (:mod:`.figure_costs`), between as many processes as there are idle cores then
+(:meth:`FigureProcesses.drawing_processes`): a child given several shares forks itself
+for all but one (the forks inherit its imports, and close the pipes that are not
+theirs). The parent writes the rest of the report meanwhile and waits for
 every process before its report directory is renamed into place, so the report stays
 atomic. On the 2-core machine, one report process (a second's imports would take the
 solve's core) that forks a second at the hand-over writes the default case's report in
@@ -33,37 +33,14 @@ import math
 import os
 import pickle
 import sys
-from collections.abc import Collection, Mapping
+from collections.abc import Callable, Collection, Mapping
 from pathlib import Path
 from typing import Any
 
 from recipsim import start_up_collector
 from recipsim.machine_load import busy_cores, idle_cores, usable_cores
+from recipsim.report.figure_costs import FIGURE_COST, TABLES, TABLES_COST, share_by_cost
 from recipsim.report.process_pipes import read_all, read_exactly, runnable, write_all
-
-#: Measured cost of each figure of the default case [s]: wall time in the report
-#: processes of a warm ``recipsim run`` on the 2-core machine (two drawing processes,
-#: the figures in the order :meth:`FigureProcesses.draw` gave them, 3 runs; the orbits,
-#: which the default case does not draw, measured alone). Used only to share the figures
-#: evenly between the processes. A one-panel figure drawn after another in the same
-#: process costs less (it reuses its Axes, :func:`recipsim.report.plotting.save_cycle_figures`).
-FIGURE_COST = {
-    "p_V": 0.045,
-    "p_V_loglog": 0.052,
-    "p_theta": 0.064,
-    "torque": 0.065,
-    "valves": 0.091,
-    "bearing_loads": 0.19,
-    "orbits": 0.25,
-    "loss_breakdown": 0.080,
-}
-
-#: Measured cost of a report's tables, ``summary.csv`` and ``cycle.csv`` [s] (as
-#: :data:`FIGURE_COST`), shared with the figures.
-TABLES_COST = 0.048
-
-#: The tables' name among the figures' when they are shared.
-TABLES = "(tables)"
 
 
 def _child(jobs: int, results: int, preload: tuple[str, ...], role: str) -> None:
@@ -242,15 +219,12 @@ class FigureProcesses:
         Returns at once; :meth:`wait` waits for the files. Call it (or :meth:`submit`)
         once.
         """
-        items = [*names, TABLES] if tables else list(names)
-        cost = {**FIGURE_COST, TABLES: TABLES_COST}
-        shares = share_by_cost(items, self.drawing_processes(), cost)
-        # the lightest share first, drawn by the child that forks for the others: it
-        # forks and sends their jobs before it draws (CPU of the two shares on 2 cores,
-        # medians of 8 runs: 0.47 and 0.47 s this way, 0.50 and 0.38 s the other)
-        shares.sort(key=lambda share: sum(cost.get(name, 0.1) for name in share))
-        jobs = [
-            {
+        cost = {name: FIGURE_COST.get(name, 0.1) for name in names}
+        if tables:
+            cost[TABLES] = TABLES_COST
+
+        def job(share: list[str]) -> dict[str, Any]:
+            return {
                 "directory": Path(directory),
                 "cycle": cycle,
                 "summary_row": dict(summary_row),
@@ -258,9 +232,25 @@ class FigureProcesses:
                 "names": tuple(name for name in share if name != TABLES),
                 "tables": TABLES in share,
             }
-            for share in shares
-        ]
-        self.submit("recipsim.report.report_figures", "write_report_share", jobs)
+
+        self.submit_shared("recipsim.report.report_figures", "write_report_share", cost, job)
+
+    def submit_shared(
+        self,
+        module: str,
+        function: str,
+        cost: Mapping[str, float],
+        job: Callable[[list[str]], dict[str, Any]],
+    ) -> None:
+        """Share the items of ``cost`` (name to measured cost [s]) between
+        :meth:`drawing_processes` by cost (:func:`share_by_cost`) and :meth:`submit`
+        ``module.function(**job(share))`` for each share; returns at once."""
+        shares = share_by_cost(list(cost), self.drawing_processes(), cost)
+        # the lightest share first, drawn by the child that forks for the others: it
+        # forks and sends their jobs before it draws (CPU of the two shares on 2 cores,
+        # medians of 8 runs: 0.47 and 0.47 s this way, 0.50 and 0.38 s the other)
+        shares.sort(key=lambda share: sum(cost[name] for name in share))
+        self.submit(module, function, [job(share) for share in shares])
 
     def submit(self, module: str, function: str, jobs: list[dict[str, Any]]) -> None:
         """Run ``module.function(**kwargs)`` for each ``kwargs`` of ``jobs``: job ``i``
@@ -327,18 +317,6 @@ class FigureProcesses:
         if failure is not None:
             raise failure
         return [values[job] for job in sorted(values)]
-
-
-def share_by_cost(names: Collection[str], parts: int, cost: Mapping[str, float]) -> list[list[str]]:
-    """``names`` shared into at most ``parts`` non-empty lists of about equal total
-    ``cost`` (largest first, each to the lightest list; unknown names cost 0.1)."""
-    shares: list[list[str]] = [[] for _ in range(parts)]
-    loads = [0.0] * parts
-    for name in sorted(names, key=lambda n: -cost.get(n, 0.1)):
-        lightest = loads.index(min(loads))
-        shares[lightest].append(name)
-        loads[lightest] += cost.get(name, 0.1)
-    return [share for share in shares if share]
 
 
 def start_figure_processes(

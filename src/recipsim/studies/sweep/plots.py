@@ -333,7 +333,7 @@ def submit_map_plots(
     """Have forked figure processes (:class:`recipsim.report.figure_process.FigureProcesses`)
     draw the map plots of :func:`save_map_plots`, shared between them by cost; returns at
     once, ``figures.wait()`` waits for them and returns each process's list of files."""
-    from recipsim.report.figure_process import share_by_cost
+    from recipsim.report.figure_costs import share_by_cost
 
     names = MAP_NAMES if only is None else check_map_names(only)
     jobs = [
