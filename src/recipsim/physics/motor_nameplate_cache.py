@@ -31,10 +31,16 @@ _REPRODUCED = 1e-9
 
 @lru_cache(maxsize=1)
 def _fit_source_digest() -> str:
-    """Digest of the modules whose code decides the fitted circuit."""
+    """Digest of the modules whose code decides the fitted circuit (recipsim's version
+    where a module's source cannot be read, e.g. an installation without sources)."""
+    from recipsim import __version__
+
     digest = hashlib.blake2b(digest_size=16)
     for module in (motor_nameplate, motor_circuit, bracketed_root):
-        digest.update(Path(str(module.__file__)).read_bytes())
+        try:
+            digest.update(Path(str(module.__file__)).read_bytes())
+        except OSError:
+            digest.update(f"{module.__name__} {__version__}".encode())
     return digest.hexdigest()
 
 

@@ -102,3 +102,18 @@ print(json.dumps("scipy.optimize" in sys.modules))
             [sys.executable, "-c", script], capture_output=True, text=True, check=True
         )
     assert json.loads(out.stdout.strip().splitlines()[-1]) is False
+
+
+def test_an_installation_without_sources_still_caches(cache, monkeypatch):
+    """Where a module's source file cannot be read, the key falls back to recipsim's
+    version: the circuit is still fitted, cached and read back."""
+    from recipsim.physics import motor_circuit
+
+    monkeypatch.setattr(motor_circuit, "__file__", str(cache / "missing.py"))
+    motor_nameplate_cache._fit_source_digest.cache_clear()
+    try:
+        first = nameplate_circuit(HOUSEHOLD_COMPRESSOR_NAMEPLATE)
+        assert nameplate_circuit(HOUSEHOLD_COMPRESSOR_NAMEPLATE) == first
+        assert len(list(cache.iterdir())) == 1
+    finally:
+        motor_nameplate_cache._fit_source_digest.cache_clear()
