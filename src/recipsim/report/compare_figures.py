@@ -1,7 +1,7 @@
 """The figures and tables of a comparison (``recipsim compare``) drawn by report processes.
 
 A comparison holds two case reports (tables and figures each) and the overlay figures of
-both cases. In one process they are drawn one after the other (about 2.3 s of CPU for
+both cases. In one process they are drawn one after the other (about 2.4 s of CPU for
 the reference case against its coupled variant). :func:`submit_compare_figures` shares
 them by measured cost between the forked report processes of
 :mod:`recipsim.report.figure_process`, as ``recipsim run`` shares one report's
