@@ -38,7 +38,9 @@ How each answer is obtained:
 * saturated liquid at a pressure (EN 12900's liquid): the saturation table at the
   table's saturation temperature.
 * the dense supercritical states of a transcritical gas-cooler exit (R744 at 90 bar and
-  35 C, 660 kg/m3) are outside the table: HEOS.
+  35 C, 660 kg/m3) are outside the table: HEOS, whose liquid-line answers are kept on
+  disk (:mod:`.heos_answers`), so that the next run of the case does not import
+  CoolProp for them.
 
 Accuracy: the table's (1e-5); :mod:`tests.test_table_states` measures every answer
 against HEOS.
@@ -47,10 +49,12 @@ against HEOS.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from typing import TYPE_CHECKING
 
 import numpy as np
 
+from recipsim.physics.thermo.heos_answers import HeosAnswers
 from recipsim.physics.thermo.properties import (
     PROP_CONDUCTIVITY,
     PROP_QUALITY,
@@ -152,6 +156,7 @@ class TableFluid:
         #: a state filled by the compiled solves (:data:`.table_solves.STATE`)
         self._out = np.full(N_STATE, math.nan)
         self._heos: Fluid | None = None
+        self._answers: HeosAnswers | None = None
         # pseudo-pure mixtures have no QT saturation data (NaN rows): their saturation
         # questions go to HEOS
         t_mid = 0.5 * (table.header(H_TS0) + table.header(H_TSAT_MAX))
@@ -329,7 +334,11 @@ class TableFluid:
                 raise TableMiss  # the expansion is not accurate enough here
             return u_l + p_sat * v_l + d1 * dp + t2 + t3
         except TableMiss:
-            return self.heos().liquid_enthalpy(pressure, temperature)
+            return self._remembered(
+                "liquid_enthalpy",
+                (pressure, temperature),
+                lambda: self.heos().liquid_enthalpy(pressure, temperature),
+            )
 
     def saturated_liquid_enthalpy(self, pressure: float) -> float:
         """Specific enthalpy [J/kg] of saturated liquid (bubble point) at ``pressure`` [Pa]:
@@ -342,4 +351,19 @@ class TableFluid:
             )
             return u_l + p_sat * v_l + d1 * (pressure - p_sat)
         except TableMiss:
-            return self.heos().saturated_liquid_enthalpy(pressure)
+            return self._remembered(
+                "saturated_liquid_enthalpy",
+                (pressure,),
+                lambda: self.heos().saturated_liquid_enthalpy(pressure),
+            )
+
+    def _remembered(
+        self, question: str, inputs: tuple[float, ...], ask: Callable[[], float]
+    ) -> float:
+        """HEOS's answer, kept on disk for the next run (:mod:`.heos_answers`); a kept
+        answer counts as an HEOS call."""
+        if self._answers is None:
+            self._answers = HeosAnswers(self.name)
+        if self._answers.remembered(question, inputs):
+            self.heos_calls += 1
+        return self._answers.answer(question, inputs, ask)
