@@ -22,17 +22,23 @@ from recipsim.cache_dirs import private_dir
 _MOST_BYTES = 100_000
 
 
+def read_json(path: Path, most_bytes: int = _MOST_BYTES) -> Any:
+    """The JSON content of ``path``, or None if it is missing, unreadable, larger than
+    ``most_bytes`` or not JSON."""
+    try:
+        if path.stat().st_size > most_bytes:
+            return None
+        return json.loads(path.read_text(encoding="utf-8"))
+    except (OSError, ValueError):
+        return None
+
+
 def read_record(
     path: Path, keys: Collection[str], text_keys: Collection[str] = ()
 ) -> dict[str, Any] | None:
     """The record in ``path`` if it has exactly ``keys``, text (str) under ``text_keys``
     and finite numbers under the others; else None."""
-    try:
-        if path.stat().st_size > _MOST_BYTES:
-            return None
-        data = json.loads(path.read_text(encoding="utf-8"))
-    except (OSError, ValueError):
-        return None
+    data = read_json(path)
     if not isinstance(data, dict) or set(data) != set(keys):
         return None
     for key, value in data.items():

@@ -15,13 +15,12 @@ cache only costs the question's HEOS evaluation.
 
 from __future__ import annotations
 
-import json
 import math
 from collections.abc import Callable
 from pathlib import Path
 
-from recipsim.atomic import atomic_write
-from recipsim.cache_dirs import cache_dir, private_dir
+from recipsim.cache_dirs import cache_dir
+from recipsim.physics.json_cache import read_json, write_record
 from recipsim.physics.thermo.coolprop_info import coolprop_version
 
 #: Most answers kept per fluid (a sweep over gas-cooler exits adds one a point).
@@ -82,26 +81,15 @@ class HeosAnswers:
         return self._answers
 
     def _save(self, answers: dict[str, float]) -> None:
-        text = json.dumps(answers, indent=0)
-
-        def write(tmp: Path) -> None:
-            tmp.write_text(text, encoding="utf-8")
-
         try:
-            private_dir(self.path.parent)
-            atomic_write(self.path, write)
+            write_record(self.path, answers)
         except OSError:
             pass  # an unwritable cache costs the HEOS evaluation next time, nothing else
 
 
 def _read(path: Path) -> dict[str, float]:
     """The kept answers, or none if the file is missing, too large or malformed."""
-    try:
-        if path.stat().st_size > _MOST_BYTES:
-            return {}
-        data = json.loads(path.read_text(encoding="utf-8"))
-    except (OSError, ValueError):
-        return {}
+    data = read_json(path, _MOST_BYTES)
     if not isinstance(data, dict):
         return {}
     if not all(
