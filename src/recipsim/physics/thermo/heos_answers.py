@@ -61,7 +61,7 @@ class HeosAnswers:
         float
             The answer, bit for bit what ``ask()`` returned when it was kept.
         """
-        key = f"{question}({', '.join(repr(float(x)) for x in inputs)})"
+        key = _key(question, inputs)
         answers = self._load()
         if key in answers:
             return answers[key]
@@ -73,7 +73,7 @@ class HeosAnswers:
 
     def remembered(self, question: str, inputs: tuple[float, ...]) -> bool:
         """Whether an answer to ``question`` at ``inputs`` is kept."""
-        return f"{question}({', '.join(repr(float(x)) for x in inputs)})" in self._load()
+        return _key(question, inputs) in self._load()
 
     def _load(self) -> dict[str, float]:
         if self._answers is None:
@@ -85,6 +85,11 @@ class HeosAnswers:
             write_record(self.path, answers)
         except OSError:
             pass  # an unwritable cache costs the HEOS evaluation next time, nothing else
+
+
+def _key(question: str, inputs: tuple[float, ...]) -> str:
+    """A question at its inputs, the floats exactly (``repr``)."""
+    return f"{question}({', '.join(repr(float(x)) for x in inputs)})"
 
 
 def _read(path: Path) -> dict[str, float]:

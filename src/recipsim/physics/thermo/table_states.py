@@ -364,6 +364,8 @@ class TableFluid:
         answer counts as an HEOS call."""
         if self._answers is None:
             self._answers = HeosAnswers(self.name)
-        if self._answers.remembered(question, inputs):
+        calls = self.heos_calls
+        value = self._answers.answer(question, inputs, ask)
+        if self.heos_calls == calls:  # kept: ask() (and so heos()) was not called
             self.heos_calls += 1
-        return self._answers.answer(question, inputs, ask)
+        return value
