@@ -109,9 +109,29 @@ def _is_compiled(node: ast.FunctionDef | ast.AsyncFunctionDef) -> bool:
     return False
 
 
+def _span(node: ast.FunctionDef | ast.AsyncFunctionDef) -> int:
+    """Lines of a function, decorators included."""
+    first = min([node.lineno] + [d.lineno for d in node.decorator_list])
+    assert node.end_lineno is not None
+    return node.end_lineno - first + 1
+
+
+def _compiled_lines(node: ast.AST) -> int:
+    """Lines of the compiled kernels nested in ``node`` (a closure that makes one)."""
+    total = 0
+    for child in ast.iter_child_nodes(node):
+        if isinstance(child, ast.FunctionDef | ast.AsyncFunctionDef) and _is_compiled(child):
+            total += _span(child)
+        else:
+            total += _compiled_lines(child)
+    return total
+
+
 def _function_lengths(tree: ast.Module) -> dict[str, int]:
     """Lines of every function and method not compiled by numba (decorators included),
-    by qualified name; the functions nested in a compiled kernel are compiled too."""
+    by qualified name; the functions nested in a compiled kernel are compiled too, and a
+    compiled kernel nested in a plain function (a closure that makes it) does not count
+    in that function's lines."""
     lengths: dict[str, int] = {}
 
     def visit(node: ast.AST, prefix: str) -> None:
@@ -120,9 +140,7 @@ def _function_lengths(tree: ast.Module) -> dict[str, int]:
                 if _is_compiled(child):
                     continue
                 name = prefix + child.name
-                first = min([child.lineno] + [d.lineno for d in child.decorator_list])
-                assert child.end_lineno is not None
-                lengths[name] = child.end_lineno - first + 1
+                lengths[name] = _span(child) - _compiled_lines(child)
                 visit(child, name + ".")
             elif isinstance(child, ast.ClassDef):
                 visit(child, prefix + child.name + ".")
@@ -186,12 +204,15 @@ def test_the_size_checks_see_what_they_should():
         f"def plain():\n{body}\n\n"
         f"@njit(cache=True)\ndef kernel():\n    def inner():\n{body.replace('    ', '        ')}\n"
         "    return inner\n\n"
-        f"class Holder:\n    def method(self):\n{body.replace('    ', '        ')}\n"
+        f"class Holder:\n    def method(self):\n{body.replace('    ', '        ')}\n\n"
+        "def factory(n):\n    @njit(cache=True)\n    def made():\n"
+        f"{body.replace('    ', '        ')}\n    return made\n"
     )
     lengths = _function_lengths(ast.parse(text))
     assert lengths["plain"] == 86
     assert "kernel" not in lengths and "kernel.inner" not in lengths
     assert lengths["Holder.method"] == 86
+    assert lengths["factory"] == 2 and "factory.made" not in lengths
     assert _long_modules([("big.py", "\n" * 401)]) == {"big.py": 401}
     noted = f'"""{SIZE_NOTE}: one piece."""\n' + "\n" * 401
     assert _long_modules([("noted.py", noted)]) == {}

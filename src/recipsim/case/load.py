@@ -103,6 +103,35 @@ def load_case(
     return replace(case, overrides=tuple(texts), allow_external_paths=allow_external_paths)
 
 
+def load_case_settings(
+    path: str | Path,
+    overrides: Mapping[str, Any] | Sequence[str] | None = None,
+    *,
+    allow_external_paths: bool = False,
+) -> tuple[Options, SolverSettings]:
+    """The ``[options]`` and ``[solver]`` tables of a case, read, overridden and
+    validated as :func:`load_case` does, without the rest of the case: no refrigerant
+    properties, no property table (what a process needs to know which compiled solver a
+    case runs, :mod:`recipsim.results.compile_ahead`). The options are those of the case
+    file; :func:`load_case` may complete them from the mechanism (the friction model).
+
+    Raises
+    ------
+    CaseError
+        With the file, the key and what is allowed.
+    """
+    from recipsim.case.builders import solver_settings
+    from recipsim.case.schema import read_table
+
+    path = shipped_case(path)
+    file = str(path)
+    raw, _ = read_toml(path, "case")
+    raw = resolve_extends(raw, path, [path.resolve()], allow_external_paths)
+    raw = apply_overrides(raw, override_texts(overrides), file)
+    options = Options(**read_table(raw.get("options"), OPTION_SPEC, file, "options"))
+    return options, solver_settings(raw.get("solver"), file)
+
+
 __all__ = [
     "GEOMETRY_SPEC",
     "HEADER_SPEC",
@@ -127,6 +156,7 @@ __all__ = [
     "apply_overrides",
     "case_from_dict",
     "load_case",
+    "load_case_settings",
     "override",
     "override_texts",
     "parse_override",

@@ -6,8 +6,10 @@ refrigerant; both are kept in recipsim's cache directory (``$RECIPSIM_CACHE``, s
 long sweep, a cluster's workers sharing the cache or a timed run do not pay for it:
 each CASE is solved for one revolution, which compiles the code of its scene
 (cylinder on the rigid crank, cylinder on the flexible crank, flexible crank under a
-tabulated pressure: each scene compiles on its own) and only that; by default one case
-of each scene. Each refrigerant of ``--refrigerants`` gets its property table.
+tabulated pressure: each scene compiles on its own) and only that, with the
+Rosenbrock-W step for a case whose ``solver.method`` is ``"dopri5_stiff"`` (which a run
+compiles only once a stretch turns stiff); by default one case of each scene. Each
+refrigerant of ``--refrigerants`` gets its property table.
 """
 
 from __future__ import annotations
@@ -81,6 +83,7 @@ def warmup(cases: list[str], refrigerants: list[str], verbose: bool = True) -> i
     from recipsim.case.load import load_case
     from recipsim.case.refrigerant import case_fluid, load_refrigerant
     from recipsim.results.run import simulate_case
+    from recipsim.solve.scene_entries import compile_entry, entry_name
 
     def say(text: str) -> None:
         if verbose:
@@ -94,8 +97,14 @@ def warmup(cases: list[str], refrigerants: list[str], verbose: bool = True) -> i
         start = time.perf_counter()
         loaded = load_case(case).with_(_ONE_REVOLUTION)
         simulate_case(loaded, ["recipsim", "warmup"])
+        name = entry_name(loaded.options, loaded.solver)
+        w_step = ""
+        if name is not None and loaded.solver.method == "dopri5_stiff":
+            compile_entry(name + "_w")  # taken over to where a stretch turns stiff
+            w_step = ", with the Rosenbrock-W step"
         say(
             f"{loaded.name}: solver compiled for its scene ({loaded.options.mechanics} "
-            f"crank, {loaded.options.pressure} pressure) ({time.perf_counter() - start:.1f} s)"
+            f"crank, {loaded.options.pressure} pressure{w_step}) "
+            f"({time.perf_counter() - start:.1f} s)"
         )
     return 0

@@ -2,24 +2,22 @@
 loads the case and builds its refrigerant's property table.
 
 With nothing of the solver in numba's cache, the command line (``recipsim run``) starts
-one child process that loads the same case with the CoolProp properties (no table to
-build) and solves one revolution of it, which compiles the case's scene and the tables'
-compiled code into numba's cache: the property callback has the same numba type with
-either property source, so the parent then loads what the child compiled. The parent
-meanwhile builds the property table and its model (which compiles the table's own
-functions, which the child never needs), then compiles what the child would compile
-last, the cycle table's sample outputs and pinned reactions
-(:func:`compile_outputs_while_waiting`), and waits for the child only then, before it
-integrates (:func:`wait_for_compile_ahead`). The child only pays where it has a core to itself:
-it starts when the machine has two cores that other work leaves idle now
-(:func:`recipsim.machine_load.idle_cores`, as for the figure processes), nothing of the solver is
-cached and ``RECIPSIM_COMPILE_AHEAD`` is not ``0`` (``1`` starts it whatever the load).
-Forced on at a load average of 2 on 2 cores (no idle core) it saved no wall time and
-cost up to 8 s of CPU. On the quiet 2-core machine a first run with the child took
-22.8-24.1 s (33.5 s of CPU), with the outputs compiled by the parent 24.2-27.2 s (median
-24.7 s) against 26.1-32.4 s (median 31.0 s) without, runs alternating: the machine's
-speed varied between runs more than the 1.9 s of the child's CPU this moves. A child
-that fails changes nothing: the parent then compiles as it would have.
+one child process that reads the case's options and solver settings alone
+(:func:`recipsim.case.load.load_case_settings`: no refrigerant, no CoolProp, no table)
+and compiles the solver's entry that the case starts with
+(:func:`recipsim.solve.scene_entries.entry_name`) for the argument types every run
+passes (:data:`~recipsim.solve.scene_entries.ENTRY_SIGNATURE`) into numba's cache, from
+which the parent then loads it. The parent meanwhile loads the case, builds the property
+table and its model (which compiles the table's own functions), then compiles the cycle
+table's sample outputs and pinned reactions (:func:`compile_outputs_while_waiting`), and
+waits for the child only then, before it integrates (:func:`wait_for_compile_ahead`).
+The child only pays where it has a core to itself: it starts when the machine has two
+cores that other work leaves idle now (:func:`recipsim.machine_load.idle_cores`, as for
+the figure processes), nothing of the solver is cached and ``RECIPSIM_COMPILE_AHEAD`` is
+not ``0`` (``1`` starts it whatever the load). Forced on at a load average of 2 on 2
+cores (no idle core) it saved no wall time and cost up to 8 s of CPU. A child that fails
+changes nothing: the parent then compiles as it would have. Measured first runs: README,
+"Time to answer", and docs/speed.md.
 """
 
 from __future__ import annotations
@@ -39,12 +37,6 @@ if TYPE_CHECKING:
 
 logger = logging.getLogger(__name__)
 
-#: The child's overrides on top of the case's own: CoolProp properties, one revolution.
-_CHILD_OVERRIDES = [
-    "options.properties=heos",
-    "solver.min_revolutions=1",
-    "solver.max_revolutions=1",
-]
 #: Longest wait for the child [s]; it is then stopped and the parent compiles itself.
 WAIT_LIMIT = 600.0
 _CHILD = "from recipsim.results.compile_ahead import compile_in_child; compile_in_child()"
@@ -91,10 +83,9 @@ def compile_outputs_while_waiting(model: Model) -> None:
     """While the compiling child compiles the solver, compile here what the cycle table
     runs after the solve: the scene's sample outputs and, on the rigid crank, the pinned
     reactions, by evaluating them once at the model's start state (the same argument
-    types as the cycle table's). The child then loads them from numba's cache instead of
-    compiling them (1.9 s of its CPU for the default case), and this process, which has
-    built its table and would only wait, spends that time instead. Nothing when no child
-    is pending."""
+    types as the cycle table's): this process, which has built its table and would only
+    wait, spends that time (1.9 s of CPU for the default case) before the solve instead
+    of after it. Nothing when no child is pending."""
     if not _pending:
         return
     import numpy as np
@@ -127,17 +118,18 @@ def compile_outputs_while_waiting(model: Model) -> None:
 
 def compile_in_child() -> None:
     """The child's work (``sys.argv``: case, JSON list of overrides, ``1`` to allow
-    external paths); any failure ends it quietly (the parent compiles then)."""
-    # the solve and the cycle table, as simulate_case runs them (importing
-    # recipsim.results.run here would close an import cycle: it imports this module)
-    from recipsim.case.load import load_case
-    from recipsim.results.cycle import cycle_table
-    from recipsim.solve.drive import build_model_for
-    from recipsim.solve.periodic import solve_periodic
+    external paths): compile the entry the case starts with (its options and solver
+    settings alone, :func:`recipsim.case.load.load_case_settings`) for the argument types
+    every run passes (:data:`recipsim.solve.scene_entries.ENTRY_SIGNATURE`), without
+    loading the rest of the case or its refrigerant (CoolProp's import alone is 1.9 s).
+    Any failure ends it quietly (the parent compiles then)."""
+    from recipsim.case.load import load_case_settings
+    from recipsim.solve.scene_entries import compile_entry, entry_name
 
     try:
-        overrides = json.loads(sys.argv[2]) + _CHILD_OVERRIDES
-        case = load_case(sys.argv[1], overrides, allow_external_paths=sys.argv[3] == "1")
-        cycle_table(solve_periodic(build_model_for(case)))
+        path, overrides, external = sys.argv[1], json.loads(sys.argv[2]), sys.argv[3] == "1"
+        name = entry_name(*load_case_settings(path, overrides, allow_external_paths=external))
+        if name is not None:
+            compile_entry(name)
     except Exception:
         sys.exit(1)

@@ -77,12 +77,11 @@ class CaseRun:
 
 
 def solver_entry(case: Case) -> str | None:
-    """The compiled integrator (:mod:`recipsim.solve.integrator`) that ``case`` runs, by
-    name; None when nothing is integrated (pinned mechanism, tabulated pressure)."""
-    opts = case.options
-    if opts.pressure == "tabulated":
-        return "integrate_mechanism" if opts.mechanics == "flexible" else None
-    return "integrate_cylinder" if opts.mechanics == "pinned" else "integrate_coupled"
+    """The compiled integrator (:mod:`recipsim.solve.scene_entries`) that ``case`` starts
+    with, by name; None when nothing is integrated (pinned mechanism, tabulated pressure)."""
+    from recipsim.solve.scene_entries import entry_name
+
+    return entry_name(case.options, case.solver)
 
 
 def simulate_case(case: Case, argv: list[str] | None = None) -> CaseRun:
@@ -167,7 +166,7 @@ def _solve(case: Case) -> tuple[Case, PeriodicSolution | None, StartupRun | None
 
     entry = solver_entry(case)
     if entry is not None and entry not in _COMPILED and numba_cache_lacks("integrator", entry):
-        logger.info("compiling the solver for this scene (once per installation: about 15-25 s)")
+        logger.info("compiling the solver for this scene (once per installation: about 10-20 s)")
     check_envelope(case)  # refuse a point outside the refrigerant's envelope up front
     if case.options.pressure == "tabulated" and case.options.mechanics == "pinned":
         wait_for_compile_ahead()

@@ -42,6 +42,10 @@ loop, the event landing and the counters.
 
 Counters in ``stats``: table :data:`STATS` (``ST_*``). Status: 0 done, 1 step size underflow,
 2 property failure that smaller steps could not cure, 3 chattering (events at one instant).
+
+The compiled entries, one per scene and one per scene with the W-step, and
+:func:`recipsim.solve.scene_entries.integrate`, which picks them, are in
+:mod:`.scene_entries`.
 """
 
 from __future__ import annotations
@@ -52,24 +56,19 @@ import numpy as np
 from numba import njit
 
 from recipsim.model.scenes import (
-    SCENE_COUPLED,
-    SCENE_CYLINDER,
-    SCENE_MECHANISM,
     event_action_for,
     event_values_for,
     rhs_for,
 )
 from recipsim.model.scenes import scene_rhs as scene_rhs  # re-exported (every scene)
 from recipsim.physics.layout_table import Layout
-from recipsim.physics.thermo.cylinder import I_SCENE
 from recipsim.solve.dense_output import hermite, record_samples
 from recipsim.solve.dopri5 import dopri5_step, stiffness_estimate
 from recipsim.solve.events import any_crossing, locate_first_event
 from recipsim.solve.step_args import SceneArgs, Tolerance, new_workspace
 from recipsim.solve.step_control import (  # METHOD_*: also the integrator's public names
-    JAC_STAGES_PER_STEP,
     METHOD_AUTO,
-    METHOD_DOPRI5,
+    METHOD_AUTO_IN_W,
     METHOD_ROSW,
     STIFF_LIMIT,
     count_stiff_step,
@@ -77,7 +76,10 @@ from recipsim.solve.step_control import (  # METHOD_*: also the integrator's pub
     rejected_step,
     switch_method,
 )
-from recipsim.solve.stiff import jacobian_fd, spectral_bound, w_step
+from recipsim.solve.step_control import (
+    METHOD_DOPRI5 as METHOD_DOPRI5,  # re-exported
+)
+from recipsim.solve.w_gate import EXPLICIT, refresh_jacobian_in, w_step_in
 
 STATS = Layout("integrator statistics")
 ST_STATUS = STATS.add("status", "code", "how the run ended (DONE, STEP_UNDERFLOW, ...)")
@@ -96,32 +98,25 @@ DONE = 0
 STEP_UNDERFLOW = 1
 PROPERTY_FAILURE = 2
 CHATTERING = 3
+#: an explicit entry's stop where the W-step takes over (never the status of :func:`integrate`)
+NEEDS_W_STEP = 4
 
 #: accepted steps in a row at one instant (events) before the run stops as chattering
 MAX_EVENTS_AT_ONE_INSTANT = 50
 
 
 @njit(cache=True, inline="always")
-def _step(use_w, code, t, h, y, ynew, scene, tol, work):
+def _step(w_entry, use_w, code, t, h, y, ynew, scene, tol, work):
     """One DOPRI5 or Rosenbrock-W step: ``(status, error_norm, evaluations)``."""
     if use_w:
-        st, err = w_step(code, t, h, y, ynew, scene, tol, work)
+        st, err = w_step_in(w_entry, code, t, h, y, ynew, scene, tol, work)
         return st, err, 4
     st, err = dopri5_step(code, t, h, y, ynew, scene, tol, work)
     return st, err, 6
 
 
 @njit(cache=True)
-def _refresh_jacobian(code, t, y, scene, tol, work):
-    """Build the W-method's Jacobian at (t [s], y): ``(status, evaluations, accepted
-    steps to keep it, bound on its spectral radius [1/s])``."""
-    stj, nj = jacobian_fd(code, t, y, work.stages[0], scene, tol, work)
-    jac_life = max(1, nj // JAC_STAGES_PER_STEP)
-    return stj, nj, jac_life, spectral_bound(work.jac, tol.scale, tol.n_err)
-
-
-@njit(cache=True)
-def _land_on_event(use_w, code, t, h, t_event, k_event, y, scene, tol, work):
+def _land_on_event(w_entry, use_w, code, t, h, t_event, k_event, y, scene, tol, work):
     """Move ``y`` from ``t`` to the event at ``t_event`` [s] and apply its action.
 
     The step is re-taken exactly to the event, so the states and quadratures see a
@@ -135,7 +130,7 @@ def _land_on_event(use_w, code, t, h, t_event, k_event, y, scene, tol, work):
     nfev = 0
     h_event = t_event - t
     if h_event > 0.0:
-        st, err, ne = _step(use_w, code, t, h_event, y, work.ystep, scene, tol, work)
+        st, err, ne = _step(w_entry, use_w, code, t, h_event, y, work.ystep, scene, tol, work)
         nfev += ne
         if st == 0:
             for i in range(n):
@@ -178,223 +173,222 @@ def _write_stats(stats, result, t, h, i_sample, counts) -> None:
     stats[ST_NJAC] = counts[5]
 
 
-@njit(cache=True, inline="always")
-def integrate_scene(
-    code,
-    t0,
-    t1,
-    y,
-    mode,
-    par,
-    ipar,
-    props,
-    pbuf,
-    rtol,
-    atol,
-    scale,
-    n_err,
-    h_init,
-    h_max,
-    sample_times,
-    samples,
-    sample_modes,
-    stats,
-    method,
-):
-    """Integrate scene ``code`` from ``t0`` to ``t1`` in place (compiled code only:
-    ``code`` must be a compile-time constant, see :func:`integrate`).
+def scene_entry(name: str, code: int, w_entry: int) -> Any:
+    """The compiled entry ``name`` that integrates scene ``code`` with the W-step flag
+    ``w_entry``: the loop below, compiled with both as compile-time constants (numba
+    takes a closure's variables as constants; each entry is cached in a file of its own,
+    named after it). A closure rather than one loop inlined into each entry: numba's
+    inlining copied the loop's IR block by block with its whole scope, 1.8 of the 13.6 s
+    of CPU that compiling the rigid-crank entry took (issue 17).
 
     Parameters
     ----------
+    name : str
+        The entry's name (``integrate_cylinder``, ...: :mod:`.scene_entries`).
     code : int
         The scene (``SCENE_*`` of :mod:`recipsim.model.scenes`), ``ipar[I_SCENE]``.
-    t0, t1 : float
-        Start and end time [s].
-    y : ndarray
-        State at ``t0``; overwritten with the state at ``t1`` (or at failure).
-    mode : int64 ndarray
-        Discrete modes of the scene, updated by events.
-    par, ipar : ndarray
-        Float and integer parameters of the scene.
-    props : first-class function ``(T, rho) -> int32``
-        Property callback that fills ``pbuf``.
-    rtol, atol : float
-        Relative tolerance and absolute tolerance on scaled states.
-    scale : ndarray
-        Typical magnitude of each state (absolute tolerance is ``atol * scale``).
-    n_err : int
-        Number of leading states under error control.
-    h_init, h_max : float
-        First trial step and largest step [s].
-    sample_times : ndarray
-        Increasing times in [t0, t1) at which to record the state.
-    samples, sample_modes : ndarray
-        Output, one row per sample time.
-    stats : ndarray
-        Output counters (see ``ST_*``).
-    method : int
-        :data:`METHOD_DOPRI5`, :data:`METHOD_AUTO` (switch to the Rosenbrock-W step
-        on stiff stretches) or :data:`METHOD_ROSW` (Rosenbrock-W throughout).
+    w_entry : int
+        :data:`.w_gate.WITH_W_STEP` for an entry that takes Rosenbrock-W steps,
+        :data:`.w_gate.EXPLICIT` for one that runs DOPRI5 only: there
+        :data:`METHOD_AUTO` stops with :data:`NEEDS_W_STEP` where it would switch to
+        the W-step (``stats`` then holds the time reached and the next step) and
+        :data:`METHOD_ROSW` at once.
     """
-    scene = SceneArgs(mode, par, ipar, props, pbuf)
-    tol = Tolerance(rtol, atol, scale, n_err)
-    work = new_workspace(y.shape[0], n_err)
-    # the arrays the loop touches on every step, taken out of the bundle once
-    k1 = work.stages[0]
-    k6 = work.stages[5]
-    k7 = work.stages[6]
-    ynew = work.ynew
-    ytmp = work.ytmp
-    yint = work.yint
-    aux = work.aux
-    g_old = work.g_old
-    g_new = work.g_new
-    # counts: evaluations, accepted, rejected, events, W-steps, Jacobians
-    counts = np.zeros(6, dtype=np.int64)
-    n_samples = sample_times.shape[0]
-    i_sample = 0
-    while i_sample < n_samples and sample_times[i_sample] < t0:
-        i_sample += 1
 
-    t = t0
-    h = min(h_init, h_max)
-    h_min = 1e-14 * max(1.0, abs(t1))
-    status = rhs_for(code, t, y, mode, par, ipar, props, pbuf, k1, aux)
-    counts[0] += 1
-    if status != 0:
-        stats[ST_STATUS] = PROPERTY_FAILURE
-        stats[ST_T] = t
-        return
-    event_values_for(code, y, mode, par, ipar, aux, g_old)
-    events_here = 0
-    t_last_event = -1e300
-    result = DONE
-    property_failed = False  # the last trial step failed in the property call
-    use_w = method == METHOD_ROSW
-    n_stiff = 0  # DOPRI5 steps that looked stiff
-    n_nonstiff = 0  # DOPRI5 steps that did not (W: steps DOPRI5 could have taken)
-    jac_age = -1  # accepted steps since the Jacobian was built (-1: none for this y)
-    jac_life = 1  # accepted steps a Jacobian is kept
-    rho_jac = 0.0
-    while t < t1:
-        if h < h_min:
-            result = PROPERTY_FAILURE if property_failed else STEP_UNDERFLOW
-            break
-        last = False
-        if t + h >= t1:
-            h = t1 - t
-            last = True
-        if use_w and (jac_age < 0 or jac_age >= jac_life):
-            stj, nj, jac_life, rho_jac = _refresh_jacobian(code, t, y, scene, tol, work)
-            counts[0] += nj
-            counts[5] += 1
-            jac_age = 0
-            if stj != 0:
-                result = PROPERTY_FAILURE
+    @njit(cache=True)
+    @_named(name)
+    def entry(  # type: ignore[no-untyped-def]
+        t0,
+        t1,
+        y,
+        mode,
+        par,
+        ipar,
+        props,
+        pbuf,
+        rtol,
+        atol,
+        scale,
+        n_err,
+        h_init,
+        h_max,
+        sample_times,
+        samples,
+        sample_modes,
+        stats,
+        method,
+    ):
+        """Integrate the entry's scene from ``t0`` to ``t1`` in place.
+
+        Parameters
+        ----------
+        t0, t1 : float
+            Start and end time [s].
+        y : ndarray
+            State at ``t0``; overwritten with the state at ``t1`` (or at failure).
+        mode : int64 ndarray
+            Discrete modes of the scene, updated by events.
+        par, ipar : ndarray
+            Float and integer parameters of the scene.
+        props : first-class function ``(T, rho) -> int32``
+            Property callback that fills ``pbuf``.
+        rtol, atol : float
+            Relative tolerance and absolute tolerance on scaled states.
+        scale : ndarray
+            Typical magnitude of each state (absolute tolerance is ``atol * scale``).
+        n_err : int
+            Number of leading states under error control.
+        h_init, h_max : float
+            First trial step and largest step [s].
+        sample_times : ndarray
+            Increasing times in [t0, t1) at which to record the state.
+        samples, sample_modes : ndarray
+            Output, one row per sample time.
+        stats : ndarray
+            Output counters (see ``ST_*``).
+        method : int
+            :data:`METHOD_DOPRI5`, :data:`METHOD_AUTO` (switch to the Rosenbrock-W step
+            on stiff stretches), :data:`METHOD_AUTO_IN_W` (the same, starting with the
+            W-step: the continuation after :data:`NEEDS_W_STEP`) or :data:`METHOD_ROSW`
+            (Rosenbrock-W throughout).
+        """
+        scene = SceneArgs(mode, par, ipar, props, pbuf)
+        tol = Tolerance(rtol, atol, scale, n_err)
+        work = new_workspace(y.shape[0], n_err)
+        # the arrays the loop touches on every step, taken out of the bundle once
+        k1 = work.stages[0]
+        k6 = work.stages[5]
+        k7 = work.stages[6]
+        ynew = work.ynew
+        ytmp = work.ytmp
+        yint = work.yint
+        aux = work.aux
+        g_old = work.g_old
+        g_new = work.g_new
+        # counts: evaluations, accepted, rejected, events, W-steps, Jacobians
+        counts = np.zeros(6, dtype=np.int64)
+        n_samples = sample_times.shape[0]
+        i_sample = 0
+        while i_sample < n_samples and sample_times[i_sample] < t0:
+            i_sample += 1
+
+        t = t0
+        h = min(h_init, h_max)
+        h_min = 1e-14 * max(1.0, abs(t1))
+        status = rhs_for(code, t, y, mode, par, ipar, props, pbuf, k1, aux)
+        counts[0] += 1
+        if status != 0:
+            stats[ST_STATUS] = PROPERTY_FAILURE
+            stats[ST_T] = t
+            return
+        event_values_for(code, y, mode, par, ipar, aux, g_old)
+        events_here = 0
+        t_last_event = -1e300
+        result = DONE
+        property_failed = False  # the last trial step failed in the property call
+        use_w = method == METHOD_ROSW or method == METHOD_AUTO_IN_W
+        if method == METHOD_AUTO_IN_W:
+            method = METHOD_AUTO
+        n_stiff = 0  # DOPRI5 steps that looked stiff
+        n_nonstiff = 0  # DOPRI5 steps that did not (W: steps DOPRI5 could have taken)
+        jac_age = -1  # accepted steps since the Jacobian was built (-1: none for this y)
+        jac_life = 1  # accepted steps a Jacobian is kept
+        rho_jac = 0.0
+        while t < t1:
+            if use_w and w_entry == EXPLICIT:
+                result = NEEDS_W_STEP  # the entry with the W-step goes on from t
                 break
-        st, err, ne = _step(use_w, code, t, h, y, ynew, scene, tol, work)
-        counts[0] += ne
-        property_failed = st > 0
-        if st != 0 or not (err <= 1.0):  # also catches NaN
-            counts[2] += 1
-            h = rejected_step(h, st, err, use_w)
-            if use_w and jac_age > 0:
-                jac_age = -1  # a stale Jacobian may be why: refresh it
-            continue
-        if method == METHOD_AUTO and not use_w:
-            stiff_step = stiffness_estimate(h, y, ynew, ytmp, k6, k7, tol) > STIFF_LIMIT
-            n_stiff, n_nonstiff = count_stiff_step(stiff_step, n_stiff, n_nonstiff)
-
-        event_values_for(code, ynew, mode, par, ipar, aux, g_new)
-        k_event = -1
-        t_event = t + h
-        if any_crossing(g_old, g_new):
-            k_event, t_event, ne = locate_first_event(code, t, h, y, ynew, scene, work)
-            counts[0] += ne
-        t_end = t + h if k_event < 0 else t_event
-        i_sample = record_samples(
-            t, h, y, k1, ynew, k7, t_end, t1, mode, sample_times, i_sample, samples,
-            sample_modes, yint,
-        )  # fmt: skip
-        counts[1] += 1
-        if use_w:
-            counts[4] += 1
-            jac_age += 1
-        if k_event < 0:
-            t = _advance(t, h, last, t1, y, ynew, k1, k7, g_old, g_new)
-        else:
-            terminal, ne = _land_on_event(use_w, code, t, h, t_event, k_event, y, scene, tol, work)
-            counts[0] += ne
-            counts[3] += 1
-            jac_age = -1  # new mode or impact: the Jacobian is rebuilt if needed
-            if t_event - t_last_event < 1e-12 * max(1.0, abs(t_event)):
-                events_here += 1
-                if events_here > MAX_EVENTS_AT_ONE_INSTANT:
-                    result = CHATTERING
-                    t = t_event
+            if h < h_min:
+                result = PROPERTY_FAILURE if property_failed else STEP_UNDERFLOW
+                break
+            last = False
+            if t + h >= t1:
+                h = t1 - t
+                last = True
+            if use_w and (jac_age < 0 or jac_age >= jac_life):
+                stj, nj, jac_life, rho_jac = refresh_jacobian_in(
+                    w_entry, code, t, y, scene, tol, work
+                )
+                counts[0] += nj
+                counts[5] += 1
+                jac_age = 0
+                if stj != 0:
+                    result = PROPERTY_FAILURE
                     break
+            st, err, ne = _step(w_entry, use_w, code, t, h, y, ynew, scene, tol, work)
+            counts[0] += ne
+            property_failed = st > 0
+            if st != 0 or not (err <= 1.0):  # also catches NaN
+                counts[2] += 1
+                h = rejected_step(h, st, err, use_w)
+                if use_w and jac_age > 0:
+                    jac_age = -1  # a stale Jacobian may be why: refresh it
+                continue
+            if method == METHOD_AUTO and not use_w:
+                stiff_step = stiffness_estimate(h, y, ynew, ytmp, k6, k7, tol) > STIFF_LIMIT
+                n_stiff, n_nonstiff = count_stiff_step(stiff_step, n_stiff, n_nonstiff)
+
+            event_values_for(code, ynew, mode, par, ipar, aux, g_new)
+            k_event = -1
+            t_event = t + h
+            if any_crossing(g_old, g_new):
+                k_event, t_event, ne = locate_first_event(code, t, h, y, ynew, scene, work)
+                counts[0] += ne
+            t_end = t + h if k_event < 0 else t_event
+            i_sample = record_samples(
+                t, h, y, k1, ynew, k7, t_end, t1, mode, sample_times, i_sample, samples,
+                sample_modes, yint,
+            )  # fmt: skip
+            counts[1] += 1
+            if use_w:
+                counts[4] += 1
+                jac_age += 1
+            if k_event < 0:
+                t = _advance(t, h, last, t1, y, ynew, k1, k7, g_old, g_new)
             else:
-                events_here = 0
-            t_last_event = t_event
-            t = t_event
-            st = rhs_for(code, t, y, mode, par, ipar, props, pbuf, k1, aux)
-            counts[0] += 1
-            if st != 0:
-                result = PROPERTY_FAILURE
-                break
-            # a new mode's events fire only on a fresh crossing from <= 0 to > 0
-            event_values_for(code, y, mode, par, ipar, aux, g_old)
-            if t >= t1 or terminal:
-                break
-            continue
-        h = next_step(h, err, use_w, h_max)
-        use_w, n_stiff, n_nonstiff, to_w = switch_method(
-            method, use_w, h, rho_jac, n_stiff, n_nonstiff
-        )
-        if to_w:
-            jac_age = -1
+                terminal, ne = _land_on_event(
+                    w_entry, use_w, code, t, h, t_event, k_event, y, scene, tol, work
+                )
+                counts[0] += ne
+                counts[3] += 1
+                jac_age = -1  # new mode or impact: the Jacobian is rebuilt if needed
+                if t_event - t_last_event < 1e-12 * max(1.0, abs(t_event)):
+                    events_here += 1
+                    if events_here > MAX_EVENTS_AT_ONE_INSTANT:
+                        result = CHATTERING
+                        t = t_event
+                        break
+                else:
+                    events_here = 0
+                t_last_event = t_event
+                t = t_event
+                st = rhs_for(code, t, y, mode, par, ipar, props, pbuf, k1, aux)
+                counts[0] += 1
+                if st != 0:
+                    result = PROPERTY_FAILURE
+                    break
+                # a new mode's events fire only on a fresh crossing from <= 0 to > 0
+                event_values_for(code, y, mode, par, ipar, aux, g_old)
+                if t >= t1 or terminal:
+                    break
+                continue
+            h = next_step(h, err, use_w, h_max)
+            use_w, n_stiff, n_nonstiff, to_w = switch_method(
+                method, use_w, h, rho_jac, n_stiff, n_nonstiff
+            )
+            if to_w:
+                jac_age = -1
 
-    _write_stats(stats, result, t, h, i_sample, counts)
+        _write_stats(stats, result, t, h, i_sample, counts)
 
-
-# ---- one compiled entry per scene ------------------------------------------------------
-# Each inlines integrate_scene with its scene as a compile-time constant: it compiles (and
-# numba caches, in its own file) that scene's code only, once (not inlined, the loop was
-# optimised and compiled to machine code twice: -1.9 s CPU on a first run, docs/speed.md).
-# fmt: off
-@njit(cache=True)
-def integrate_cylinder(t0, t1, y, mode, par, ipar, props, pbuf, rtol, atol, scale, n_err,
-                       h_init, h_max, sample_times, samples, sample_modes, stats, method):
-    """:func:`integrate_scene` of the cylinder on the rigid crank."""
-    integrate_scene(SCENE_CYLINDER, t0, t1, y, mode, par, ipar, props, pbuf, rtol, atol, scale,
-                    n_err, h_init, h_max, sample_times, samples, sample_modes, stats, method)
-
-
-@njit(cache=True)
-def integrate_mechanism(t0, t1, y, mode, par, ipar, props, pbuf, rtol, atol, scale, n_err,
-                        h_init, h_max, sample_times, samples, sample_modes, stats, method):
-    """:func:`integrate_scene` of the flexible crank train under a tabulated pressure."""
-    integrate_scene(SCENE_MECHANISM, t0, t1, y, mode, par, ipar, props, pbuf, rtol, atol, scale,
-                    n_err, h_init, h_max, sample_times, samples, sample_modes, stats, method)
+    return entry
 
 
-@njit(cache=True)
-def integrate_coupled(t0, t1, y, mode, par, ipar, props, pbuf, rtol, atol, scale, n_err,
-                      h_init, h_max, sample_times, samples, sample_modes, stats, method):
-    """:func:`integrate_scene` of the cylinder coupled to the flexible crank train."""
-    integrate_scene(SCENE_COUPLED, t0, t1, y, mode, par, ipar, props, pbuf, rtol, atol, scale,
-                    n_err, h_init, h_max, sample_times, samples, sample_modes, stats, method)
-# fmt: on
+def _named(name: str) -> Any:
+    """A decorator that names a function ``name`` (numba's cache names its file so)."""
 
+    def rename(function: Any) -> Any:
+        function.__name__ = function.__qualname__ = name
+        return function
 
-#: The compiled entry of each scene, indexed by its code.
-SCENE_INTEGRATORS = (integrate_cylinder, integrate_mechanism, integrate_coupled)
-
-
-def integrate(*args: Any, method: int = METHOD_DOPRI5) -> None:
-    """Integrate the scene in ``ipar[I_SCENE]`` in place: the arguments of
-    :func:`integrate_scene` but the scene's code, which this picks the compiled entry
-    for (the first call for a scene compiles that scene only)."""
-    if len(args) == 18:  # method left out
-        args = (*args, method)
-    SCENE_INTEGRATORS[int(args[5][I_SCENE])](*args)  # args[5]: ipar
+    return rename

@@ -31,13 +31,13 @@ from recipsim.solve.integrator import (
     ST_STATUS,
     ST_T,
     STEP_UNDERFLOW,
-    integrate,
 )
 from recipsim.solve.residual import (  # noqa: F401  (re-exported: callers import them here)
     cycle_residual,
     residual_reference,
     state_change,
 )
+from recipsim.solve.scene_entries import integrate
 from recipsim.solve.scene_outputs import evaluate_samples
 
 _FAILURES = {

@@ -61,7 +61,6 @@ from recipsim.solve.integrator import (
     ST_STATUS,
     ST_T,
 )
-from recipsim.solve.integrator import integrate as integrate_scene
 from recipsim.solve.periodic import solve_periodic
 from recipsim.solve.residual import cycle_residual
 from recipsim.solve.revolution import (
@@ -72,6 +71,7 @@ from recipsim.solve.revolution import (
     integrator_method,
     sample_outputs,
 )
+from recipsim.solve.scene_entries import integrate as integrate_scene
 from recipsim.solve.startup_boundary import (
     ramp_fraction,
     rest_state,

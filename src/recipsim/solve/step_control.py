@@ -9,10 +9,13 @@ from numba import njit
 
 from recipsim.solve.stiff import ERR_ORDER
 
-#: ``method`` of :func:`recipsim.solve.integrator.integrate`
+#: ``method`` of :func:`recipsim.solve.scene_entries.integrate`
 METHOD_DOPRI5 = 0
 METHOD_AUTO = 1
 METHOD_ROSW = 2
+#: :data:`METHOD_AUTO` starting with the W-step (the hand-over between the integrator's
+#: entries, :func:`recipsim.solve.scene_entries.integrate`)
+METHOD_AUTO_IN_W = 3
 #: stiffness switching (see the module docstring)
 STIFF_LIMIT = 3.25
 STIFF_AFTER = 5

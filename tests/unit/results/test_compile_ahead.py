@@ -50,7 +50,24 @@ def test_the_child_compiles_the_cases_scene_into_the_cache(fresh_cache) -> None:
     compile_ahead.wait_for_compile_ahead()
     names = {p.name.split("-")[0] for p in fresh_cache.rglob("*.nbi")}
     assert "integrator.integrate_cylinder" in names
-    assert "scene_outputs._cylinder_outputs" in names
+    # the entry alone, for the argument types every run passes (test below): not the
+    # cycle table's outputs (the parent's), not the W-step (a stiff stretch's)
+    assert "scene_outputs._cylinder_outputs" not in names
+    assert "integrator.integrate_cylinder_w" not in names
+
+
+def test_the_child_reads_which_entry_a_case_starts_with() -> None:
+    """From the options and solver settings alone (that the entry is compiled for the
+    types a run passes: tests/unit/solve/test_scene_entries.py)."""
+    from recipsim.case.load import load_case_settings
+    from recipsim.solve import scene_entries
+
+    settings = load_case_settings("reference_r134a_lbp")  # dopri5_stiff
+    assert scene_entries.entry_name(*settings) == "integrate_cylinder"
+    settings = load_case_settings("reference_r134a_lbp", ['solver.method="ros34pw2"'])
+    assert scene_entries.entry_name(*settings) == "integrate_cylinder_w"
+    settings = load_case_settings("paper_tabulated")
+    assert scene_entries.entry_name(*settings) == "integrate_mechanism"
 
 
 def test_the_parent_builds_its_model_before_it_waits_for_the_child(monkeypatch) -> None:

@@ -1,6 +1,7 @@
 """Each scene compiles on its own: the scene reaches the integrator as a compile-time
-constant, a pinned case compiles no flexible crank train, and a second process loads
-the compiled integrator from numba's cache instead of compiling it again."""
+constant, a pinned case compiles no flexible crank train nor, where no stretch turns
+stiff, the Rosenbrock-W step, and a second process loads the compiled integrator from
+numba's cache instead of compiling it again."""
 
 from __future__ import annotations
 
@@ -13,23 +14,24 @@ from numba import types
 from numba.core.errors import TypingError
 
 from recipsim.model import scenes
-from recipsim.solve import integrator
+from recipsim.solve import scene_entries, w_gate
 
 _CHILD = r"""
 import json
 from recipsim.case.load import load_case
 from recipsim.results.run import simulate_case
-from recipsim.solve import integrator
+from recipsim.solve import scene_entries
 from recipsim.model import scenes
 case = load_case("reference_r134a_lbp").with_(
     {"solver.min_revolutions": 1, "solver.max_revolutions": 1})
 simulate_case(case)
-entry = integrator.integrate_cylinder
+entry = scene_entries.integrate_cylinder
 print(json.dumps({
+    "signatures_as_ahead": entry.signatures == [scene_entries.ENTRY_SIGNATURE],
     "hits": sum(entry.stats.cache_hits.values()),
     "misses": sum(entry.stats.cache_misses.values()),
     "compiled": {f.__name__: len(f.signatures) for f in (
-        integrator.integrate_mechanism, integrator.integrate_coupled,
+        scene_entries.integrate_mechanism, scene_entries.integrate_coupled,
         scenes.mechanism_rhs, scenes.coupled_rhs)},
 }))
 """
@@ -41,7 +43,18 @@ def test_the_scene_function_is_chosen_at_compile_time() -> None:
         assert scenes._scene_function("rhs", types.IntegerLiteral(code)) is rhs
     with pytest.raises(TypingError, match="compile-time constant"):
         scenes._scene_function("rhs", types.int64)
-    assert integrator.SCENE_INTEGRATORS[scenes.SCENE_COUPLED] is integrator.integrate_coupled
+    coupled = scenes.SCENE_COUPLED
+    assert scene_entries.SCENE_INTEGRATORS[coupled] is scene_entries.integrate_coupled
+    assert scene_entries.W_SCENE_INTEGRATORS[coupled] is scene_entries.integrate_coupled_w
+
+
+def test_the_w_step_flag_is_chosen_at_compile_time() -> None:
+    """The W-step flag of an entry is a literal too: the explicit entry's compiles to a
+    constant, a runtime flag is refused."""
+    assert w_gate._takes_w_steps(types.IntegerLiteral(w_gate.WITH_W_STEP))
+    assert not w_gate._takes_w_steps(types.IntegerLiteral(w_gate.EXPLICIT))
+    with pytest.raises(TypingError, match="compile-time constant"):
+        w_gate._takes_w_steps(types.int64)
 
 
 @pytest.mark.slow
@@ -59,6 +72,8 @@ def test_a_pinned_case_compiles_its_scene_only_and_a_second_process_loads_it(tmp
         )
         runs.append(json.loads(out.stdout.splitlines()[-1]))
     first, second = runs
+    # a run calls the entry with the types the first run's child compiles ahead
+    assert first["signatures_as_ahead"] and second["signatures_as_ahead"]
     assert first["misses"] == 1 and first["hits"] == 0
     assert set(first["compiled"].values()) == {0}
     assert second["hits"] == 1 and second["misses"] == 0
@@ -66,4 +81,6 @@ def test_a_pinned_case_compiles_its_scene_only_and_a_second_process_loads_it(tmp
     assert "integrator.integrate_cylinder" in names
     other_scenes = {"integrator.integrate_coupled", "scenes.mechanism_rhs", "scenes.coupled_rhs"}
     assert not other_scenes & names
+    # "dopri5_stiff", whose stiffness test never fires on this case: no W-method compiled
+    assert not {"integrator.integrate_cylinder_w", "stiff.w_step", "stiff.jacobian_fd"} & names
     assert not any(name.startswith("flexible.") for name in names)

@@ -19,12 +19,16 @@ from recipsim.solve.integrator import (
     METHOD_DOPRI5,
     METHOD_ROSW,
     N_STATS,
+    ST_NACCEPT,
+    ST_NEVENTS,
     ST_NFEV,
     ST_NJAC,
+    ST_NREJECT,
+    ST_NSAMPLES,
     ST_NSTIFF,
     ST_STATUS,
-    integrate,
 )
+from recipsim.solve.scene_entries import integrate, integrate_cylinder_w
 from recipsim.solve.stiff import _lu_factor, _lu_solve
 
 # The soft discharge reed on its 1.8 mm stop (the reference's before issue 16): wide open,
@@ -62,12 +66,14 @@ def converged():
     return model, y, sol.final.mode_end.copy()
 
 
-def _one_revolution(model, y0, mode0, rtol, method):
+def _one_revolution(model, y0, mode0, rtol, method, entry=integrate, n_samples=0):
     y = y0.copy()
     mode = mode0.copy()
     stats = np.zeros(N_STATS)
     omega = model.par[cyl.C_OMEGA]
-    integrate(
+    times = model.period * np.arange(n_samples) / max(n_samples, 1)
+    samples = np.zeros((n_samples, y.shape[0]))
+    entry(
         0.0,
         model.period,
         y,
@@ -82,13 +88,15 @@ def _one_revolution(model, y0, mode0, rtol, method):
         model.n_err,
         model.period * 1e-4,
         math.radians(2.0) / omega,
-        np.zeros(0),
-        np.zeros((0, y.shape[0])),
-        np.zeros((0, mode.shape[0]), dtype=np.int64),
+        times,
+        samples,
+        np.zeros((n_samples, mode.shape[0]), dtype=np.int64),
         stats,
         method,
     )
     assert stats[ST_STATUS] == 0
+    if n_samples:
+        return y, stats, samples
     return y, stats
 
 
@@ -156,6 +164,25 @@ def test_switching_takes_the_stiff_stretch_and_saves_work(converged):
     assert st_auto[ST_NFEV] < 0.8 * st_dp[ST_NFEV]
     err_auto = _rel(y_auto, ref)
     assert err_auto < max(3.0 * _rel(y_dp, ref), 3e-5)
+
+
+def test_the_hand_over_to_the_w_entry_is_the_one_loops_switch(converged):
+    """METHOD_AUTO through integrate() runs the explicit entry, which stops where the
+    stiffness test fires, and the entry with the W-step from there: the end state, the
+    720 samples and the counters are those of the W entry running the switching loop
+    alone from the start (to the bit), but one right-hand side per hand-over (the first
+    stage evaluated again at the same state). The explicit entry never takes a W-step."""
+    model, y0, mode0 = converged
+    y_split, st_split, s_split = _one_revolution(model, y0, mode0, 1e-6, METHOD_AUTO, n_samples=720)
+    y_one, st_one, s_one = _one_revolution(
+        model, y0, mode0, 1e-6, METHOD_AUTO, entry=integrate_cylinder_w, n_samples=720
+    )
+    assert st_one[ST_NSTIFF] > 0
+    np.testing.assert_array_equal(y_split, y_one)
+    np.testing.assert_array_equal(s_split, s_one)
+    for counter in (ST_NACCEPT, ST_NREJECT, ST_NEVENTS, ST_NSTIFF, ST_NJAC, ST_NSAMPLES):
+        assert st_split[counter] == st_one[counter]
+    assert st_split[ST_NFEV] == st_one[ST_NFEV] + 1  # one hand-over in this revolution
 
 
 def test_tight_tolerances_stay_pure_dopri5(converged):

@@ -72,6 +72,12 @@ def test_warmup_solves_one_revolution_of_each_case(capsys: pytest.CaptureFixture
     err = capsys.readouterr().err
     assert "property table of R134a ready" in err
     assert "reference_r134a_lbp: solver compiled for its scene (pinned crank" in err
+    # its solver.method "dopri5_stiff" hands over to the W-step where a stretch turns
+    # stiff: warmup compiles that entry too, which one revolution need not reach
+    assert "with the Rosenbrock-W step" in err
+    from recipsim.solve import scene_entries
+
+    assert scene_entries.ENTRY_SIGNATURE in scene_entries.integrate_cylinder_w.signatures
 
 
 def test_both_overhead_ratios_are_printed() -> None:

@@ -1,0 +1,144 @@
+"""The compiled integrator's entries: one per scene, and one per scene with the
+Rosenbrock-W step, and :func:`integrate`, which picks them.
+
+Each entry is the loop of :func:`recipsim.solve.integrator.scene_entry` compiled with its
+scene and W-step flag as compile-time constants: it compiles (and numba caches, in its
+own file) that scene's code only, and the explicit entry none of the W-method
+(:mod:`.w_gate`). :func:`integrate` runs a scene's explicit entry and hands over to its
+entry with the W-step where the W-step takes over (:data:`METHOD_AUTO` on a stiff
+stretch, :data:`METHOD_ROSW` from the start), so a case that never takes a W-step never
+compiles one (5.4 s of the 19.3 s of CPU that compiling the rigid-crank scene took). The
+hand-over repeats what the one loop does at a switch: the same state, step and samples,
+the first stage and the event values evaluated again at the same state (one more
+right-hand side in ``rhs_evaluations``).
+"""
+
+from __future__ import annotations
+
+import logging
+from typing import TYPE_CHECKING, Any
+
+from numba import types
+
+from recipsim.cache_dirs import numba_cache_lacks
+from recipsim.model.scenes import SCENE_COUPLED, SCENE_CYLINDER, SCENE_MECHANISM
+from recipsim.physics.thermo.cylinder import I_SCENE
+from recipsim.physics.thermo.properties import PROPS_TYPE
+from recipsim.solve.integrator import (
+    METHOD_AUTO_IN_W,
+    METHOD_DOPRI5,
+    METHOD_ROSW,
+    NEEDS_W_STEP,
+    ST_H,
+    ST_NACCEPT,
+    ST_NEVENTS,
+    ST_NFEV,
+    ST_NJAC,
+    ST_NREJECT,
+    ST_NSTIFF,
+    ST_STATUS,
+    ST_T,
+    scene_entry,
+)
+from recipsim.solve.w_gate import EXPLICIT, WITH_W_STEP
+
+if TYPE_CHECKING:
+    from recipsim.case.sections import Options, SolverSettings
+
+logger = logging.getLogger(__name__)
+
+integrate_cylinder = scene_entry("integrate_cylinder", SCENE_CYLINDER, EXPLICIT)
+integrate_mechanism = scene_entry("integrate_mechanism", SCENE_MECHANISM, EXPLICIT)
+integrate_coupled = scene_entry("integrate_coupled", SCENE_COUPLED, EXPLICIT)
+integrate_cylinder_w = scene_entry("integrate_cylinder_w", SCENE_CYLINDER, WITH_W_STEP)
+integrate_mechanism_w = scene_entry("integrate_mechanism_w", SCENE_MECHANISM, WITH_W_STEP)
+integrate_coupled_w = scene_entry("integrate_coupled_w", SCENE_COUPLED, WITH_W_STEP)
+
+
+#: numba's argument types of every entry, as :func:`integrate` passes them (arrays
+#: C-contiguous; ``ipar``, ``mode`` and ``sample_modes`` int64; ``n_err`` and ``method``
+#: int64): what :func:`compile_entry` compiles ahead, without a case
+_F1, _F2 = types.Array(types.float64, 1, "C"), types.Array(types.float64, 2, "C")
+_I1, _I2 = types.Array(types.int64, 1, "C"), types.Array(types.int64, 2, "C")
+_F, _N = types.float64, types.int64
+ENTRY_SIGNATURE = (
+    _F,
+    _F,
+    _F1,
+    _I1,
+    _F1,
+    _I1,
+    PROPS_TYPE,
+    _F1,
+    _F,
+    _F,
+    _F1,
+    _N,
+    _F,
+    _F,
+    _F1,
+    _F2,
+    _I2,
+    _F1,
+    _N,
+)
+
+#: The explicit compiled entry of each scene, indexed by its code.
+SCENE_INTEGRATORS = (integrate_cylinder, integrate_mechanism, integrate_coupled)
+#: The entry of each scene with the Rosenbrock-W step, indexed by its code.
+W_SCENE_INTEGRATORS = (integrate_cylinder_w, integrate_mechanism_w, integrate_coupled_w)
+#: The counters that add up over a hand-over between the two entries.
+_ADDED_COUNTS = [ST_NFEV, ST_NACCEPT, ST_NREJECT, ST_NEVENTS, ST_NSTIFF, ST_NJAC]
+
+
+def integrate(*args: Any, method: int = METHOD_DOPRI5) -> None:
+    """Integrate the scene in ``ipar[I_SCENE]`` in place: the arguments of
+    :func:`recipsim.solve.integrator.scene_entry`'s entries. It runs the scene's
+    explicit entry (the first call for a scene compiles that scene only), and its entry
+    with the Rosenbrock-W step from where the W-step takes over (:data:`METHOD_AUTO`
+    on a stiff stretch, :data:`METHOD_ROSW` from the start): a case that never takes a
+    W-step never compiles one."""
+    if len(args) == 18:  # method left out
+        args = (*args, method)
+    code = int(args[5][I_SCENE])  # args[5]: ipar
+    if args[18] == METHOD_ROSW or args[18] == METHOD_AUTO_IN_W:
+        _w_entry(code)(*args)
+        return
+    SCENE_INTEGRATORS[code](*args)
+    stats = args[17]
+    if stats[ST_STATUS] != NEEDS_W_STEP:
+        return
+    counted = stats[_ADDED_COUNTS]
+    # t0 and the first step (args[12]) from where the explicit entry stopped
+    args = (stats[ST_T], args[1], *args[2:12], stats[ST_H], *args[13:18], METHOD_AUTO_IN_W)
+    _w_entry(code)(*args)
+    stats[_ADDED_COUNTS] += counted
+
+
+def _w_entry(code: int) -> Any:
+    """The entry of scene ``code`` with the W-step; says so where its first call here
+    compiles it (nothing of it in numba's cache)."""
+    entry = W_SCENE_INTEGRATORS[code]
+    if not entry.signatures and numba_cache_lacks("integrator", entry.py_func.__name__):
+        logger.info("compiling the solver's Rosenbrock-W step for this scene (once: about 6 s)")
+    return entry
+
+
+def entry_name(options: Options, solver: SolverSettings) -> str | None:
+    """The compiled entry that a case with these ``[options]`` and ``[solver]`` starts
+    with, by name; None where nothing is integrated (pinned mechanism, tabulated
+    pressure). ``"dopri5_stiff"`` starts with the explicit entry (the one with the
+    W-step compiles where a stretch turns stiff), ``"ros34pw2"`` with the W-step's."""
+    if options.pressure == "tabulated":
+        if options.mechanics != "flexible":
+            return None
+        scene = "integrate_mechanism"
+    else:
+        scene = "integrate_cylinder" if options.mechanics == "pinned" else "integrate_coupled"
+    return scene + "_w" if solver.method == "ros34pw2" else scene
+
+
+def compile_entry(name: str) -> None:
+    """Compile the entry ``name`` (:func:`entry_name`) for :data:`ENTRY_SIGNATURE` into
+    numba's cache, without running it: no case, no properties needed."""
+    globals()[name].compile(ENTRY_SIGNATURE)
