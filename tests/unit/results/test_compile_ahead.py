@@ -128,3 +128,17 @@ def test_the_outputs_compiled_while_waiting_are_those_the_cycle_table_runs() -> 
     )
     assert done.returncode == 0, done.stderr
     assert done.stdout.split("\n")[:3] == ["0 0", "1 1", "1 1"]
+
+
+def test_a_moment_of_load_does_not_keep_the_child_from_starting(monkeypatch) -> None:
+    """A task runnable for a moment shows in one look, not in the next; work that keeps
+    the cores busy shows in every look, and the child is not started."""
+    from recipsim import machine_load
+
+    looks = iter([1, 1, 2, 0])
+    monkeypatch.setattr(machine_load, "idle_cores", lambda most, unknown=None: next(looks))
+    assert compile_ahead._idle_cores() == 2.0
+    calls = []
+    monkeypatch.setattr(machine_load, "idle_cores", lambda most, unknown=None: calls.append(1) or 1)
+    assert compile_ahead._idle_cores() == 1.0
+    assert len(calls) == compile_ahead._LOOKS
