@@ -97,10 +97,10 @@ def warmup(cases: list[str], refrigerants: list[str], verbose: bool = True) -> i
         start = time.perf_counter()
         loaded = load_case(case).with_(_ONE_REVOLUTION)
         simulate_case(loaded, ["recipsim", "warmup"])
-        name = entry_name(loaded.options, loaded.solver)
+        entry = entry_name(loaded.options, loaded.solver)
         w_step = ""
-        if name is not None and loaded.solver.method == "dopri5_stiff":
-            compile_entry(name + "_w")  # taken over to where a stretch turns stiff
+        if entry is not None and loaded.solver.method == "dopri5_stiff":
+            compile_entry(entry + "_w")  # taken over to where a stretch turns stiff
             w_step = ", with the Rosenbrock-W step"
         say(
             f"{loaded.name}: solver compiled for its scene ({loaded.options.mechanics} "

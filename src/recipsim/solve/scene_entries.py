@@ -119,7 +119,8 @@ def _w_entry(code: int) -> Any:
     """The entry of scene ``code`` with the W-step; says so where its first call here
     compiles it (nothing of it in numba's cache)."""
     entry = W_SCENE_INTEGRATORS[code]
-    if not entry.signatures and numba_cache_lacks("integrator", entry.py_func.__name__):
+    # (a plain function under NUMBA_DISABLE_JIT=1: nothing to compile)
+    if not getattr(entry, "signatures", True) and numba_cache_lacks("integrator", entry.__name__):
         logger.info("compiling the solver's Rosenbrock-W step for this scene (once: about 6 s)")
     return entry
 
@@ -140,5 +141,8 @@ def entry_name(options: Options, solver: SolverSettings) -> str | None:
 
 def compile_entry(name: str) -> None:
     """Compile the entry ``name`` (:func:`entry_name`) for :data:`ENTRY_SIGNATURE` into
-    numba's cache, without running it: no case, no properties needed."""
-    globals()[name].compile(ENTRY_SIGNATURE)
+    numba's cache, without running it: no case, no properties needed (nothing under
+    ``NUMBA_DISABLE_JIT=1``)."""
+    entry = globals()[name]
+    if hasattr(entry, "compile"):
+        entry.compile(ENTRY_SIGNATURE)

@@ -84,3 +84,33 @@ def test_a_pinned_case_compiles_its_scene_only_and_a_second_process_loads_it(tmp
     # "dopri5_stiff", whose stiffness test never fires on this case: no W-method compiled
     assert not {"integrator.integrate_cylinder_w", "stiff.w_step", "stiff.jacobian_fd"} & names
     assert not any(name.startswith("flexible.") for name in names)
+
+
+_PURE_PYTHON = r"""
+import numpy as np
+from recipsim.case.load import load_case
+from recipsim.model.build import build_model
+from recipsim.solve.integrator import N_STATS, ST_NACCEPT, ST_STATUS, METHOD_AUTO, METHOD_ROSW
+from recipsim.solve.scene_entries import compile_entry, integrate
+compile_entry("integrate_cylinder")  # nothing to compile
+m = build_model(load_case("reference_r134a_lbp")).for_solve()
+for method in (METHOD_AUTO, METHOD_ROSW):
+    y, mode, stats = m.y0.copy(), m.mode0.copy(), np.zeros(N_STATS)
+    integrate(0.0, 0.1 * m.period, y, mode, m.par, m.ipar, m.props, m.props.buffer, 1e-6,
+              1e-6, m.scale, m.n_err, 1e-4 * m.period, m.period / 72, np.zeros(0),
+              np.zeros((0, y.shape[0])), np.zeros((0, mode.shape[0]), dtype=np.int64),
+              stats, method)
+    assert stats[ST_STATUS] == 0 and stats[ST_NACCEPT] > 0, stats
+print("ok")
+"""
+
+
+def test_the_entries_run_without_the_jit() -> None:
+    """Under NUMBA_DISABLE_JIT=1 the entries are plain functions: integrate runs them, the
+    hand-over and the W entry included, and compile_entry has nothing to do."""
+    env = dict(os.environ, NUMBA_DISABLE_JIT="1")
+    out = subprocess.run(
+        [sys.executable, "-c", _PURE_PYTHON], env=env, capture_output=True, text=True
+    )
+    assert out.returncode == 0, out.stderr[-2000:]
+    assert out.stdout.strip().endswith("ok")
