@@ -115,33 +115,18 @@ def _step(w_entry, use_w, code, t, h, y, ynew, scene, tol, work):
     return st, err, 6
 
 
-@njit(cache=True)
-def _land_on_event(w_entry, use_w, code, t, h, t_event, k_event, y, scene, tol, work):
-    """Move ``y`` from ``t`` to the event at ``t_event`` [s] and apply its action.
-
-    The step is re-taken exactly to the event, so the states and quadratures see a
-    smooth right-hand side (no interpolation across the kink at the event); the Hermite
-    interpolant of the accepted step of ``h`` [s] is the fallback if the re-step fails.
-    Returns ``(terminal, evaluations)``.
-    """
-    yint = work.yint
-    n = y.shape[0]
-    hermite(t, h, y, work.stages[0], work.ynew, work.stages[6], t_event, yint)
-    nfev = 0
-    h_event = t_event - t
-    if h_event > 0.0:
-        st, err, ne = _step(w_entry, use_w, code, t, h_event, y, work.ystep, scene, tol, work)
-        nfev += ne
-        if st == 0:
-            for i in range(n):
-                yint[i] = work.ystep[i]
-    for i in range(n):
-        y[i] = yint[i]
+@njit(cache=True, inline="always")
+def _apply_event(code, landed, t_event, k_event, y, scene, work):
+    """Put ``y`` at the event at ``t_event`` [s] and apply action ``k_event``: ``y``
+    becomes the re-step's end ``work.ynew`` if it ``landed``, else the accepted step's
+    Hermite interpolant at the event (``work.yint``). Returns whether the event ends
+    the integration."""
+    end = work.ynew if landed else work.yint
+    for i in range(y.shape[0]):
+        y[i] = end[i]
     mode, par, ipar, props, pbuf = scene
     rhs_for(code, t_event, y, mode, par, ipar, props, pbuf, work.ftmp, work.aux)
-    nfev += 1
-    terminal = event_action_for(code, k_event, y, mode, par, ipar, work.aux)
-    return terminal, nfev
+    return event_action_for(code, k_event, y, mode, par, ipar, work.aux)
 
 
 @njit(cache=True, inline="always")
@@ -294,29 +279,69 @@ def scene_entry(name: str, code: int, w_entry: int) -> Any:
         jac_age = -1  # accepted steps since the Jacobian was built (-1: none for this y)
         jac_life = 1  # accepted steps a Jacobian is kept
         rho_jac = 0.0
+        # An event located in a step is landed on by re-taking the step from its start to
+        # the event (the states and quadratures then see a smooth right-hand side, no
+        # interpolation across the kink), through the one step call below: its code is
+        # compiled once (a second call site compiled the step again, 1 s of CPU).
+        landing = False
+        h_accepted = h  # the accepted step [s] while its event is landed on
+        k_event = -1  # the event located in the accepted step, and its time [s]
+        t_event = t0
         while t < t1:
-            if use_w and w_entry == EXPLICIT:
-                result = NEEDS_W_STEP  # the entry with the W-step goes on from t
-                break
-            if h < h_min:
-                result = PROPERTY_FAILURE if property_failed else STEP_UNDERFLOW
-                break
-            last = False
-            if t + h >= t1:
-                h = t1 - t
-                last = True
-            if use_w and (jac_age < 0 or jac_age >= jac_life):
-                stj, nj, jac_life, rho_jac = refresh_jacobian_in(
-                    w_entry, code, t, y, scene, tol, work
-                )
-                counts[0] += nj
-                counts[5] += 1
-                jac_age = 0
-                if stj != 0:
+            if not landing:
+                if use_w and w_entry == EXPLICIT:
+                    result = NEEDS_W_STEP  # the entry with the W-step goes on from t
+                    break
+                if h < h_min:
+                    result = PROPERTY_FAILURE if property_failed else STEP_UNDERFLOW
+                    break
+                last = False
+                if t + h >= t1:
+                    h = t1 - t
+                    last = True
+                if use_w and (jac_age < 0 or jac_age >= jac_life):
+                    stj, nj, jac_life, rho_jac = refresh_jacobian_in(
+                        w_entry, code, t, y, scene, tol, work
+                    )
+                    counts[0] += nj
+                    counts[5] += 1
+                    jac_age = 0
+                    if stj != 0:
+                        result = PROPERTY_FAILURE
+                        break
+            if landing and h <= 0.0:
+                st, err, ne = 1, 0.0, 0  # the event at the step's start: no re-step
+            else:
+                st, err, ne = _step(w_entry, use_w, code, t, h, y, ynew, scene, tol, work)
+            counts[0] += ne
+            if landing:
+                # the re-step's end, or the interpolant if it failed
+                landing = False
+                h = h_accepted
+                terminal = _apply_event(code, st == 0, t_event, k_event, y, scene, work)
+                counts[0] += 1
+                counts[3] += 1
+                jac_age = -1  # new mode or impact: the Jacobian is rebuilt if needed
+                if t_event - t_last_event < 1e-12 * max(1.0, abs(t_event)):
+                    events_here += 1
+                    if events_here > MAX_EVENTS_AT_ONE_INSTANT:
+                        result = CHATTERING
+                        t = t_event
+                        break
+                else:
+                    events_here = 0
+                t_last_event = t_event
+                t = t_event
+                st = rhs_for(code, t, y, mode, par, ipar, props, pbuf, k1, aux)
+                counts[0] += 1
+                if st != 0:
                     result = PROPERTY_FAILURE
                     break
-            st, err, ne = _step(w_entry, use_w, code, t, h, y, ynew, scene, tol, work)
-            counts[0] += ne
+                # a new mode's events fire only on a fresh crossing from <= 0 to > 0
+                event_values_for(code, y, mode, par, ipar, aux, g_old)
+                if t >= t1 or terminal:
+                    break
+                continue
             property_failed = st > 0
             if st != 0 or not (err <= 1.0):  # also catches NaN
                 counts[2] += 1
@@ -346,31 +371,11 @@ def scene_entry(name: str, code: int, w_entry: int) -> Any:
             if k_event < 0:
                 t = _advance(t, h, last, t1, y, ynew, k1, k7, g_old, g_new)
             else:
-                terminal, ne = _land_on_event(
-                    w_entry, use_w, code, t, h, t_event, k_event, y, scene, tol, work
-                )
-                counts[0] += ne
-                counts[3] += 1
-                jac_age = -1  # new mode or impact: the Jacobian is rebuilt if needed
-                if t_event - t_last_event < 1e-12 * max(1.0, abs(t_event)):
-                    events_here += 1
-                    if events_here > MAX_EVENTS_AT_ONE_INSTANT:
-                        result = CHATTERING
-                        t = t_event
-                        break
-                else:
-                    events_here = 0
-                t_last_event = t_event
-                t = t_event
-                st = rhs_for(code, t, y, mode, par, ipar, props, pbuf, k1, aux)
-                counts[0] += 1
-                if st != 0:
-                    result = PROPERTY_FAILURE
-                    break
-                # a new mode's events fire only on a fresh crossing from <= 0 to > 0
-                event_values_for(code, y, mode, par, ipar, aux, g_old)
-                if t >= t1 or terminal:
-                    break
+                # the fallback first (the re-step overwrites the stages), then the re-step
+                hermite(t, h, y, k1, ynew, k7, t_event, yint)
+                landing = True
+                h_accepted = h
+                h = t_event - t
                 continue
             h = next_step(h, err, use_w, h_max)
             use_w, n_stiff, n_nonstiff, to_w = switch_method(

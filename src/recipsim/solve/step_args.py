@@ -59,8 +59,8 @@ class Workspace(NamedTuple):
 
     ``stages`` (7, n): Dormand-Prince stages, f(t, y) first and f(t + h, y_new) last
     (the Rosenbrock-W step uses rows 1-5 as its own); ``ytmp``, ``ynew``, ``yint``,
-    ``ystep``, ``ftmp`` (n): trial state, accepted step's end, interpolated state,
-    re-step to an event, scratch derivative; ``aux`` (``N_AUX``): the scene's outputs;
+    ``ftmp`` (n): trial state, step's end (also of the re-step to an event),
+    interpolated state, scratch derivative; ``aux`` (``N_AUX``): the scene's outputs;
     ``g_old``, ``g_new``, ``g_int`` (``N_EVENTS``): event values at the step's start,
     end and at a trial time; ``jac`` (n, n_err), ``lu`` (n_err, n_err), ``piv``
     (n_err): the Rosenbrock-W Jacobian, its iteration matrix's factors and pivots.
@@ -70,7 +70,6 @@ class Workspace(NamedTuple):
     ytmp: np.ndarray
     ynew: np.ndarray
     yint: np.ndarray
-    ystep: np.ndarray
     ftmp: np.ndarray
     aux: np.ndarray
     g_old: np.ndarray
@@ -86,7 +85,6 @@ def new_workspace(n, n_err):
     """Allocate the :class:`Workspace` of ``n`` states with ``n_err`` under error control."""
     return Workspace(
         np.empty((7, n)),
-        np.empty(n),
         np.empty(n),
         np.empty(n),
         np.empty(n),
