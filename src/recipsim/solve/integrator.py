@@ -287,6 +287,7 @@ def scene_entry(name: str, code: int, w_entry: int) -> Any:
         h_accepted = h  # the accepted step [s] while its event is landed on
         k_event = -1  # the event located in the accepted step, and its time [s]
         t_event = t0
+        last = False  # the step ends at t1
         while t < t1:
             if not landing:
                 if use_w and w_entry == EXPLICIT:

@@ -61,27 +61,14 @@ integrate_coupled_w = scene_entry("integrate_coupled_w", SCENE_COUPLED, WITH_W_S
 _F1, _F2 = types.Array(types.float64, 1, "C"), types.Array(types.float64, 2, "C")
 _I1, _I2 = types.Array(types.int64, 1, "C"), types.Array(types.int64, 2, "C")
 _F, _N = types.float64, types.int64
+# fmt: off
 ENTRY_SIGNATURE = (
-    _F,
-    _F,
-    _F1,
-    _I1,
-    _F1,
-    _I1,
-    PROPS_TYPE,
-    _F1,
-    _F,
-    _F,
-    _F1,
-    _N,
-    _F,
-    _F,
-    _F1,
-    _F2,
-    _I2,
-    _F1,
-    _N,
+    _F, _F, _F1, _I1, _F1, _I1,  # t0, t1, y, mode, par, ipar
+    PROPS_TYPE, _F1, _F, _F, _F1, _N,  # props, pbuf, rtol, atol, scale, n_err
+    _F, _F, _F1,  # h_init, h_max, sample_times
+    _F2, _I2, _F1, _N,  # samples, sample_modes, stats, method
 )
+# fmt: on
 
 #: The explicit compiled entry of each scene, indexed by its code.
 SCENE_INTEGRATORS = (integrate_cylinder, integrate_mechanism, integrate_coupled)
