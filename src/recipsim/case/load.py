@@ -93,14 +93,24 @@ def load_case(
         With the file, the key and what is allowed.
     """
     start_compiled_runtime()  # before the first compiled call (the property table's)
+    file, texts, raw, text = _overridden_raw(path, overrides, allow_external_paths)
+    case = case_from_dict(raw, file, text, allow_external_paths=allow_external_paths)
+    return replace(case, overrides=tuple(texts), allow_external_paths=allow_external_paths)
+
+
+def _overridden_raw(
+    path: str | Path,
+    overrides: Mapping[str, Any] | Sequence[str] | None,
+    allow_external_paths: bool,
+) -> tuple[str, list[str], dict[str, Any], str]:
+    """A case file's raw data with its ``extends`` resolved and ``overrides`` applied:
+    ``(file, override texts, data, the file's text)``."""
     path = shipped_case(path)
     file = str(path)
     texts = override_texts(overrides)
     raw, text = read_toml(path, "case")
     raw = resolve_extends(raw, path, [path.resolve()], allow_external_paths)
-    raw = apply_overrides(raw, texts, file)
-    case = case_from_dict(raw, file, text, allow_external_paths=allow_external_paths)
-    return replace(case, overrides=tuple(texts), allow_external_paths=allow_external_paths)
+    return file, texts, apply_overrides(raw, texts, file), text
 
 
 def load_case_settings(
@@ -123,11 +133,7 @@ def load_case_settings(
     from recipsim.case.builders import solver_settings
     from recipsim.case.schema import read_table
 
-    path = shipped_case(path)
-    file = str(path)
-    raw, _ = read_toml(path, "case")
-    raw = resolve_extends(raw, path, [path.resolve()], allow_external_paths)
-    raw = apply_overrides(raw, override_texts(overrides), file)
+    file, _, raw, _ = _overridden_raw(path, overrides, allow_external_paths)
     options = Options(**read_table(raw.get("options"), OPTION_SPEC, file, "options"))
     return options, solver_settings(raw.get("solver"), file)
 

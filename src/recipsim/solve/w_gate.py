@@ -1,7 +1,7 @@
 """The Rosenbrock-W step's calls in the integrator loop, compiled only into the entries
 that take W-steps.
 
-Each scene has two compiled entries (:mod:`recipsim.solve.integrator`): an explicit one,
+Each scene has two compiled entries (:mod:`recipsim.solve.scene_entries`): an explicit one,
 which runs DOPRI5 and, for ``solver.method = "dopri5_stiff"``, watches Hairer's
 stiffness test, and one with the W-step (:mod:`recipsim.solve.stiff`), which the explicit
 entry hands the integration over to once the test fires. The functions here take the
