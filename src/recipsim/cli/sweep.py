@@ -178,6 +178,15 @@ def format_outcome(outcome: Any) -> str:
         lines.append(f"  point {row['point']} [{row['status']}] {values}: {message}")
     if len(failed) > _MAX_LISTED:
         lines.append(f"  ... and {len(failed) - _MAX_LISTED} more (see the status column)")
+    warned = table[(table["status"] == "ok") & (table["message"].fillna("").astype(str) != "")]
+    if len(warned):
+        first = warned.iloc[0]
+        message = str(first["message"])
+        message = message if len(message) <= 200 else message[:197] + "..."
+        lines.append(
+            f"  {len(warned)} ok point{'s' if len(warned) > 1 else ''} with warnings (see the "
+            f"message column), the first: point {first['point']}: {message}"
+        )
     return "\n".join(lines)
 
 

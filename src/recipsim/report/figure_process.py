@@ -187,11 +187,11 @@ class FigureProcesses:
         """Process ids of the children."""
         return [pid for pid, _job, _result in self._children]
 
-    def drawing_processes(self) -> int:
+    def drawing_processes(self, most: int = FAN_OUT_MOST) -> int:
         """How many processes :meth:`draw` shares the figures between: the children,
         or with ``fan_out`` the cores that other work leaves idle now, this process's
         and its children's included (this one only waits from now on), at most
-        :data:`FAN_OUT_MOST`."""
+        ``most`` (default :data:`FAN_OUT_MOST`)."""
         children = len(self._children)
         if not self._fan_out or not children:
             return children
@@ -199,7 +199,7 @@ class FigureProcesses:
         if math.isnan(busy):
             return children
         busy -= sum(runnable(pid) for pid in self.pids)  # children still importing
-        return max(children, min(FAN_OUT_MOST, int(usable_cores() - busy + 0.5)))
+        return max(children, min(most, int(usable_cores() - busy + 0.5)))
 
     def draw(
         self,
@@ -241,11 +241,13 @@ class FigureProcesses:
         function: str,
         cost: Mapping[str, float],
         job: Callable[[list[str]], dict[str, Any]],
+        most: int = FAN_OUT_MOST,
     ) -> None:
         """Share the items of ``cost`` (name to measured cost [s]) between
-        :meth:`drawing_processes` by cost (:func:`share_by_cost`) and :meth:`submit`
-        ``module.function(**job(share))`` for each share; returns at once."""
-        shares = share_by_cost(list(cost), self.drawing_processes(), cost)
+        :meth:`drawing_processes` (at most ``most``) by cost (:func:`share_by_cost`) and
+        :meth:`submit` ``module.function(**job(share))`` for each share; returns at
+        once."""
+        shares = share_by_cost(list(cost), self.drawing_processes(most), cost)
         # the lightest share first, drawn by the child that forks for the others: it
         # forks and sends their jobs before it draws (CPU of the two shares on 2 cores,
         # medians of 8 runs: 0.47 and 0.47 s this way, 0.50 and 0.38 s the other)

@@ -28,7 +28,7 @@ BACKFLOW_WARNING = 0.03
 
 BACKFLOW_COLUMNS = ("discharge_backflow_fraction [-]", "suction_backflow_fraction [-]")
 
-logger = logging.getLogger("recipsim")
+logger = logging.getLogger(__name__)
 
 
 def _fraction(back: float, forward: float) -> float:

@@ -115,6 +115,32 @@ def test_forked_map_plots_are_the_in_process_files(tmp_path: Path) -> None:
         assert (serial / name).read_bytes() == (forked / name).read_bytes(), name
 
 
+def test_map_plots_fan_out_one_process_per_plot(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """At the end of a sweep on a machine with many idle cores, the two figure processes
+    fork for the other map plots: six processes, one plot each (not four, the bound of a
+    case report's fan-out), and the same files, byte for byte, as in-process."""
+    from recipsim.report.figure_process import FigureProcesses
+    from recipsim.studies.sweep.plots import MAP_PRELOAD, save_map_plots, submit_map_plots
+    from unit.studies.sweep.test_sweep_plots import AXES, synthetic
+
+    _fan_out_to(monkeypatch, cores=16)
+    table = synthetic(bearings=True)
+    serial, forked = tmp_path / "serial", tmp_path / "forked"
+    serial.mkdir()
+    forked.mkdir()
+    in_process = save_map_plots(table, AXES, serial)
+    figures = FigureProcesses(2, MAP_PRELOAD, fan_out=True)
+    submit_map_plots(figures, table, AXES, forked)
+    shares = figures.wait()
+    assert sorted(len(share) for share in shares) == [1] * 6
+    names = sorted(p.name for share in shares for p in share)
+    assert names == sorted(p.name for p in in_process) and len(names) == 6
+    for name in names:
+        assert (serial / name).read_bytes() == (forked / name).read_bytes(), name
+
+
 @pytest.mark.parametrize(("running", "expected"), [(1, 2), (2, 1), (3, 0)])
 def test_children_only_on_idle_cores(
     monkeypatch: pytest.MonkeyPatch, tmp_path: Path, running: int, expected: int

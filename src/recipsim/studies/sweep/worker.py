@@ -101,10 +101,23 @@ def run_point(task: PointTask) -> dict[str, Any]:
     Returns
     -------
     dict
-        ``status`` (see the module docstring), ``message`` (``""`` when ``ok``) and
-        ``summary``, the summary row of :func:`recipsim.results.tables.summary` (units in
-        the keys; empty when the point could not be solved).
+        ``status`` (see the module docstring), ``message`` (what went wrong, then the
+        warnings the point's solve logged, :mod:`.point_warnings`, joined by ``"; "``;
+        ``""`` for an ``ok`` point without warnings) and ``summary``, the summary row of
+        :func:`recipsim.results.tables.summary` (units in the keys; empty when the point
+        could not be solved).
     """
+    from recipsim.studies.sweep.point_warnings import kept_warnings
+
+    with kept_warnings() as warned:
+        result = _solved_point(task)
+    if warned:  # after the status's own message, if any
+        result["message"] = "; ".join(m for m in (result["message"], *warned) if m)
+    return result
+
+
+def _solved_point(task: PointTask) -> dict[str, Any]:
+    """:func:`run_point`'s result before the point's warnings are added to its message."""
     from recipsim.case.envelope import OutsideEnvelopeError
     from recipsim.errors import CaseError, RecipsimError
     from recipsim.report.case_report import write_case_report

@@ -134,6 +134,53 @@ def _failing_solver(monkeypatch, how: dict[float, str]) -> None:
     monkeypatch.setattr(periodic, "solve_periodic", solve)
 
 
+def test_point_warnings_go_to_the_message_column_not_the_log(tmp_path, capsys, caplog):
+    """A point whose discharge reed lets more than 3 % flow back (the soft reed of
+    tests/physics/test_valves.py) keeps its warning in its ``message`` (status still
+    ``ok``) instead of logging a line per point; the closing lines count such points.
+    The same in the worker processes (``--jobs 2``) as in-process, and ``recipsim run``
+    of one case still logs it."""
+    import logging
+
+    soft = [
+        'valves.discharge.reed_thickness = "0.153 mm"',
+        'valves.discharge.reed_length = "18 mm"',
+        'valves.discharge.port_position = "14 mm"',
+        'valves.discharge.stop_height = "1.8 mm"',
+    ]
+    sweep = write(
+        tmp_path,
+        "[set]\n" + "\n".join(soft) + "\n[axes]\n"
+        'operating_point.evaporating_temperature = ["-30 degC", "-20 degC"]\n',
+    )
+    tables = []
+    for jobs in ("1", "2"):
+        out = tmp_path / f"out{jobs}"
+        with caplog.at_level(logging.WARNING, logger="recipsim"):
+            status = main(["sweep", str(sweep), "--out", str(out), "--jobs", jobs, "--no-plots"])
+        assert status == 0
+        assert not [r for r in caplog.records if "flows back" in r.getMessage()]
+        captured = capsys.readouterr()
+        assert "flows back" not in captured.err
+        assert "2 ok points with warnings (see the message column)" in captured.out
+        table = read_table(out / "small" / "summary.csv")
+        assert list(table["status"]) == ["ok", "ok"]
+        for _, row in table.iterrows():
+            fraction = row["discharge_backflow_fraction [-]"]
+            assert fraction > 0.03
+            assert (
+                f"{fraction:.1%} of the gas through the discharge valve flows back"
+                in (row["message"])
+            )
+        tables.append(comparable(table))
+    pd.testing.assert_frame_equal(tables[0], tables[1])
+
+    with caplog.at_level(logging.WARNING, logger="recipsim"):  # outside a sweep: logged
+        summary_row = summary(solve_case(REFERENCE, [s.replace(" = ", "=") for s in soft]))
+    assert summary_row["discharge_backflow_fraction [-]"] > 0.03
+    assert [r for r in caplog.records if "flows back" in r.getMessage()]
+
+
 def test_solver_failures_and_bugs_are_recorded_and_the_sweep_goes_on(tmp_path, monkeypatch):
     sweep = write(
         tmp_path,
