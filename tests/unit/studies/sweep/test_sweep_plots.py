@@ -130,7 +130,17 @@ def test_many_lines_get_a_key_instead_of_a_legend_entry_each(tmp_path):
     x = x_column(table, axes)
     groups = group_columns(table, axes, x)
     fig = plot_map(table, "cooling_capacity [W]", x, groups)
-    assert len(fig.axes[0].get_lines()) == 100
+    # drawn as collections: the 100 lines in one, the markers in one per marker shape
+    ax = fig.axes[0]
+    assert not ax.get_lines()
+    lines, *markers = ax.collections
+    assert len(lines.get_segments()) == 100
+    assert sum(len(m.get_offsets()) for m in markers) == len(table)
+    assert len(markers) == 8  # the ten speeds' markers: eight shapes
+    by_line = table.sort_values(x).groupby(groups, sort=False)
+    first = next(iter(by_line))[1]  # the first line's points, in degrees Celsius
+    np.testing.assert_allclose(lines.get_segments()[0][:, 0], first[x] - 273.15)
+    np.testing.assert_allclose(lines.get_segments()[0][:, 1], first["cooling_capacity [W]"])
     texts = [t.get_text() for t in fig.axes[0].get_legend().get_texts()]
     # a colour per condensing temperature, a style per speed: 20 entries, not 100
     assert len(texts) == 20
