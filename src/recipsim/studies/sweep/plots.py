@@ -89,23 +89,29 @@ def _value_label(column: str, value: Any) -> str:
     return f"{name} {value:g}" + (f" {unit}" if unit and unit != "-" else "")
 
 
-def _lines(
+def map_lines(
     table: pd.DataFrame, x: str, groups: list[str]
-) -> list[tuple[str, dict[str, Any], pd.DataFrame]]:
-    """(label, style, rows sorted by x) of each line."""
+) -> list[tuple[str, dict[str, Any], Any]]:
+    """(label, style, row positions sorted by ``x``) of each line of a map of ``table``:
+    one line per combination of the ``groups`` columns, colour after the first, line
+    style and marker after the others. The same for every quantity of one table: pass it
+    to :func:`plot_map` to draw several."""
+    # positions, not labels: only the columns that split and sort the lines
+    keys = table[list(dict.fromkeys([*groups, x]))].reset_index(drop=True)
     if not groups:
-        return [("", {"color": "C0", "ls": "-", "marker": "o"}, table.sort_values(x))]
-    first = list(dict.fromkeys(table[groups[0]]))
+        order = keys.sort_values(x).index.to_numpy()
+        return [("", {"color": "C0", "ls": "-", "marker": "o"}, order)]
+    first = list(dict.fromkeys(keys[groups[0]]))
     rest: list[tuple[Any, ...]] = []
     out = []
-    for key, rows in table.groupby(groups, sort=False, dropna=False):
+    for key, rows in keys.groupby(groups, sort=False, dropna=False):
         key = key if isinstance(key, tuple) else (key,)
         if key[1:] not in rest:
             rest.append(key[1:])
         colour = first.index(key[0]) % 10
         style = {"color": f"C{colour}", **_style(rest.index(key[1:]))}
         label = ", ".join(_value_label(c, v) for c, v in zip(groups, key, strict=True))
-        out.append((label, style, rows.sort_values(x)))
+        out.append((label, style, rows.sort_values(x).index.to_numpy()))
     return out
 
 
@@ -151,9 +157,11 @@ def plot_map(
     ylabel: str = "",
     ax: Any = None,
     legend: bool = True,
+    lines: list[tuple[str, dict[str, Any], Any]] | None = None,
 ) -> Figure:
     """One quantity against ``x``, a line per combination of the ``groups`` columns
-    (their legend in the axes with ``legend``), about five ticks a side."""
+    (their legend in the axes with ``legend``), about five ticks a side; ``lines``:
+    :func:`map_lines` of ``table``, found here if not given."""
     from recipsim.report.figure_kit import fewer_ticks
 
     if ax is None:
@@ -163,12 +171,11 @@ def plot_map(
         ax = fig.add_subplot()
     else:
         fig = ax.figure
-    # only the columns drawn: each line's rows are sorted by x, a copy per line (of all
-    # 130-odd summary columns it cost 3 ms a line, 5 of the 18 s of a 1000-point map)
-    narrow = table[list(dict.fromkeys([*groups, x, y]))]
+    xv = table[x].to_numpy(dtype=float)
+    yv = table[y].to_numpy(dtype=float)
     drawn = [
-        (label, style, *_display(x, rows[x].to_numpy(dtype=float)), rows[y].to_numpy(dtype=float))
-        for label, style, rows in _lines(narrow, x, groups)
+        (label, style, *_display(x, xv[rows]), yv[rows])
+        for label, style, rows in (map_lines(table, x, groups) if lines is None else lines)
     ]
     xlabel = drawn[-1][3] if drawn else ""
     if len(drawn) > MAX_LEGEND_LINES:  # a key, no entry per line: no Line2D per line
@@ -180,11 +187,10 @@ def plot_map(
     ax.set_ylabel(ylabel or y)
     ax.grid(True, alpha=0.3)
     fewer_ticks(ax)
-    lines = len(drawn)
-    if groups and legend and lines > MAX_LEGEND_LINES:
+    if groups and legend and len(drawn) > MAX_LEGEND_LINES:
         ax.legend(*legend_entries(table, groups), fontsize=6, ncol=2)
     elif groups and legend:
-        ax.legend(fontsize=7, ncol=2 if lines > 6 else 1)
+        ax.legend(fontsize=7, ncol=2 if len(drawn) > 6 else 1)
     return fig
 
 
@@ -235,8 +241,14 @@ def bearing_columns(table: pd.DataFrame) -> list[str]:
     return [c for c in table.columns if BEARING_COLUMN.match(str(c)) and table[c].notna().any()]
 
 
-def plot_bearing_loads(table: pd.DataFrame, x: str, groups: list[str]) -> Figure | None:
-    """Peak load of every bearing against ``x``, a panel per bearing (``None`` if none)."""
+def plot_bearing_loads(
+    table: pd.DataFrame,
+    x: str,
+    groups: list[str],
+    lines: list[tuple[str, dict[str, Any], Any]] | None = None,
+) -> Figure | None:
+    """Peak load of every bearing against ``x``, a panel per bearing (``None`` if none);
+    ``lines`` as in :func:`plot_map`."""
     columns = bearing_columns(table)
     if not columns:
         return None
@@ -244,7 +256,7 @@ def plot_bearing_loads(table: pd.DataFrame, x: str, groups: list[str]) -> Figure
     nrows = math.ceil(len(columns) / ncols)
     from matplotlib.figure import Figure
 
-    lines = _lines(table[list(dict.fromkeys([*groups, x]))], x, groups)  # labels only
+    lines = map_lines(table, x, groups) if lines is None else lines
     if len(lines) > MAX_LEGEND_LINES:
         handles, labels = legend_entries(table, groups)
     else:
@@ -258,7 +270,7 @@ def plot_bearing_loads(table: pd.DataFrame, x: str, groups: list[str]) -> Figure
     axes = fig.subplots(nrows, ncols, squeeze=False)
     for ax, column in zip(axes.flat, columns, strict=False):
         name = BEARING_COLUMN.match(column).group(1)  # type: ignore[union-attr]
-        plot_map(table, column, x, groups, ylabel="peak load [N]", ax=ax, legend=False)
+        plot_map(table, column, x, groups, "peak load [N]", ax, legend=False, lines=lines)
         ax.set_title(name.replace("_", " "), y=TITLE_Y)
     for ax in list(axes.flat)[len(columns) :]:
         ax.set_visible(False)
@@ -336,6 +348,7 @@ def save_map_plots(
     if x is None:
         return []
     groups = group_columns(ok, axes, x)
+    lines = map_lines(ok, x, groups)  # the same lines in every plot
     written = []
     shared: Any = None  # the Axes the one-panel plots are drawn on in turn
     for column, label, name in (*MAP_QUANTITIES, ("", "", "map_bearing_loads.png")):
@@ -346,10 +359,10 @@ def save_map_plots(
                 shared = single_axes(figsize=(7.0, 4.8))
             else:
                 clear_axes(shared)
-            fig = plot_map(ok, column, x, groups, ylabel=label, ax=shared)
+            fig = plot_map(ok, column, x, groups, ylabel=label, ax=shared, lines=lines)
             shared.set_title(label.rsplit(" [", 1)[0], y=TITLE_Y)
         else:  # panels and a legend below them, in fixed margins
-            panels = plot_bearing_loads(ok, x, groups)
+            panels = plot_bearing_loads(ok, x, groups, lines)
             if panels is None:
                 continue
             fig = panels
