@@ -1,5 +1,6 @@
 """What makes the report's figures and map plots cheap to draw: fewer tick objects, and
-one Axes drawn on in turn by figures of the same layout.
+one Axes drawn on in turn by figures of the same layout, many lines drawn as a few
+collections.
 
 Drawing a figure is mostly its axes: every tick is three lines and two texts, created
 anew for every new Axes, and every tick label is laid out and rendered glyph by glyph.
@@ -73,3 +74,45 @@ def clear_axes(ax: Any) -> None:
     ax.set_ylabel("")
     ax.grid(False, which="both")
     ax.tick_params(which="both", grid_alpha=rcParams["grid.alpha"])
+
+
+def lines_as_collections(ax: Any, lines: list[tuple[dict[str, Any], Any, Any]]) -> None:
+    """Lines of ``(style, x, y)`` (style: ``color``, ``ls``, ``marker``) drawn as one
+    line collection and a marker collection per marker shape, as
+    :meth:`~matplotlib.axes.Axes.plot` would draw each (width 1.2, markers of size 4 in
+    the line's colour), the markers over the lines; no legend entries.
+
+    A map of 1000 points has 100 lines a panel: a Line2D each cost about 2 ms to make
+    and draw, 0.2 s a one-panel map plot and 0.7 s the six panels of its bearing loads.
+    """
+    from matplotlib.collections import LineCollection
+    from matplotlib.colors import to_rgba_array
+
+    segments = [np.column_stack([xs, ys]) for _, xs, ys in lines]
+    colours = to_rgba_array([style["color"] for style, _, _ in lines])  # once a line
+    ax.add_collection(
+        LineCollection(
+            segments,
+            colors=colours,
+            linestyles=[style["ls"] for style, _, _ in lines],
+            linewidths=1.2,
+            zorder=2,
+        )
+    )
+    by_marker: dict[str, list[int]] = {}
+    for index, (style, _, _) in enumerate(lines):
+        by_marker.setdefault(style["marker"], []).append(index)
+    for marker, indices in by_marker.items():
+        points = np.concatenate([segments[i] for i in indices])
+        finite = np.isfinite(points).all(axis=1)
+        colour_of_point = np.repeat(colours[indices], [len(segments[i]) for i in indices], axis=0)
+        ax.scatter(
+            points[finite, 0],
+            points[finite, 1],
+            s=16.0,  # points^2: a Line2D marker of size 4
+            marker=marker,
+            c=colour_of_point[finite],
+            linewidths=1.0,
+            zorder=2.01,
+        )
+    ax.autoscale_view()

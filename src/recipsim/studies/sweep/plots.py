@@ -162,7 +162,7 @@ def plot_map(
     """One quantity against ``x``, a line per combination of the ``groups`` columns
     (their legend in the axes with ``legend``), about five ticks a side; ``lines``:
     :func:`map_lines` of ``table``, found here if not given."""
-    from recipsim.report.figure_kit import fewer_ticks
+    from recipsim.report.figure_kit import fewer_ticks, lines_as_collections
 
     if ax is None:
         from matplotlib.figure import Figure
@@ -179,7 +179,7 @@ def plot_map(
     ]
     xlabel = drawn[-1][3] if drawn else ""
     if len(drawn) > MAX_LEGEND_LINES:  # a key, no entry per line: no Line2D per line
-        _draw_as_collections(ax, [(style, xs, ys) for _, style, xs, _, ys in drawn])
+        lines_as_collections(ax, [(style, xs, ys) for _, style, xs, _, ys in drawn])
     else:
         for label, style, xs, _, ys in drawn:
             ax.plot(xs, ys, label=label or None, ms=4, lw=1.2, **style)
@@ -192,48 +192,6 @@ def plot_map(
     elif groups and legend:
         ax.legend(fontsize=7, ncol=2 if len(drawn) > 6 else 1)
     return fig
-
-
-def _draw_as_collections(ax: Any, lines: list[tuple[dict[str, Any], Any, Any]]) -> None:
-    """Lines of ``(style, x, y)`` drawn as one line collection and a marker collection
-    per marker shape, as :meth:`~matplotlib.axes.Axes.plot` would draw each (width
-    1.2, markers of size 4 in the line's colour), the markers over the lines.
-
-    A map of 1000 points has 100 lines a panel: a Line2D each cost about 2 ms to make
-    and draw, 0.2 s a one-panel plot and 0.7 s the six panels of the bearing loads.
-    """
-    import numpy as np
-    from matplotlib.collections import LineCollection
-    from matplotlib.colors import to_rgba_array
-
-    segments = [np.column_stack([xs, ys]) for _, xs, ys in lines]
-    colours = to_rgba_array([style["color"] for style, _, _ in lines])  # once a line
-    ax.add_collection(
-        LineCollection(
-            segments,
-            colors=colours,
-            linestyles=[style["ls"] for style, _, _ in lines],
-            linewidths=1.2,
-            zorder=2,
-        )
-    )
-    by_marker: dict[str, list[int]] = {}
-    for index, (style, _, _) in enumerate(lines):
-        by_marker.setdefault(style["marker"], []).append(index)
-    for marker, indices in by_marker.items():
-        points = np.concatenate([segments[i] for i in indices])
-        finite = np.isfinite(points).all(axis=1)
-        colour_of_point = np.repeat(colours[indices], [len(segments[i]) for i in indices], axis=0)
-        ax.scatter(
-            points[finite, 0],
-            points[finite, 1],
-            s=16.0,  # points^2: a Line2D marker of size 4
-            marker=marker,
-            c=colour_of_point[finite],
-            linewidths=1.0,
-            zorder=2.01,
-        )
-    ax.autoscale_view()
 
 
 def bearing_columns(table: pd.DataFrame) -> list[str]:

@@ -141,6 +141,14 @@ def test_many_lines_get_a_key_instead_of_a_legend_entry_each(tmp_path):
     first = next(iter(by_line))[1]  # the first line's points, in degrees Celsius
     np.testing.assert_allclose(lines.get_segments()[0][:, 0], first[x] - 273.15)
     np.testing.assert_allclose(lines.get_segments()[0][:, 1], first["cooling_capacity [W]"])
+    # each line in its colour (a colour per condensing temperature), its markers too
+    from matplotlib.colors import to_rgba
+
+    colours = lines.get_colors()
+    assert len(colours) == 100 and tuple(colours[0]) == to_rgba("C0")
+    assert {tuple(c) for m in markers for c in m.get_facecolors()} == {
+        to_rgba(f"C{i}") for i in range(10)
+    }
     texts = [t.get_text() for t in fig.axes[0].get_legend().get_texts()]
     # a colour per condensing temperature, a style per speed: 20 entries, not 100
     assert len(texts) == 20
