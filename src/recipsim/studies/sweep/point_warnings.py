@@ -2,8 +2,8 @@
 
 A point's physics can warn (a reed valve that lets more than 3 % of its gas flow back,
 :func:`recipsim.results.valve_metrics.warn_large_backflow`). ``recipsim run`` prints
-such a warning for its one case; a sweep kept printing one line per point (183 lines
-for the 1000-point ``throughput_1000``), also with ``--quiet``, and its table did not
+such a warning for its one case; a sweep kept printing a line per warning (183 lines
+for 171 of the 1000 points of ``throughput_1000``), also with ``--quiet``, and its table did not
 say which points they were. Inside :func:`kept_warnings` the records of
 :data:`POINT_LOGGERS` go to a list instead of the log, and the point's ``message``
 column carries them (:func:`recipsim.studies.sweep.worker.run_point`).
