@@ -33,6 +33,7 @@ from scipy.optimize import least_squares
 from recipsim.case.case import Case
 from recipsim.errors import RecipsimError
 from recipsim.studies.calibrate.data import MeasuredPoint
+from recipsim.studies.point_warnings import kept_warnings
 
 #: Relative step of the finite-difference Jacobian (of the parameter or of its range).
 STEP = 0.01
@@ -229,8 +230,9 @@ def _run_point(
     fitted: dict[str, float],
     simulate: Callable[[Case], dict[str, float]],
 ) -> dict[str, float] | None:
-    try:
-        return simulate(case.with_({**point.overrides, **SOLVER_OVERRIDES, **fitted}))
+    try:  # a trial's warnings are not the calibrated case's: kept, then dropped
+        with kept_warnings():
+            return simulate(case.with_({**point.overrides, **SOLVER_OVERRIDES, **fitted}))
     except (RecipsimError, ValueError):  # ValueError: a property flash failed in CoolProp
         return None
 

@@ -20,6 +20,7 @@ from recipsim.studies.calibrate.fit import (
     fit_parameters,
     parse_parameter,
 )
+from recipsim.studies.point_warnings import kept_warnings
 
 #: A fitted value this close (relative) to a bound ended on it: the fit's ``xtol``.
 AT_BOUND_TOLERANCE = 1e-4
@@ -42,8 +43,10 @@ class Calibration:
         ``fitted``, ``std_from_resolution [-]``, ``std_from_residuals [-]`` (relative for
         logarithmic parameters), ``ci95_low``, ``ci95_high`` (SI).
     points : pandas.DataFrame
-        One row per data row: ``row``, ``point``, ``used_in_fit``, ``status``, and per
-        target ``measured <t>``, ``predicted <t>``, ``error <name> [-]``.
+        One row per data row: ``row``, ``point``, ``used_in_fit``, ``status``,
+        ``warnings`` (those the calibrated case's solve at the point logged, joined by
+        ``"; "``), and per target ``measured <t>``, ``predicted <t>``, ``error <name>
+        [-]``.
     data : str
         The data file.
     """
@@ -170,11 +173,13 @@ def _point_table(
     for point in measured:
         row: dict[str, Any] = {"row": point.row, "point": point.label}
         row["used_in_fit"] = point.row in used
-        try:
-            predicted = simulate(case.with_(point.overrides))
-            row["status"] = "ok"
-        except RecipsimError as exc:
-            predicted, row["status"] = {}, f"failed: {exc}"
+        with kept_warnings() as warned:
+            try:
+                predicted = simulate(case.with_(point.overrides))
+                row["status"] = "ok"
+            except RecipsimError as exc:
+                predicted, row["status"] = {}, f"failed: {exc}"
+        row["warnings"] = "; ".join(warned)
         for t in targets:
             name = t.split(" [")[0]
             value = float(predicted.get(t, math.nan))

@@ -102,12 +102,12 @@ def run_point(task: PointTask) -> dict[str, Any]:
     -------
     dict
         ``status`` (see the module docstring), ``message`` (what went wrong, then the
-        warnings the point's solve logged, :mod:`.point_warnings`, joined by ``"; "``;
-        ``""`` for an ``ok`` point without warnings) and ``summary``, the summary row of
-        :func:`recipsim.results.tables.summary` (units in the keys; empty when the point
-        could not be solved).
+        warnings the point's solve logged, :mod:`recipsim.studies.point_warnings`,
+        joined by ``"; "``; ``""`` for an ``ok`` point without warnings) and
+        ``summary``, the summary row of :func:`recipsim.results.tables.summary` (units
+        in the keys; empty when the point could not be solved).
     """
-    from recipsim.studies.sweep.point_warnings import kept_warnings
+    from recipsim.studies.point_warnings import kept_warnings
 
     with kept_warnings() as warned:
         result = _solved_point(task)

@@ -137,6 +137,35 @@ def test_two_parameters_recovered_with_their_confidence(tmp_path: Path) -> None:
     assert cal.calibrated.valves.suction.flow_coefficient == pytest.approx(0.62, rel=1e-3)
 
 
+def test_warnings_of_trials_are_dropped_and_the_calibrated_points_keep_theirs(
+    tmp_path: Path, caplog: pytest.LogCaptureFixture
+) -> None:
+    """A model that warns as the valve metrics do (one warning per solve, naming the
+    trial's coefficient): nothing is logged during the fit, and each row of the points
+    table carries the warning of the calibrated case's own solve at that point."""
+    import logging
+
+    def warning_linear(case: Case) -> dict[str, float]:
+        logging.getLogger("recipsim.results.valve_metrics").warning(
+            "suction coefficient %.4f flows back", case.valves.suction.flow_coefficient
+        )
+        return _linear(case)
+
+    case = load_case("r600a_lbp")
+    truth = case.with_({FS: 0.62, FD: 0.71})
+    rows = []
+    for te in (-30, -25, -20):
+        row = _linear(truth.with_({"operating_point.evaporating_temperature": f"{te} degC"}))
+        rows.append((te, row["cooling_capacity [W]"], row["COP [-]"]))
+    data = _write(tmp_path / "d.csv", rows)
+    with caplog.at_level(logging.WARNING, logger="recipsim"):
+        cal = calibrate_case(case, data, [f"{FS}=0.3:1", f"{FD}=0.3:1"], simulate=warning_linear)
+    assert not [r for r in caplog.records if "flows back" in r.getMessage()]
+    fitted = cal.calibrated.valves.suction.flow_coefficient
+    assert fitted == pytest.approx(0.62, rel=1e-3)
+    assert list(cal.points["warnings"]) == [f"suction coefficient {fitted:.4f} flows back"] * 3
+
+
 def test_a_parameter_pushed_past_its_bound_is_flagged(tmp_path: Path) -> None:
     """Fake linear model, truth (0.62, 0.71) with the first parameter allowed only up to
     0.5: the fit ends on that bound (to its own xtol, not to machine precision) and says so;
