@@ -44,6 +44,18 @@ def _linear(case: Case) -> dict[str, float]:
     }
 
 
+def _linear_data(tmp_path: Path) -> tuple[Case, Path]:
+    """The R600a case and the data file of :func:`_linear` at its truth (0.62, 0.71), at
+    three evaporating temperatures."""
+    case = load_case("r600a_lbp")
+    truth = case.with_({FS: 0.62, FD: 0.71})
+    rows = []
+    for te in (-30, -25, -20):
+        row = _linear(truth.with_({"operating_point.evaporating_temperature": f"{te} degC"}))
+        rows.append((te, row["cooling_capacity [W]"], row["COP [-]"]))
+    return case, _write(tmp_path / "d.csv", rows)
+
+
 def _product(case: Case) -> dict[str, float]:
     """Only the product of the two coefficients matters: not separately identifiable."""
     v = case.valves
@@ -94,13 +106,7 @@ def test_two_parameters_recovered_with_their_confidence(tmp_path: Path) -> None:
     scales one target, ``sigma_i`` = half the last digit / sqrt 3 / measured), to the
     forward difference's 0.5 %; the 95 % interval is ``exp(+-1.96 std)`` around it; the
     point left out is predicted within the rounding."""
-    case = load_case("r600a_lbp")
-    truth = case.with_({FS: 0.62, FD: 0.71})
-    rows = []
-    for te in (-30, -25, -20):
-        row = _linear(truth.with_({"operating_point.evaporating_temperature": f"{te} degC"}))
-        rows.append((te, row["cooling_capacity [W]"], row["COP [-]"]))
-    data = _write(tmp_path / "d.csv", rows)
+    case, data = _linear_data(tmp_path)
     cal = calibrate_case(
         case, data, [f"{FS}=0.3:1", f"{FD}=0.3:1"], points=[1, 3], simulate=_linear
     )
@@ -151,13 +157,7 @@ def test_warnings_of_trials_are_dropped_and_the_calibrated_points_keep_theirs(
         )
         return _linear(case)
 
-    case = load_case("r600a_lbp")
-    truth = case.with_({FS: 0.62, FD: 0.71})
-    rows = []
-    for te in (-30, -25, -20):
-        row = _linear(truth.with_({"operating_point.evaporating_temperature": f"{te} degC"}))
-        rows.append((te, row["cooling_capacity [W]"], row["COP [-]"]))
-    data = _write(tmp_path / "d.csv", rows)
+    case, data = _linear_data(tmp_path)
     with caplog.at_level(logging.WARNING, logger="recipsim"):
         cal = calibrate_case(case, data, [f"{FS}=0.3:1", f"{FD}=0.3:1"], simulate=warning_linear)
     assert not [r for r in caplog.records if "flows back" in r.getMessage()]
