@@ -185,7 +185,9 @@ def format_system(result: dict[str, Any]) -> str:
                 lines.append(
                     f"  {jobs} worker(s): {t['wall [s]']:.2f} s wall "
                     f"({t['points_per_second']:.0f} points/s, parent CPU "
-                    f"{t['parent_cpu [s]']:.2f} s), efficiency {t['efficiency [-]']:.2f}"
+                    f"{t['parent_cpu [s]']:.2f} s), efficiency {t['efficiency [-]']:.2f}; "
+                    f"solves {t['solve_slowdown [-]']:.2f}x their time on the fewest "
+                    f"workers: at most {t['efficiency_ceiling [-]']:.2f}"
                 )
     if "first_run" in result:
         f = result["first_run"]

@@ -71,8 +71,12 @@ def measure_map_scaling(sweep: str, jobs: list[int], repeats: int = 1) -> dict[s
         ``points``; ``runs``: worker count to ``wall [s]`` (median), ``parent_cpu [s]``
         (the parent's own CPU time: planning, the first point, saving records, tables),
         ``solve_sum [s]`` (the points' solve times added up), ``points_per_second``,
-        ``ok`` (points that ended ``ok``) and ``efficiency [-]`` =
-        ``J0 T(J0) / (J T(J))`` with ``J0`` the smallest worker count.
+        ``ok`` (points that ended ``ok``), ``efficiency [-]`` =
+        ``J0 T(J0) / (J T(J))`` with ``J0`` the smallest worker count,
+        ``solve_slowdown [-]``, the solves' sum over that with ``J0`` workers (above 1
+        where the workers running at once slow each other's solves down: shared caches
+        and memory), and ``efficiency_ceiling [-]`` = ``1 / solve_slowdown``, the
+        efficiency were everything but the solves free.
     """
     command = [sys.executable, "-c", _SCALING_CHILD, sweep, ",".join(map(str, jobs)), str(repeats)]
     out = subprocess.run(command, capture_output=True, text=True)
@@ -95,6 +99,10 @@ def measure_map_scaling(sweep: str, jobs: list[int], repeats: int = 1) -> dict[s
         }
     low = min(jobs)
     reference = low * runs[str(low)]["wall [s]"]
+    solves = runs[str(low)]["solve_sum [s]"]
     for count, timing in runs.items():
         timing["efficiency [-]"] = reference / (int(count) * timing["wall [s]"])
+        slowdown = timing["solve_sum [s]"] / solves if solves > 0 else float("nan")
+        timing["solve_slowdown [-]"] = slowdown
+        timing["efficiency_ceiling [-]"] = 1.0 / slowdown if slowdown > 0 else float("nan")
     return {"sweep": sweep, "points": points, "runs": runs}

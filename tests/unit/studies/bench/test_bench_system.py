@@ -163,6 +163,11 @@ def test_scaling_after_start_up_measures_each_worker_count(tmp_path) -> None:
     assert one["efficiency [-]"] == 1.0
     assert two["efficiency [-]"] == pytest.approx(one["wall [s]"] / (2 * two["wall [s]"]))
     assert two["points_per_second"] == pytest.approx(6 / two["wall [s]"])
+    # the solves' own slow-down with more workers, and the efficiency it alone allows
+    assert one["solve_slowdown [-]"] == one["efficiency_ceiling [-]"] == 1.0
+    slowdown = two["solve_sum [s]"] / one["solve_sum [s]"]
+    assert two["solve_slowdown [-]"] == pytest.approx(slowdown)
+    assert two["efficiency_ceiling [-]"] == pytest.approx(1.0 / slowdown)
 
 
 def test_timed_runs_write_into_the_scratch_directory_then_it_is_removed(tmp_path) -> None:
