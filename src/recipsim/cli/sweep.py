@@ -172,22 +172,24 @@ def format_outcome(outcome: Any) -> str:
     failed = table[table["status"] != "ok"]
     for _, row in failed.head(_MAX_LISTED).iterrows():
         values = ", ".join(f"{c}={_short(row[c])}" for c in outcome.axes)
-        message = str(row["message"])
-        if len(message) > 200:
-            message = message[:197] + "..."
+        message = _clipped(str(row["message"]))
         lines.append(f"  point {row['point']} [{row['status']}] {values}: {message}")
     if len(failed) > _MAX_LISTED:
         lines.append(f"  ... and {len(failed) - _MAX_LISTED} more (see the status column)")
     warned = table[(table["status"] == "ok") & (table["message"].fillna("").astype(str) != "")]
     if len(warned):
         first = warned.iloc[0]
-        message = str(first["message"])
-        message = message if len(message) <= 200 else message[:197] + "..."
         lines.append(
             f"  {len(warned)} ok point{'s' if len(warned) > 1 else ''} with warnings (see the "
-            f"message column), the first: point {first['point']}: {message}"
+            f"message column), the first: point {first['point']}: "
+            + _clipped(str(first["message"]))
         )
     return "\n".join(lines)
+
+
+def _clipped(message: str, most: int = 200) -> str:
+    """``message``, cut to ``most`` characters with an ellipsis if longer."""
+    return message if len(message) <= most else message[: most - 3] + "..."
 
 
 def _short(value: Any) -> str:
