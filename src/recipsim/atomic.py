@@ -16,7 +16,7 @@ import socket
 import tempfile
 import time
 from collections.abc import Callable, Iterator
-from contextlib import contextmanager
+from contextlib import contextmanager, suppress
 from itertools import count
 from pathlib import Path
 from typing import IO, Any
@@ -191,21 +191,30 @@ def mark_output(directory: Path) -> None:
 def _create_temporary(path: Path) -> tuple[int, Path]:
     """Create a temporary file beside ``path``, exclusively and readable by its owner
     only (as :func:`tempfile.mkstemp` does), creating the directory if it is missing;
-    returns its open descriptor and its path.
+    returns its open descriptor and its path (:func:`_create_temporary_at`)."""
+    fd, tmp = _create_temporary_at(os.fspath(path))
+    return fd, Path(tmp)
+
+
+def _create_temporary_at(target: str) -> tuple[int, str]:
+    """:func:`_create_temporary` on a path as a string.
 
     Its name ``.<stem>.<pid>-<n><suffix>.tmp`` is unique to this process; a file of that
     name left by a killed process of the same id makes it take the next number. Three
     system calls where ``mkstemp`` made a random name and the directory was created each
-    time (the sweep writes such a file per point: 0.16 against 0.25 ms).
+    time, and string operations rather than :class:`~pathlib.Path` ones: the sweep writes
+    such a file per point (0.06 ms against 0.11 ms with paths, 0.25 ms with ``mkstemp``).
     """
     flags = os.O_WRONLY | os.O_CREAT | os.O_EXCL
+    head, name = os.path.split(target)
+    stem, suffix = os.path.splitext(name)
+    prefix = os.path.join(head, f".{stem}.{os.getpid()}-")
     while True:
-        number = next(_TEMPORARY_NUMBERS)
-        tmp = path.with_name(f".{path.stem}.{os.getpid()}-{number}{path.suffix}.tmp")
+        tmp = f"{prefix}{next(_TEMPORARY_NUMBERS)}{suffix}.tmp"
         try:
             return os.open(tmp, flags, 0o600), tmp
         except FileNotFoundError:
-            path.parent.mkdir(parents=True, exist_ok=True)
+            os.makedirs(head or ".", exist_ok=True)
         except FileExistsError:
             continue
 
@@ -226,12 +235,12 @@ def _temporary_beside(path: Path) -> Iterator[Path]:
         raise
 
 
-def write_bytes_atomically(path: Path, data: bytes) -> None:
+def write_bytes_atomically(path: str | Path, data: bytes) -> None:
     """Write ``data`` to ``path`` as :func:`atomic_file` does (a temporary file beside
     it, renamed over it), through the temporary file's descriptor: one write, no file
     object."""
-    path = Path(path)
-    fd, tmp = _create_temporary(path)
+    target = os.fspath(path)
+    fd, tmp = _create_temporary_at(target)
     try:
         try:
             view = memoryview(data)
@@ -239,9 +248,10 @@ def write_bytes_atomically(path: Path, data: bytes) -> None:
                 view = view[os.write(fd, view) :]
         finally:
             os.close(fd)
-        os.replace(tmp, path)
+        os.replace(tmp, target)
     except BaseException:
-        tmp.unlink(missing_ok=True)
+        with suppress(FileNotFoundError):
+            os.unlink(tmp)
         raise
 
 

@@ -22,6 +22,7 @@ import json
 import math
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
+from functools import lru_cache
 from pathlib import Path
 from typing import Any
 
@@ -37,7 +38,6 @@ from recipsim.case.load import (
     VALVE_SPEC,
     VALVES_TOP_SPEC,
     apply_overrides,
-    load_case,
     override,
     parse_override,
     resolve_extends,
@@ -141,17 +141,26 @@ def _read_base(spec: SweepSpec, allow_external_paths: bool = False) -> dict[str,
 
 def point_id(case_data: Mapping[str, Any], refrigerant_text: str) -> str:
     """Stable identifier of a point: hash of its case data, refrigerant file and version."""
-    blob = json.dumps(
-        {
-            "recipsim": __version__,
-            "case": case_data,
-            "refrigerant": refrigerant_text,
-        },
-        sort_keys=True,
-        default=str,
-        ensure_ascii=True,
-    )
-    return hashlib.sha256(blob.encode()).hexdigest()[:16]
+    return _point_id(_id_json(case_data), _id_tail(refrigerant_text))
+
+
+def _id_json(value: Any) -> str:
+    """JSON of ``value`` as a point's identifier reads it: keys sorted, ASCII, other
+    objects as str."""
+    return json.dumps(value, sort_keys=True, default=str, ensure_ascii=True)
+
+
+@lru_cache(maxsize=16)
+def _id_tail(refrigerant_text: str) -> str:
+    """The end of a point's identifier JSON after its case data: the version and the
+    refrigerant file's text, encoded once per refrigerant file (the bulk of the JSON)."""
+    return f', "recipsim": {_id_json(__version__)}, "refrigerant": {_id_json(refrigerant_text)}}}'
+
+
+def _point_id(case_json: str, tail: str) -> str:
+    """SHA-256 of ``{"case": ..., "recipsim": ..., "refrigerant": ...}`` (keys sorted: the
+    JSON of the whole dictionary, built from its parts), first 16 hex digits."""
+    return hashlib.sha256(f'{{"case": {case_json}{tail}'.encode()).hexdigest()[:16]
 
 
 class _RefrigerantTexts:
@@ -255,9 +264,16 @@ def _check_keys(
     extra: list[str],
     allow_external_paths: bool,
 ) -> None:
-    """Build one point's case; raise a key error as an error of the sweep file."""
+    """Build one point's case; raise a key error as an error of the sweep file.
+
+    The case is built as the point will be (:func:`~.worker.point_case`: the base case
+    read once per process, the overrides applied to it), with the same errors as
+    :func:`~recipsim.case.load.load_case`.
+    """
+    from recipsim.studies.sweep.worker import point_case
+
     try:
-        load_case(spec.base, list(overrides), allow_external_paths=allow_external_paths)
+        point_case(str(spec.base), overrides, allow_external_paths)
     except CaseError as exc:
         if exc.message.startswith(_KEY_ERRORS):
             raise _sweep_key_error(spec, exc, values, extra) from None

@@ -91,3 +91,25 @@ def test_a_stale_temporary_of_the_same_name_is_stepped_over(tmp_path):
     assert (tmp_path / "a.json").read_bytes() == b"fresh"
     assert all(path.read_bytes() == b"stale" for path in stale)
     assert len(list(tmp_path.glob(".*.tmp"))) == 3
+
+
+def test_a_point_id_is_the_hash_of_its_inputs_as_one_json_document():
+    """The identifier built from parts (the refrigerant's part encoded once) is the
+    SHA-256 of the JSON of ``{"recipsim", "case", "refrigerant"}`` with sorted keys, as
+    the store has always named points: a sweep run before resumes into its points."""
+    from pathlib import Path
+
+    from recipsim import __version__
+    from recipsim.studies.sweep.plan import point_id
+
+    case = {"z": {"b": [1.5, math.nan], "a": "é"}, "name": "c", "path": Path("x/y.toml")}
+    refrigerant = 'name = "R134a"\n# "quoted" \\ ü\n'
+    whole = json.dumps(
+        {"recipsim": __version__, "case": case, "refrigerant": refrigerant},
+        sort_keys=True,
+        default=str,
+        ensure_ascii=True,
+    )
+    expected = hashlib.sha256(whole.encode()).hexdigest()[:16]
+    assert point_id(case, refrigerant) == expected
+    assert point_id(case, refrigerant + " ") != expected
