@@ -4,7 +4,9 @@ Time to answer, around the solver (:mod:`recipsim.studies.bench.system_time`): t
 of ``recipsim run`` (imports, case loading, model build, solve, tables, each figure,
 report writing) and the command end to end; a sweep on 1..J workers (or a list of worker
 counts) with its overhead ratio (end to end, and after start-up: modules imported, numba
-cache loaded) and its parallel efficiency, end to end and after start-up; optionally the
+cache loaded, where it is also split by stage: case, model build, sampled outputs,
+summary, record, plan, tables) and its parallel efficiency, end to end and after
+start-up; optionally the
 first run with empty caches. Writes ``<out>/system/system.json`` (default ``--out``:
 ``reports/bench``) and prints a table. The timed runs write their files under
 ``--scratch`` (default ``<out>/system/scratch``), removed after.
@@ -112,6 +114,7 @@ def scratch_directory(directory: Path) -> Iterator[Path]:
 
 
 def _measure(args: argparse.Namespace) -> dict[str, Any]:
+    from recipsim.studies.bench.map_overhead import measure_map_overhead
     from recipsim.studies.bench.map_scaling import measure_map_scaling
     from recipsim.studies.bench.system import machine_info
     from recipsim.studies.bench.system_time import (
@@ -127,6 +130,7 @@ def _measure(args: argparse.Namespace) -> dict[str, Any]:
     if not args.no_map:
         result["map"] = measure_map(args.sweep, args.jobs, args.map_repeats)
         result["map"]["after_startup"] = measure_map_after_startup(args.sweep)
+        result["map"]["overhead_stages"] = measure_map_overhead(args.sweep, args.repeats)
         result["map"]["scaling_after_startup"] = measure_map_scaling(
             args.sweep, args.jobs, args.map_repeats
         )
@@ -171,6 +175,10 @@ def format_system(result: dict[str, Any]) -> str:
                     f"{t['overhead_ratio [-]']:.2f} ({t['wall [s]']:.2f} s, "
                     f"solves {t['solve_sum [s]']:.2f} s)"
                 )
+        if "overhead_stages" in m:
+            from recipsim.studies.bench.map_overhead import format_overhead_stages
+
+            lines.extend(format_overhead_stages(m["overhead_stages"]))
         if m["model"]:
             serial, parallel = m["model"]["serial [s]"], m["model"]["parallel [s]"]
             lines.append(f"  T(J) = {serial:.2f} s + {parallel:.2f} s / J")
