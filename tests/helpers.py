@@ -92,3 +92,22 @@ def one_line_error(capsys: pytest.CaptureFixture[str]) -> str:
     assert err.count("\n") == 0, err
     assert err.startswith("recipsim:"), err
     return err
+
+
+def stored_points(points: Path) -> dict[str, bytes]:
+    """The records in a sweep's ``points/`` directory by point id, each the line its
+    segment holds (of a point saved twice the later, by ``saved_ns``; a line cut short
+    is left out)."""
+    import json
+
+    found: dict[str, tuple[int, bytes]] = {}
+    for segment in sorted(points.glob("*.jsonl")):
+        for line in segment.read_bytes().splitlines():
+            try:
+                record = json.loads(line)
+            except ValueError:
+                continue
+            saved = record["saved_ns"]
+            if record["point_id"] not in found or found[record["point_id"]][0] <= saved:
+                found[record["point_id"]] = (saved, line)
+    return {pid: line for pid, (_, line) in found.items()}

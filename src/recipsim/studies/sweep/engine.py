@@ -339,6 +339,7 @@ def _compute(
             f"finished and kept in {store.points}"
         ) from None
     finally:
+        store.close()
         if bar is not None:
             bar.close()
     return jobs

@@ -60,7 +60,8 @@ class _DeferredInterrupt:
     raised inside it is swallowed by ctypes and the callback's result is then
     undefined, which could corrupt the point being solved. So in ``--jobs 1`` the
     first Ctrl-C only asks to stop after the current point; a second one ends the
-    process at once (every file on disk is whole: they are written atomically).
+    process at once (every file on disk is whole, written atomically, and a point record
+    cut short is detected and not trusted: :mod:`recipsim.studies.sweep.record_segments`).
     """
 
     def __init__(self) -> None:

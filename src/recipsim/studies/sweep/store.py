@@ -1,10 +1,13 @@
-"""Finished points on disk and the sweep's tables, all written atomically.
+"""Finished points on disk and the sweep's tables, all written whole or detected torn.
 
 Layout of a sweep's output directory ``<out>/<name>/``, ``<out>/<name>+<digest>/`` with
 ``--set`` overrides (:func:`recipsim.report.case_report.report_name`, as ``recipsim run``)::
 
     overrides.json           the --set overrides the sweep runs with (and their digest)
-    points/<point_id>.json   one file per finished point (status, message, summary)
+    points/<run>-<pid>-<n>.jsonl
+                             finished points, a line each (status, message, summary),
+                             one segment per process that saved them (:mod:`.record_segments`)
+    points/<point_id>.json   a finished point saved before record format 4 (still read)
     reports/<point_id>/      per-point reports (with --reports)
     summary.csv              one row per point, in sweep order
     summary.parquet          the same table (with --parquet)
@@ -12,13 +15,16 @@ Layout of a sweep's output directory ``<out>/<name>/``, ``<out>/<name>+<digest>/
     sweep.toml               the sweep file as run
     provenance.json          versions, command, counts and timings
 
-Every file is written to a temporary file in the same directory and renamed over its
-destination (:func:`os.replace`), so a killed sweep leaves either the old file or the
-new one, never half of one. Each point file carries the point's inputs (its
-overrides, whose case its id hashes) and a SHA-256 checksum of its content: a file
-that cannot be read, whose checksum does not match (a hand edit, an injected column)
-or whose inputs are not the planned point's counts as missing and the point is
-computed again. Nothing on disk is trusted that recipsim did not write for this point.
+Every file but the segments is written to a temporary file in the same directory and
+renamed over its destination (:func:`os.replace`), so a killed sweep leaves either the
+old file or the new one, never half of one. A point's record is appended to its
+process's segment in one write (:mod:`.record_segments`): a killed sweep leaves at most one line
+cut short, which is not trusted. Each record carries the point's inputs (its overrides,
+whose case its id hashes), when it was saved and a SHA-256 checksum of its content: a
+record that cannot be read, whose checksum does not match (a hand edit, an injected
+column) or whose inputs are not the planned point's counts as missing and the point is
+computed again; of two records of a point (``--retry-failed``), the later counts.
+Nothing on disk is trusted that recipsim did not write for this point.
 """
 
 from __future__ import annotations
@@ -31,15 +37,17 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from recipsim.atomic import atomic_file, write_bytes_atomically
+from recipsim.atomic import atomic_file
 from recipsim.errors import CaseError
+from recipsim.studies.sweep import record_segments
 from recipsim.studies.sweep.worker import STATUSES, PointTask, run_point
 
 #: A point file larger than this is not read (it was not written by recipsim) [bytes].
 _MAX_RECORD_BYTES = 10_000_000
 
-#: format of a point record; 2 (checksum over sorted keys) is still read
-FORMAT = 3
+#: format of a point record: 4, a line of a segment (:mod:`.record_segments`); files of one point
+#: each, 3 (checksum over the keys in order) and 2 (over the keys sorted), are still read
+FORMAT = 4
 
 
 def _canonical(body: dict[str, Any], sort_keys: bool = False) -> str:
@@ -77,9 +85,11 @@ class PointStore:
         self.root = Path(root)
         self.points = self.root / "points"
         self.reports = self.root / "reports"
+        self._index: dict[str, dict[str, Any]] | None = None  # segments' records, read once
+        self._point_files = False  # whether points/ holds files of earlier formats
 
     def path(self, point_id: str) -> Path:
-        """Result file of a point."""
+        """File of a point as a sweep saved it before record format 4 (still read)."""
         return self.points / f"{point_id}.json"
 
     def report_dir(self, point_id: str) -> Path:
@@ -128,9 +138,15 @@ class PointStore:
 
     def clear(self) -> None:
         """Forget every finished point (``--fresh``)."""
+        record_segments.close_segments(self.points)
+        self._index = None
         if self.points.is_dir():
-            for path in self.points.glob("*.json"):
+            for path in [*self.points.glob("*.json"), *record_segments.segments(self.points)]:
                 path.unlink(missing_ok=True)
+
+    def close(self) -> None:
+        """Close this process's segments (the end of a sweep's computing)."""
+        record_segments.close_segments(self.points)
 
     def load(self, point_id: str, overrides: Sequence[str]) -> dict[str, Any] | None:
         """The stored record of a point, or ``None`` if it is not finished.
@@ -141,17 +157,14 @@ class PointStore:
         overrides : sequence of str
             The planned point's overrides: a record made for other inputs is ignored.
         """
-        path = self.path(point_id)
-        try:
-            if path.stat().st_size > _MAX_RECORD_BYTES:
-                return None
-            record = json.loads(path.read_text(encoding="utf-8"))
-        except (OSError, ValueError):
-            return None
+        if self._index is None:
+            self._index = _segment_records(self.points)
+            self._point_files = self.points.is_dir() and any(self.points.glob("*.json"))
+        record = self._index.get(point_id)
+        if record is None and self._point_files:
+            record = _point_file(self.path(point_id))
         if (
-            not isinstance(record, dict)
-            or record.get("format") not in (2, FORMAT)
-            or record.get("checksum") != record_checksum(record)
+            record is None
             or record.get("point_id") != point_id
             or record.get("overrides") != list(overrides)
             or record.get("status") not in STATUSES
@@ -161,11 +174,53 @@ class PointStore:
         return record
 
     def save(self, point_id: str, record: dict[str, Any]) -> None:
-        """Write a point's record atomically (``format``, ``point_id`` and ``checksum``
-        are added)."""
-        data = {"format": FORMAT, "point_id": point_id, **record}
+        """Append a point's record to this process's segment (``format``, ``point_id``,
+        ``saved_ns`` and ``checksum`` are added)."""
+        data = {"format": FORMAT, "point_id": point_id, **record, "saved_ns": time.time_ns()}
         data.pop("checksum", None)
-        write_bytes_atomically(self.path(point_id), record_bytes(data))
+        self._index = None  # read again at the next load
+        line = record_bytes(data) + b"\n"
+        record_segments.append_record(self.points, str(record.get("run", "run")), line)
+
+
+def _checked(record: Any, formats: tuple[int, ...]) -> dict[str, Any] | None:
+    """``record`` if it is a dictionary of one of ``formats`` whose checksum matches."""
+    if (
+        isinstance(record, dict)
+        and record.get("format") in formats
+        and record.get("checksum") == record_checksum(record)
+    ):
+        return record
+    return None
+
+
+def _segment_records(directory: Path) -> dict[str, dict[str, Any]]:
+    """The records in the segments of ``directory`` by point id; of two records of one
+    point, the one saved later."""
+    found: dict[str, dict[str, Any]] = {}
+    for line in record_segments.record_lines(directory):
+        try:
+            record = _checked(json.loads(line), (FORMAT,))
+        except ValueError:
+            continue
+        if record is None or not isinstance(record.get("saved_ns"), int):
+            continue
+        pid = record.get("point_id")
+        if not isinstance(pid, str):
+            continue
+        if pid not in found or found[pid]["saved_ns"] <= record["saved_ns"]:
+            found[pid] = record
+    return found
+
+
+def _point_file(path: Path) -> dict[str, Any] | None:
+    """The record of a point file (formats 2 and 3), or None."""
+    try:
+        if path.stat().st_size > _MAX_RECORD_BYTES:
+            return None
+        return _checked(json.loads(path.read_text(encoding="utf-8")), (2, 3))
+    except (OSError, ValueError):
+        return None
 
 
 def point_record(task: PointTask, result: dict[str, Any], run_id: str) -> dict[str, Any]:
@@ -187,11 +242,11 @@ class SolveAndSave:
     """Solve a point and write its record into the sweep's store, where it was solved.
 
     Used by the local process pool, whose workers share the parent's file system: each
-    worker writes its own points' records (a JSON file each, atomically), so the parent
-    only collects them. Measured on the 100-point map, saving costs the parent about
-    2 ms of CPU per point (two JSON encodings, a checksum, a file written and renamed):
-    one process doing it for every worker caps a map at about 500 points/s, which 16
-    workers at 10-20 ms per point exceed.
+    worker appends its own points' records to its own segment (:mod:`.record_segments`), so the
+    parent only collects them. Measured on the 100-point map when each record was a
+    file, saving cost the parent about 2 ms of CPU per point (two JSON encodings, a
+    checksum, a file written and renamed): one process doing it for every worker capped
+    a map at about 500 points/s, which 16 workers at 10-20 ms per point exceed.
 
     Attributes
     ----------

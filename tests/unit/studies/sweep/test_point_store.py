@@ -7,7 +7,7 @@ import hashlib
 import json
 import math
 
-from recipsim.studies.sweep.store import FORMAT, PointStore, record_checksum
+from recipsim.studies.sweep.store import FORMAT, PointStore, record_bytes, record_checksum
 
 OVERRIDES = ["operating_point.shaft_speed=3000 rpm"]
 
@@ -18,32 +18,86 @@ def _record() -> dict:
     return {"status": "ok", "message": "", "summary": summary, "overrides": OVERRIDES}
 
 
+def _lines(store: PointStore) -> list[bytes]:
+    (segment,) = store.points.glob("*.jsonl")
+    return segment.read_bytes().splitlines(keepends=True)
+
+
 def test_a_saved_record_loads_back_with_its_column_order(tmp_path):
     store = PointStore(tmp_path)
     store.save("p1", _record())
-    loaded = store.load("p1", OVERRIDES)
+    store.close()
+    loaded = PointStore(tmp_path).load("p1", OVERRIDES)
     assert loaded is not None
     assert loaded["format"] == FORMAT and loaded["point_id"] == "p1"
     assert list(loaded["summary"]) == list(_record()["summary"])
     assert math.isnan(loaded["summary"]["b [W]"])
     assert loaded["checksum"] == record_checksum(loaded)
-    assert list(store.points.glob(".*.tmp")) == []  # the temporary file was renamed
+    assert len(_lines(store)) == 1 and list(store.points.glob("*.json")) == []
 
 
 def test_an_edited_or_reordered_record_is_not_trusted(tmp_path):
     store = PointStore(tmp_path)
     store.save("p1", _record())
-    path = store.path("p1")
-    record = json.loads(path.read_text())
+    (segment,) = store.points.glob("*.jsonl")
+    record = json.loads(segment.read_text())
+    assert store.load("p1", OVERRIDES) is not None
     record["summary"]["COP [-]"] = 99.0
-    path.write_text(json.dumps(record))
-    assert store.load("p1", OVERRIDES) is None
-    store.save("p1", _record())
-    record = json.loads(path.read_text())
+    segment.write_text(json.dumps(record) + "\n")
+    assert PointStore(tmp_path).load("p1", OVERRIDES) is None
+    record["summary"]["COP [-]"] = 1.7
     record["summary"] = dict(reversed(list(record["summary"].items())))
-    path.write_text(json.dumps(record))
+    segment.write_text(json.dumps(record) + "\n")
+    assert PointStore(tmp_path).load("p1", OVERRIDES) is None
+    assert PointStore(tmp_path).load("p2", OVERRIDES) is None  # no record at all
+
+
+def test_a_torn_last_line_is_skipped_and_the_later_record_of_a_point_counts(tmp_path):
+    """A process killed while writing leaves its last line cut short: that point is
+    computed again, the others are kept; a point saved twice (``--retry-failed``) is
+    taken from its later record, whichever segment holds it."""
+    store = PointStore(tmp_path)
+    store.save("p1", {**_record(), "status": "failed", "run": "a"})
+    store.save("p2", {**_record(), "run": "a"})
+    store.save("p3", {**_record(), "run": "a"})
+    store.close()
+    (segment,) = store.points.glob("a-*.jsonl")
+    data = segment.read_bytes()
+    segment.write_bytes(data[: len(data) - 40])  # p3's line cut short
+    store.save("p1", {**_record(), "run": "b"})  # a later run's segment
+    store.close()
+    again = PointStore(tmp_path)
+    assert again.load("p1", OVERRIDES)["status"] == "ok"
+    assert again.load("p2", OVERRIDES) is not None
+    assert again.load("p3", OVERRIDES) is None
+    assert len(list(store.points.glob("*.jsonl"))) == 2
+
+
+def test_a_closed_segment_is_never_appended_to_again(tmp_path):
+    """One segment per process and run while it is open; after ``close`` (or a failed
+    write) the next record starts a new segment, so no record follows a cut line."""
+    store = PointStore(tmp_path)
+    store.save("p1", {**_record(), "run": "a"})
+    PointStore(tmp_path).save("p2", {**_record(), "run": "a"})  # the same open segment
+    assert len(list(store.points.glob("a-*.jsonl"))) == 1
+    store.close()
+    store.save("p3", {**_record(), "run": "a"})
+    store.close()
+    assert len(list(store.points.glob("a-*.jsonl"))) == 2
+    assert all(PointStore(tmp_path).load(p, OVERRIDES) for p in ("p1", "p2", "p3"))
+
+
+def test_a_record_file_of_format_3_is_still_read(tmp_path):
+    """Sweeps saved each point in a file of its own (format 3): they resume, and a file
+    edited after its checksum is not trusted."""
+    store = PointStore(tmp_path)
+    store.points.mkdir(parents=True)
+    body = {"format": 3, "point_id": "p1", **_record()}
+    store.path("p1").write_bytes(record_bytes(body))
+    loaded = store.load("p1", OVERRIDES)
+    assert loaded is not None and loaded["summary"]["COP [-]"] == 1.7
+    store.path("p1").write_text(store.path("p1").read_text().replace("1.7", "2.5"))
     assert store.load("p1", OVERRIDES) is None
-    assert store.load("p2", OVERRIDES) is None  # no file at all
 
 
 def test_a_record_of_format_2_is_still_read(tmp_path):

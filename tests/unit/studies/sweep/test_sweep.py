@@ -18,7 +18,7 @@ from pathlib import Path
 import pandas as pd
 import pytest
 
-from helpers import CASES, REFERENCE, ROOT, solve_case
+from helpers import CASES, REFERENCE, ROOT, solve_case, stored_points
 from recipsim.cli.main import main
 from recipsim.errors import RecipsimError
 from recipsim.results.tables import summary
@@ -39,10 +39,6 @@ def read_table(path: Path) -> pd.DataFrame:
 
 def comparable(table: pd.DataFrame) -> pd.DataFrame:
     return table.drop(columns=[c for c in TIMING_COLUMNS if c in table]).reset_index(drop=True)
-
-
-def point_files(directory: Path) -> dict[str, tuple[int, bytes]]:
-    return {p.stem: (p.stat().st_mtime_ns, p.read_bytes()) for p in directory.glob("*.json")}
 
 
 def test_failed_points_are_recorded_and_the_others_finish(tmp_path, capsys):
@@ -88,9 +84,9 @@ operating_point.evaporating_temperature = ["-30 degC", "70 degC"]
     assert ok["cooling_capacity [W]"] > 50.0
     assert ok[EVAPORATING] == pytest.approx(243.15, abs=1e-9)
 
-    # one file per finished point, per-point report for the solved ones, Parquet = CSV
+    # one record per finished point, per-point report for the solved ones, Parquet = CSV
     root = out / "small"
-    assert len(list((root / "points").glob("*.json"))) == 4
+    assert len(stored_points(root / "points")) == 4
     assert (root / "reports" / ok["point_id"] / "summary.csv").is_file()
     assert (root / "reports" / table.loc[0, "point_id"] / "cycle.csv").is_file()
     meta = json.loads((root / "provenance.json").read_text())
@@ -211,7 +207,7 @@ def test_killed_worker_stops_the_sweep_and_a_rerun_resumes(tmp_path, monkeypatch
     assert status == 1
     err = capsys.readouterr().err
     assert "a worker process died" in err and "to resume" in err
-    finished = point_files(tmp_path / "small" / "points")
+    finished = stored_points(tmp_path / "small" / "points")
     assert 1 <= len(finished) < 6
     assert not (tmp_path / "small" / "summary.csv").exists()
     monkeypatch.undo()
@@ -269,22 +265,22 @@ operating_point.evaporating_temperature = [
     )
     deadline = time.monotonic() + 60.0
     try:
-        while len(list(points.glob("*.json"))) < 3:
+        while len(stored_points(points)) < 3:
             assert proc.poll() is None, proc.stderr.read() if proc.stderr else ""
             assert time.monotonic() < deadline, "no point finished within 60 s"
             time.sleep(0.005)
     finally:
         os.killpg(proc.pid, signal.SIGKILL)  # the sweep and its workers, no clean-up
         proc.wait()
-    before = point_files(points)
+    before = stored_points(points)
     assert 3 <= len(before) < 14, "the kill did not land midway"
 
     resumed = run_sweep(sweep, out=out, jobs=2, plots=False)
     assert sorted(resumed.reused) == sorted(before)
     assert sorted(resumed.computed) == sorted(set(resumed.table["point_id"]) - set(before))
-    after = point_files(points)
+    after = stored_points(points)
     assert len(after) == 14
-    assert {k: after[k] for k in before} == before  # finished points untouched
+    assert {k: after[k] for k in before} == before  # finished points kept, not rewritten
     assert list(resumed.table["status"]) == ["ok"] * 14
 
     fresh = run_sweep(sweep, out=tmp_path / "uninterrupted", jobs=1, plots=False)

@@ -115,6 +115,9 @@ def test_pool_workers_save_their_own_points(
     pids = writers.read_text().split()
     assert len(pids) == 12
     assert pids.count(str(os.getpid())) == 1  # the warm first point
+    # each process appended to a segment of its own
+    segments = sorted(p.name.split("-")[1] for p in (pool.directory / "points").glob("*.jsonl"))
+    assert segments == sorted(set(pids))
     store = PointStore(pool.directory)
     for pid, overrides in zip(pool.table["point_id"], _overrides(pool), strict=True):
         assert store.load(pid, overrides) is not None  # checksum and overrides match
@@ -129,9 +132,8 @@ def _overrides(outcome: object) -> list[list[str]]:
     """Each point's overrides, as its record holds them."""
     import json
 
-    directory = outcome.directory  # type: ignore[attr-defined]
+    from helpers import stored_points
+
+    records = stored_points(outcome.directory / "points")  # type: ignore[attr-defined]
     table = outcome.table  # type: ignore[attr-defined]
-    return [
-        json.loads((directory / "points" / f"{pid}.json").read_text())["overrides"]
-        for pid in table["point_id"]
-    ]
+    return [json.loads(records[pid])["overrides"] for pid in table["point_id"]]

@@ -111,34 +111,40 @@ def test_a_silent_server_is_not_waited_for(tmp_path, capsys):
     assert "no Dask scheduler answers" in one_line_error(capsys)
 
 
-def test_a_tampered_point_file_is_recomputed(tmp_path, capsys):
+def test_a_tampered_point_record_is_recomputed(tmp_path, capsys):
     """COP 99 and an injected column in a finished point: not trusted, recomputed, and
     the table equals a clean run's."""
+    from helpers import stored_points
+
     sweep = write(tmp_path, SMALL)
     out = tmp_path / "out"
+    points = out / "small" / "points"
     argv = ["sweep", str(sweep), "--out", str(out), "--quiet", "--no-plots", "--jobs", "1"]
     assert main(argv) == 0
     clean = pd.read_csv(out / "small" / "summary.csv")
-    point = sorted((out / "small" / "points").glob("*.json"))[0]
-    record = json.loads(point.read_text())
+    (segment,) = points.glob("*.jsonl")
+    lines = segment.read_bytes().splitlines(keepends=True)
+    record = json.loads(lines[0])
+    pid = record["point_id"]
     assert record["checksum"] == record_checksum(record)
     record["summary"]["COP [-]"] = 99.0
     record["summary"]["injected [-]"] = 1.0
-    point.write_text(json.dumps(record))
+    segment.write_bytes(json.dumps(record).encode() + b"\n" + b"".join(lines[1:]))
     assert main(argv) == 0
     again = pd.read_csv(out / "small" / "summary.csv")
     assert "injected [-]" not in again.columns and (again["COP [-]"] < 10).all()
     timing = [c for c in TIMING_COLUMNS if c in clean]
     pd.testing.assert_frame_equal(clean.drop(columns=timing), again.drop(columns=timing))
+    assert json.loads(stored_points(points)[pid])["summary"]["COP [-]"] < 10  # saved again
     # a forged checksum does not help when the inputs are not the point's
-    record = json.loads(point.read_text())
+    record = json.loads(stored_points(points)[pid])
     record["overrides"] = ["operating_point.shaft_speed=1.0"]
+    record["saved_ns"] += 1  # the point's latest record
     record["checksum"] = record_checksum(record)
-    point.write_text(json.dumps(record))
-    mtime = point.stat().st_mtime_ns
+    with open(segment, "ab") as handle:
+        handle.write(json.dumps(record).encode() + b"\n")
     assert main(argv) == 0
-    assert point.stat().st_mtime_ns != mtime  # recomputed and rewritten
-    assert json.loads(point.read_text())["overrides"] != ["operating_point.shaft_speed=1.0"]
+    assert json.loads(stored_points(points)[pid])["overrides"] != record["overrides"]
 
 
 def test_unsafe_sweep_names_and_foreign_directories_are_refused(tmp_path, capsys):
