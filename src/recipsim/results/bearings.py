@@ -210,26 +210,38 @@ def pinned_columns(
     return cols, out[:, _PIN_DRIVE_TORQUE].copy()
 
 
-def mechanism_summary(cycle: CycleLike) -> dict[str, Any]:
+#: Summary columns per bearing: RMS load, peak load, largest orbit radius.
+_RMS_COLUMNS = tuple(f"bearing_rms_{name} [N]" for name in lay.BEARING_NAMES)
+_MAX_COLUMNS = tuple(f"bearing_max_{name} [N]" for name in lay.BEARING_NAMES)
+_ORBIT_COLUMNS = tuple(f"orbit_radius_max_{name} [m]" for name in lay.BEARING_NAMES)
+
+
+def mechanism_summary(cycle: CycleLike, pinned: bool = False) -> dict[str, Any]:
     """Per-bearing RMS and peak load, largest orbit radius; crank speed and its ripple.
 
     Statistics over the uniform crank-angle samples of the cycle table (an RMS over
-    crank angle; at constant speed the same as over time).
+    crank angle; at constant speed the same as over time). ``pinned``: the table is the
+    pinned mechanism's, whose journals do not move in their bushings (its displacement
+    columns are 0): the orbit radii are 0 without reading them.
     """
     # one row per bearing: each row's reduction is the column's own (same summation)
     f = np.stack([cycle[c].to_numpy() for c in FORCE_COLUMNS])
     rms = np.sqrt(np.mean(f * f, axis=1)).tolist()
     peak = f.max(axis=1).tolist()
-    x = np.stack([cycle[moved[0]].to_numpy() for moved in _DISPLACEMENT_COLUMNS])
-    y = np.stack([cycle[moved[1]].to_numpy() for moved in _DISPLACEMENT_COLUMNS])
-    r2 = x * x + y * y  # the X and Y displacements (_DISPLACEMENT_AXES)
-    orbit = np.sqrt(np.max(r2, axis=1)).tolist()
+    if pinned:
+        orbit = [0.0] * len(lay.BEARING_NAMES)
+    else:
+        x = np.stack([cycle[moved[0]].to_numpy() for moved in _DISPLACEMENT_COLUMNS])
+        y = np.stack([cycle[moved[1]].to_numpy() for moved in _DISPLACEMENT_COLUMNS])
+        r2 = x * x + y * y  # the X and Y displacements (_DISPLACEMENT_AXES)
+        orbit = np.sqrt(np.max(r2, axis=1)).tolist()
     row: dict[str, Any] = {}
-    for i, name in enumerate(lay.BEARING_NAMES):
-        row[f"bearing_rms_{name} [N]"] = rms[i]
-        row[f"bearing_max_{name} [N]"] = peak[i]
-    for i, name in enumerate(lay.BEARING_NAMES):
-        row[f"orbit_radius_max_{name} [m]"] = orbit[i]
+    for rms_column, max_column, rms_value, peak_value in zip(
+        _RMS_COLUMNS, _MAX_COLUMNS, rms, peak, strict=True
+    ):
+        row[rms_column] = rms_value
+        row[max_column] = peak_value
+    row.update(zip(_ORBIT_COLUMNS, orbit, strict=True))
     speed = cycle["crank_speed [rad/s]"].to_numpy()
     # time mean (revolutions per second): the harmonic mean over uniform crank angles
     mean = float(1.0 / np.mean(1.0 / speed))

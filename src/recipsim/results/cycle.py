@@ -124,11 +124,12 @@ def cycle_columns(solution: PeriodicSolution, full: bool = True) -> dict[str, np
     """
     model = solution.model
     rev = solution.final
-    out = sample_outputs(model, rev)
+    rigid = model.scene == scenes.SCENE_CYLINDER
+    out = sample_outputs(model, rev, cylinder_only=rigid)
     theta = np.mod(out[:, _CRANK_ANGLE], 2.0 * math.pi)
     # the TDC sample can land a round-off below 2 pi (then it would sort last as 360 deg)
     theta = np.where(theta > 2.0 * math.pi - 1e-9, 0.0, theta)
-    if model.scene == scenes.SCENE_CYLINDER:  # copy (sort) only the columns read
+    if rigid:  # copy (sort) only the columns read
         out = out[:, :_CYLINDER_WIDTH]
     # the outputs as rows (slot, sample), sorted by crank angle: each column contiguous
     if model.free_speed:

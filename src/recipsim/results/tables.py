@@ -206,8 +206,9 @@ def summary(
             cycle = Columns(cycle_columns(solution, full=False))
     assert case is not None and cycle is not None
     row = _operating_columns(case)
-    mech = mechanism_summary(cycle)
     model = solution.model if solution is not None else None
+    # the pinned mechanism (a rigid crank, or the tabulated pressure's): no orbits
+    mech = mechanism_summary(cycle, model is None or model.scene == scenes.SCENE_CYLINDER)
     # one revolution's frequency: the mean crank speed when the speed is free
     drive_work, bearing_loss, freq = _drive_work(
         solution, cycle, mech["mean_crank_speed [rpm]"] / 60.0

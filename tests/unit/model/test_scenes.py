@@ -142,3 +142,13 @@ def test_paper_command_writes_table1_with_the_paper_pattern(tmp_path):
     damped = table["gas_damped_flexible_rms [N]"] / table["gas_pinned_rms [N]"] - 1.0
     assert (damped.abs() < 0.07).all()
     assert (table["gas_pinned_rms [N]"] > table["inertia_pinned_rms [N]"]).all()
+
+
+def test_the_pinned_summary_skips_the_orbits_it_knows_are_zero():
+    """The pinned mechanism's journals do not move: its displacement columns are zero, so
+    ``pinned=True`` (the summary's choice for a rigid crank) gives the same row, orbits
+    0, in the same column order, without reading them."""
+    table = pinned_tabulated_cycle(load_case(PAPER, PINNED))
+    full, pinned = mechanism_summary(table), mechanism_summary(table, pinned=True)
+    assert list(pinned.items()) == list(full.items())
+    assert [v for k, v in pinned.items() if k.startswith("orbit_radius_max_")] == [0.0] * 6
