@@ -42,8 +42,9 @@ from recipsim.errors import CaseError
 from recipsim.studies.sweep import record_segments
 from recipsim.studies.sweep.worker import STATUSES, PointTask, run_point
 
-#: A point file larger than this is not read (it was not written by recipsim) [bytes].
-_MAX_RECORD_BYTES = 10_000_000
+#: A point file larger than this is not read (it was not written by recipsim) [bytes]: the
+#: limit of a segment's line.
+_MAX_RECORD_BYTES = record_segments.MAX_LINE_BYTES
 
 #: format of a point record: 4, a line of a segment (:mod:`.record_segments`); files of one point
 #: each, 3 (checksum over the keys in order) and 2 (over the keys sorted), are still read
