@@ -6,10 +6,10 @@ report writing) and the command end to end; a sweep on 1..J workers (or a list o
 counts) with its overhead ratio (end to end, and after start-up: modules imported, numba
 cache loaded, where it is also split by stage: case, model build, sampled outputs,
 summary, record, plan, tables) and its parallel efficiency, end to end and after
-start-up; optionally the
-first run with empty caches. Writes ``<out>/system/system.json`` (default ``--out``:
-``reports/bench``) and prints a table. The timed runs write their files under
-``--scratch`` (default ``<out>/system/scratch``), removed after.
+start-up; optionally the first run with empty caches. Writes
+``<out>/system/system.json`` (default ``--out``: ``reports/bench``) and prints a table.
+The timed runs write their files under ``--scratch`` (default ``<out>/system/scratch``),
+removed after.
 
 A subcommand of its own rather than ``bench --system``: ``bench`` ranks solver settings
 on one case (its options choose rungs, tolerances and a time budget), this one times the

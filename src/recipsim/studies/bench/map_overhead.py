@@ -5,28 +5,25 @@ ratio of a sweep on one worker after start-up (everything but the solves, over t
 solves) as one number. :func:`measure_map_overhead` splits it: the same sweep, run in an
 interpreter that has started (recipsim imported, numba's cache loaded by one solve of
 the base case, one unmeasured sweep for the lazy imports), with a timer around each
-stage of a point and of the sweep:
+stage of a point and of the sweep.
 
-================== ========================================================== =========
-stage              what it times                                              per
-================== ========================================================== =========
-``case``           the point's case: the base case with its overrides         point
-                   (:func:`recipsim.studies.sweep.worker.point_case`)
-``model_build``    the compiled model's arrays (:func:`recipsim.solve.drive.build_model_for`) point
-``solve_call``     :func:`recipsim.solve.periodic.solve_periodic` less the    point
-                   solve's own timer (the point's ``wall_time [s]``, the
-                   denominator of the ratio): the model's working copy
-``sampled_outputs`` the scene's outputs at the samples of the converged       point
-                   revolution (compiled; :func:`recipsim.solve.revolution.sample_outputs`)
-``summary``        the summary row less ``sampled_outputs``                   point
-                   (:func:`recipsim.results.tables.summary_row`)
-``record``         the point's record written to the store                   point
-                   (:meth:`recipsim.studies.sweep.store.PointStore.save`)
-``plan``           the points planned and their ids                          sweep
-``tables``         the summary table built and written                       sweep
-``other``          the rest of the wall time (the engine's bookkeeping, the  sweep
-                   classification, the store's directory)
-================== ========================================================== =========
+Per point:
+
+- ``case``: the point's case, the base case with its overrides
+  (:func:`recipsim.studies.sweep.worker.point_case`);
+- ``model_build``: the compiled model's arrays (:func:`recipsim.solve.drive.build_model_for`);
+- ``solve_call``: :func:`recipsim.solve.periodic.solve_periodic` less the solve's own
+  timer (the point's ``wall_time [s]``, the denominator of the ratio): the model's
+  working copy;
+- ``sampled_outputs``: the scene's outputs at the samples of the converged revolution
+  (compiled; :func:`recipsim.solve.revolution.sample_outputs`);
+- ``summary``: the summary row less ``sampled_outputs``
+  (:func:`recipsim.results.tables.summary_row`);
+- ``record``: the point's record saved (:meth:`recipsim.studies.sweep.store.PointStore.save`).
+
+Per sweep: ``plan`` (the points planned and their ids), ``tables`` (the summary table
+built and written) and ``other``, the rest of the wall time (the engine's bookkeeping,
+the classification of each point, the store's directory).
 
 Each stage is reported as milliseconds per point and as its share of the solves; the
 shares add up to the overhead ratio. The timers are wrappers installed in the measuring
@@ -96,11 +93,13 @@ def _stage_timers(spent: dict[str, float]) -> Iterator[None]:
         for stage, (module_name, path) in STAGE_FUNCTIONS.items():
             owner: Any = importlib.import_module(module_name)
             *parents, name = path.split(".")
-            for parent in parents:
-                owner = getattr(owner, parent)
-            original = getattr(owner, name, None)
-            if original is None:
-                raise RecipsimError(f"map overhead: {module_name}.{path} is gone; update the bench")
+            try:
+                for parent in parents:
+                    owner = getattr(owner, parent)
+                original = getattr(owner, name)
+            except AttributeError:
+                gone = f"map overhead: {module_name}.{path} is gone; update the bench"
+                raise RecipsimError(gone) from None
             installed.append((owner, name, original))
             setattr(owner, name, timed(stage, original))
         yield

@@ -140,8 +140,14 @@ def _read_base(spec: SweepSpec, allow_external_paths: bool = False) -> dict[str,
 
 
 def point_id(case_data: Mapping[str, Any], refrigerant_text: str) -> str:
-    """Stable identifier of a point: hash of its case data, refrigerant file and version."""
-    return _point_id(_id_json(case_data), _id_tail(refrigerant_text))
+    """Stable identifier of a point: hash of its case data, refrigerant file and version.
+
+    The SHA-256 (first 16 hex digits) of the JSON of ``{"case": ..., "recipsim": ...,
+    "refrigerant": ...}``, keys sorted, built from its parts: the case's JSON, then the
+    rest, encoded once per refrigerant file (:func:`_id_tail`).
+    """
+    whole = f'{{"case": {_id_json(case_data)}{_id_tail(refrigerant_text)}'
+    return hashlib.sha256(whole.encode()).hexdigest()[:16]
 
 
 def _id_json(value: Any) -> str:
@@ -155,12 +161,6 @@ def _id_tail(refrigerant_text: str) -> str:
     """The end of a point's identifier JSON after its case data: the version and the
     refrigerant file's text, encoded once per refrigerant file (the bulk of the JSON)."""
     return f', "recipsim": {_id_json(__version__)}, "refrigerant": {_id_json(refrigerant_text)}}}'
-
-
-def _point_id(case_json: str, tail: str) -> str:
-    """SHA-256 of ``{"case": ..., "recipsim": ..., "refrigerant": ...}`` (keys sorted: the
-    JSON of the whole dictionary, built from its parts), first 16 hex digits."""
-    return hashlib.sha256(f'{{"case": {case_json}{tail}'.encode()).hexdigest()[:16]
 
 
 class _RefrigerantTexts:
