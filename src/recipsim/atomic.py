@@ -199,24 +199,43 @@ def _create_temporary(path: Path) -> tuple[int, Path]:
 def _create_temporary_at(target: str) -> tuple[int, str]:
     """:func:`_create_temporary` on a path as a string.
 
-    Its name ``.<stem>.<pid>-<n><suffix>.tmp`` is unique to this process; a file of that
-    name left by a killed process of the same id makes it take the next number. Three
-    system calls where ``mkstemp`` made a random name and the directory was created each
-    time, and string operations rather than :class:`~pathlib.Path` ones: the sweep writes
-    such a file per point (0.06 ms against 0.11 ms with paths, 0.25 ms with ``mkstemp``).
+    Its name ``.<stem>.<pid>-<n><suffix>.tmp`` is unique to this process
+    (:func:`create_new_file`). Three system calls where ``mkstemp`` made a random name
+    and the directory was created each time, and string operations rather than
+    :class:`~pathlib.Path` ones: 0.05-0.06 ms a file against 0.11 ms with paths, 0.25 ms with
+    ``mkstemp``.
     """
-    flags = os.O_WRONLY | os.O_CREAT | os.O_EXCL
     head, name = os.path.split(target)
     stem, suffix = os.path.splitext(name)
     prefix = os.path.join(head, f".{stem}.{os.getpid()}-")
+    return create_new_file(lambda number: f"{prefix}{number}{suffix}.tmp")
+
+
+def create_new_file(name: Callable[[int], str], flags: int = 0) -> tuple[int, str]:
+    """Create ``name(n)`` exclusively, readable by its owner only, and open it for
+    writing (with the extra ``flags``, e.g. :data:`os.O_APPEND`); its descriptor and
+    path.
+
+    ``n`` comes from this process's counter: a name that exists (a file left by a killed
+    process of the same id) makes it take the next number; a missing directory is
+    created.
+    """
+    flags |= os.O_WRONLY | os.O_CREAT | os.O_EXCL
     while True:
-        tmp = f"{prefix}{next(_TEMPORARY_NUMBERS)}{suffix}.tmp"
+        path = name(next(_TEMPORARY_NUMBERS))
         try:
-            return os.open(tmp, flags, 0o600), tmp
+            return os.open(path, flags, 0o600), path
         except FileNotFoundError:
-            os.makedirs(head or ".", exist_ok=True)
+            os.makedirs(os.path.dirname(path) or ".", exist_ok=True)
         except FileExistsError:
             continue
+
+
+def write_all(fd: int, data: bytes) -> None:
+    """Write all of ``data`` to the descriptor ``fd`` (a write may take only part)."""
+    view = memoryview(data)
+    while view:
+        view = view[os.write(fd, view) :]
 
 
 @contextmanager
@@ -243,9 +262,7 @@ def write_bytes_atomically(path: str | Path, data: bytes) -> None:
     fd, tmp = _create_temporary_at(target)
     try:
         try:
-            view = memoryview(data)
-            while view:
-                view = view[os.write(fd, view) :]
+            write_all(fd, data)
         finally:
             os.close(fd)
         os.replace(tmp, target)

@@ -38,9 +38,10 @@ from pathlib import Path
 from typing import Any
 
 from recipsim import start_up_collector
+from recipsim.atomic import write_all
 from recipsim.machine_load import busy_cores, idle_cores, usable_cores
 from recipsim.report.figure_costs import FIGURE_COST, TABLES, TABLES_COST, share_by_cost
-from recipsim.report.process_pipes import read_all, read_exactly, runnable, write_all
+from recipsim.report.process_pipes import read_all, read_exactly, runnable
 
 
 def _child(jobs: int, results: int, preload: tuple[str, ...], role: str) -> None:

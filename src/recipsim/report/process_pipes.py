@@ -23,13 +23,6 @@ def read_all(fd: int) -> bytes:
     return b"".join(chunks)
 
 
-def write_all(fd: int, data: bytes) -> None:
-    """Write all of ``data`` to ``fd``."""
-    view = memoryview(data)
-    while view:
-        view = view[os.write(fd, view) :]
-
-
 def runnable(pid: int) -> bool:
     """Whether process ``pid`` is runnable now (Linux's ``/proc``; False elsewhere)."""
     try:

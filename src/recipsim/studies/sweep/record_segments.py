@@ -20,15 +20,15 @@ from __future__ import annotations
 
 import os
 from collections.abc import Iterator
-from itertools import count
 from pathlib import Path
+
+from recipsim.atomic import create_new_file, write_all
 
 #: A line longer than this is not read (recipsim did not write it) [bytes].
 MAX_LINE_BYTES = 10_000_000
 
 #: Open segments of this process: (process id, points directory, run) -> descriptor.
 _OPEN: dict[tuple[int, str, str], int] = {}
-_NUMBERS = count()
 
 
 def append_record(directory: Path, run: str, line: bytes) -> None:
@@ -39,9 +39,7 @@ def append_record(directory: Path, run: str, line: bytes) -> None:
     if fd is None:
         fd = _OPEN[key] = _open_segment(directory, run)
     try:
-        view = memoryview(line)
-        while view:
-            view = view[os.write(fd, view) :]
+        write_all(fd, line)
     except BaseException:
         del _OPEN[key]
         os.close(fd)
@@ -51,15 +49,9 @@ def append_record(directory: Path, run: str, line: bytes) -> None:
 def _open_segment(directory: Path, run: str) -> int:
     """A new segment ``<run>-<pid>-<n>.jsonl`` in ``directory``, created exclusively,
     readable by its owner only, open for appending."""
-    flags = os.O_WRONLY | os.O_CREAT | os.O_EXCL | os.O_APPEND
-    while True:
-        path = directory / f"{run}-{os.getpid()}-{next(_NUMBERS)}.jsonl"
-        try:
-            return os.open(path, flags, 0o600)
-        except FileNotFoundError:
-            directory.mkdir(parents=True, exist_ok=True)
-        except FileExistsError:
-            continue
+    pid = os.getpid()
+    fd, _ = create_new_file(lambda n: str(directory / f"{run}-{pid}-{n}.jsonl"), os.O_APPEND)
+    return fd
 
 
 def close_segments(directory: Path) -> None:
