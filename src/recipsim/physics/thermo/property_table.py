@@ -232,6 +232,9 @@ class PropertyTable:
     from_cache: bool = False
     build_time: float = 0.0
     load_time: float = 0.0
+    #: The entropy sums of the table (:func:`.table_entropy.entropy_tables`), cached with
+    #: it; None: computed where needed.
+    entropy: np.ndarray | None = field(default=None, repr=False, compare=False)
     #: Buffers handed out by :meth:`property_buffer`, reused once nothing else holds them.
     _buffers: list[np.ndarray] = field(default_factory=list, repr=False, compare=False)
     #: ``id`` of the kept buffers whose tail already holds :attr:`data` (a kept buffer

@@ -10,7 +10,8 @@ three-point Gauss-Legendre (exact for the cubic isotherm integrand).
 table evaluations down a 300-node isochore).
 
 :func:`table_entropy` gives the same value (to rounding, about 1e-15 relative) in about
-1 us from :func:`entropy_tables`, computed once per table (5-15 ms):
+1 us from :func:`entropy_tables`, computed once per table (5-15 ms) and cached with it
+(:func:`table_entropy_sums`):
 
 * along the anchor isotherm, the integral from the anchor to every ln(rho) node; a state
   adds the integral within its cell;
@@ -72,6 +73,7 @@ from recipsim.physics.thermo.property_table import (
     N_GRID,
     N_SAT,
     S_LNRHOV,
+    PropertyTable,
     _hermite,
     table_props,
 )
@@ -225,6 +227,17 @@ def _dome_limits(temps: np.ndarray, buf: np.ndarray) -> np.ndarray:
     dew = np.where(np.isnan(dew), -np.inf, dew)
     band = np.where(temps < buf[b + H_TCRIT], buf[b + H_LNRHOV_BAND], np.inf)
     return np.where(temps < buf[b + H_TSAT_MAX], dew, band)
+
+
+def table_entropy_sums(table: PropertyTable, buf: np.ndarray | None = None) -> np.ndarray:
+    """The entropy sums of ``table`` (:func:`entropy_tables`): those it holds (read with
+    it from the cache), else computed now, from ``buf`` if given (a property buffer of
+    the table without transport), and kept on it."""
+    if table.entropy is None:
+        table.entropy = entropy_tables(
+            table.property_buffer(transport=False) if buf is None else buf
+        )
+    return table.entropy
 
 
 def entropy_tables(buf: np.ndarray) -> np.ndarray:

@@ -76,7 +76,7 @@ from recipsim.physics.thermo.property_table import (
     PropertyTable,
     table_props,
 )
-from recipsim.physics.thermo.table_entropy import entropy_tables
+from recipsim.physics.thermo.table_entropy import table_entropy_sums
 from recipsim.physics.thermo.table_solves import (
     N_STATE,
     Q_T,
@@ -151,8 +151,9 @@ class TableFluid:
         self.critical_pressure = critical_pressure
         self._buf = table.property_buffer(transport=False)
         self._buf_transport = table.property_buffer(transport=True)
-        #: the entropy sums of the table (:func:`.table_entropy.entropy_tables`, 5-15 ms)
-        self._entropy_tables = entropy_tables(self._buf)
+        #: the entropy sums of the table (:func:`.table_entropy.table_entropy_sums`: read
+        #: with a cached table, else computed, 5-15 ms)
+        self._entropy_tables = table_entropy_sums(table, self._buf)
         #: a state filled by the compiled solves (:data:`.table_solves.STATE`)
         self._out = np.full(N_STATE, math.nan)
         self._heos: Fluid | None = None

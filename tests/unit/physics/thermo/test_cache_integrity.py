@@ -65,6 +65,25 @@ def test_a_tampered_table_is_rebuilt_and_its_provenance_is_honest(cache):
     assert load_property_table(*R600A, COARSE).from_cache  # the rebuilt file is good
 
 
+def test_the_entropy_sums_are_cached_with_the_table_and_checked(cache):
+    """A loaded table brings the entropy sums its build stored, equal to those computed
+    from its data; an edited sum fails the checksum like an edited coefficient."""
+    from recipsim.physics.thermo.table_entropy import entropy_tables
+
+    built = load_property_table(*R600A, COARSE)
+    loaded = load_property_table(*R600A, COARSE)
+    assert loaded.from_cache and loaded.entropy is not None
+    computed = entropy_tables(loaded.property_buffer(transport=False))
+    np.testing.assert_array_equal(loaded.entropy, computed)
+    np.testing.assert_array_equal(built.entropy, computed)
+    entropy = loaded.entropy.copy()
+    finite = np.flatnonzero(np.isfinite(entropy) & (entropy != 0.0))
+    entropy[finite[len(finite) // 2]] *= 1.001
+    _rewrite(built.path, entropy=entropy)
+    with pytest.warns(UserWarning, match="checksum does not match"):
+        assert not load_property_table(*R600A, COARSE).from_cache
+
+
 @pytest.mark.parametrize(
     "damage",
     [b"", b"not a zip file at all", b"PK\x03\x04" + b"\x00" * 64],
