@@ -3,8 +3,10 @@
 A ``recipsim run`` spends about as long drawing its figures (0.6 s of CPU for the
 default case, plus 0.2-0.3 s to import matplotlib) as on everything else. The command
 line therefore forks :class:`FigureProcesses` before it loads anything heavy: each child
-imports pandas, matplotlib and the plotting modules while the parent imports numba,
-loads the case and solves, then waits for a job on a pipe. At the hand-over the parent
+imports matplotlib and the plotting modules while the parent imports numba, loads the
+case and solves, then waits for a job on a pipe (not pandas: the tables are written by
+:mod:`.csv_tables` and the figures drawn from the columns, 0.3 s of CPU less beside the
+solve). At the hand-over the parent
 only waits from then on, so the figures and the tables are shared, by their measured
 cost (:mod:`.figure_costs`), between as many processes as there are idle cores then
 (:meth:`FigureProcesses.drawing_processes`): a child given several shares forks itself
@@ -109,17 +111,16 @@ def _run_calls(
     return [first, *(forks.wait() if forks is not None else ())]
 
 
-#: What the children of a case report import before their job arrives: pandas first
-#: (``recipsim run`` leaves the tables to them and never imports it itself).
+#: What the children of a case report import before their job arrives (not pandas:
+#: neither they nor ``recipsim run``'s parent need it, :mod:`.csv_tables`).
 REPORT_PRELOAD = (
-    "pandas",
     "recipsim.report.loss_plot",
     "recipsim.report.plotting",
     "recipsim.report.report_figures",
 )
 
 #: The same without figures (``--no-plots``): the tables only.
-TABLES_PRELOAD = ("pandas", "recipsim.report.report_figures")
+TABLES_PRELOAD = ("recipsim.report.report_figures",)
 
 
 #: Most processes that draw one report's figures after a fan-out: the costliest figure
@@ -344,9 +345,10 @@ def start_figure_processes(
         Modules the children import while they wait (default: the case report's).
     share_pandas : bool
         Import pandas here before forking, so that the children have it (a parent that
-        needs pandas anyway: the sweep). ``recipsim run`` does not: its parent never
-        imports pandas or matplotlib, so one child costs no import twice and pays on a
-        busy machine too, which is why it asks for ``at_least=1``.
+        needs pandas anyway: the sweep). ``recipsim run`` does not: neither its parent
+        nor its report processes import pandas, and its parent never imports
+        matplotlib, so one child costs no import twice and pays on a busy machine too,
+        which is why it asks for ``at_least=1``.
     at_least : int
         Fewest children where ``count`` is not given.
     busy_parent : bool

@@ -1,9 +1,11 @@
 """Figures a compressor engineer expects.
 
-Every function takes the cycle table of :func:`recipsim.results.tables.cycle_table` and an
-optional ``ax`` and returns the figure. Figures are built with the object-oriented API
-(:class:`matplotlib.figure.Figure`, no pyplot): a library never chooses a backend, so a
-notebook's ``plt.show()`` keeps working; ``savefig`` renders without one.
+Every function takes the cycle table of :func:`recipsim.results.tables.cycle_table` (a
+DataFrame, or its columns as :class:`recipsim.results.columns.Columns`: a report process
+draws without pandas) and an optional ``ax`` and returns the figure. Figures are built
+with the object-oriented API (:class:`matplotlib.figure.Figure`, no pyplot): a library
+never chooses a backend, so a notebook's ``plt.show()`` keeps working; ``savefig``
+renders without one.
 """
 
 from __future__ import annotations
@@ -11,11 +13,11 @@ from __future__ import annotations
 from collections.abc import Callable, Collection
 from typing import Any
 
-import pandas as pd
 from matplotlib.figure import Figure
 
 from recipsim.report.figure_kit import PNG_OPTIONS, angle_axis, clear_axes, fewer_ticks
 from recipsim.report.figure_names import FIGURE_NAMES, TITLE_Y, check_figure_names
+from recipsim.results.columns import CycleLike
 
 
 def _axes(ax: Any) -> tuple[Figure, Any]:
@@ -25,7 +27,7 @@ def _axes(ax: Any) -> tuple[Figure, Any]:
     return ax.figure, ax
 
 
-def plot_pv(cycle: pd.DataFrame, ax: Any = None, log: bool = False, label: str = "") -> Figure:
+def plot_pv(cycle: CycleLike, ax: Any = None, log: bool = False, label: str = "") -> Figure:
     """Indicator diagram, cylinder pressure against volume (log-log with ``log``)."""
     fig, ax = _axes(ax)
     v = cycle["cylinder_volume [m3]"].to_numpy() * 1e6
@@ -54,12 +56,12 @@ def plot_pv(cycle: pd.DataFrame, ax: Any = None, log: bool = False, label: str =
 
 
 def plot_pressure(
-    cycle: pd.DataFrame, ax: Any = None, label: str = "", plenum: tuple[float, float] | None = None
+    cycle: CycleLike, ax: Any = None, label: str = "", plenum: tuple[float, float] | None = None
 ) -> Figure:
     """Cylinder pressure against crank angle (plenum pressures dashed)."""
     fig, ax = _axes(ax)
-    theta = cycle["crank_angle [deg]"]
-    ax.plot(theta, cycle["cylinder_pressure [Pa]"] / 1e5, label=label or "cylinder")
+    theta = cycle["crank_angle [deg]"].to_numpy()
+    ax.plot(theta, cycle["cylinder_pressure [Pa]"].to_numpy() / 1e5, label=label or "cylinder")
     if plenum is not None:
         ax.axhline(plenum[0] / 1e5, ls="--", lw=0.8, color="tab:blue", label="suction")
         ax.axhline(plenum[1] / 1e5, ls="--", lw=0.8, color="tab:red", label="discharge")
@@ -73,19 +75,19 @@ def plot_pressure(
     return fig
 
 
-def plot_valves(cycle: pd.DataFrame, ax: Any = None) -> Figure:
+def plot_valves(cycle: CycleLike, ax: Any = None) -> Figure:
     """Reed lifts (and mass flows on a second axis) against crank angle."""
     fig, ax = _axes(ax)
-    theta = cycle["crank_angle [deg]"]
-    ax.plot(theta, cycle["suction_valve_lift [m]"] * 1e3, label="suction lift")
-    ax.plot(theta, cycle["discharge_valve_lift [m]"] * 1e3, label="discharge lift")
+    theta = cycle["crank_angle [deg]"].to_numpy()
+    ax.plot(theta, cycle["suction_valve_lift [m]"].to_numpy() * 1e3, label="suction lift")
+    ax.plot(theta, cycle["discharge_valve_lift [m]"].to_numpy() * 1e3, label="discharge lift")
     ax.set_xlabel("crank angle from TDC [deg]")
     ax.set_ylabel("valve lift [mm]")
     angle_axis(ax)
     fewer_ticks(ax, x=False)
     ax2 = ax.twinx()
-    ax2.plot(theta, cycle["suction_mass_flow [kg/s]"] * 1e3, ":", color="tab:blue")
-    ax2.plot(theta, cycle["discharge_mass_flow [kg/s]"] * 1e3, ":", color="tab:orange")
+    ax2.plot(theta, cycle["suction_mass_flow [kg/s]"].to_numpy() * 1e3, ":", color="tab:blue")
+    ax2.plot(theta, cycle["discharge_mass_flow [kg/s]"].to_numpy() * 1e3, ":", color="tab:orange")
     ax2.set_ylabel("mass flow [g/s] (dotted)")
     fewer_ticks(ax2, x=False)
     ax.set_title("valves", y=TITLE_Y)
@@ -94,7 +96,7 @@ def plot_valves(cycle: pd.DataFrame, ax: Any = None) -> Figure:
     return fig
 
 
-def plot_torque(cycle: pd.DataFrame, ax: Any = None, label: str = "") -> Figure:
+def plot_torque(cycle: CycleLike, ax: Any = None, label: str = "") -> Figure:
     """Driving, gas and inertia torques on the crankshaft against crank angle [N m].
 
     One sign convention in every report (``reports/README.md``, "Torques"): a torque is
@@ -105,11 +107,12 @@ def plot_torque(cycle: pd.DataFrame, ax: Any = None, label: str = "") -> Figure:
     bodies and, on flexible bearings, what the bearings take).
     """
     fig, ax = _axes(ax)
-    theta = cycle["crank_angle [deg]"]
-    ax.plot(theta, cycle["shaft_torque [N m]"], label=label or "driving torque")
+    theta = cycle["crank_angle [deg]"].to_numpy()
+    ax.plot(theta, cycle["shaft_torque [N m]"].to_numpy(), label=label or "driving torque")
     if not label:
-        ax.plot(theta, cycle["gas_torque [N m]"], "--", lw=0.9, label="gas torque")
-        ax.plot(theta, cycle["inertia_torque [N m]"], ":", lw=0.9, label="inertia torque")
+        ax.plot(theta, cycle["gas_torque [N m]"].to_numpy(), "--", lw=0.9, label="gas torque")
+        inertia = cycle["inertia_torque [N m]"].to_numpy()
+        ax.plot(theta, inertia, ":", lw=0.9, label="inertia torque")
     ax.axhline(0.0, color="0.5", lw=0.6)
     ax.set_xlabel("crank angle from TDC [deg]")
     ax.set_ylabel("torque on the crankshaft [N m]")
@@ -158,7 +161,7 @@ def fixed_margins(fig: Figure, kind: str = "single") -> None:
 
 
 def save_cycle_figures(
-    cycle: pd.DataFrame,
+    cycle: CycleLike,
     directory: Any,
     plenum: tuple[float, float] | None = None,
     title: str = "",
@@ -212,7 +215,7 @@ Maker = Callable[..., Figure]
 
 
 def _figure_makers(
-    cycle: pd.DataFrame, plenum: tuple[float, float] | None
+    cycle: CycleLike, plenum: tuple[float, float] | None
 ) -> list[tuple[str, str | None, Maker]]:
     """(name, margins or None to keep the figure's layout, maker) of the figures that
     apply to ``cycle``. Margins ``"single"``: one panel, the maker takes an optional Axes

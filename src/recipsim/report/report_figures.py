@@ -2,24 +2,24 @@
 shared by the in-process report writer (:mod:`recipsim.report.case_report`) and the
 forked report processes (:mod:`recipsim.report.figure_process`). Importing it costs
 neither pandas nor matplotlib: the command line decides which figures apply before it
-has either."""
+has either, and a report process writes the tables and draws the figures without pandas
+(:mod:`.csv_tables`, :class:`recipsim.results.columns.Columns`)."""
 
 from __future__ import annotations
 
 import math
 from collections.abc import Collection, Mapping
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 import numpy as np
 
-from recipsim.results.columns import as_table
+from recipsim.report.csv_tables import write_columns_csv, write_row_csv
+from recipsim.results.columns import as_columns
 
-if TYPE_CHECKING:
-    pass
-
-#: A cycle table: the DataFrame, or its columns as numpy arrays (what a report process
-#: is sent; it builds the DataFrame, see :func:`as_table`).
+#: A cycle table: the DataFrame, :class:`~recipsim.results.columns.Columns`, or its
+#: columns as numpy arrays (what a report process is sent, read through
+#: :func:`~recipsim.results.columns.as_columns`).
 Table = Any
 
 
@@ -51,17 +51,20 @@ def _moves(cycle: Table, bearing: str) -> bool:
     """Whether ``bearing``'s journal moves (mechanics_plots.has_orbits, without importing
     matplotlib)."""
     columns = [f"bearing_displacement_{bearing}_{axis} [m]" for axis in "xy"]
-    return all(c in cycle for c in columns) and any(
-        bool(np.any(np.asarray(cycle[c]) != 0.0)) for c in columns
+    table = as_columns(cycle)
+    return all(c in table for c in columns) and any(
+        bool(np.any(table[c].to_numpy() != 0.0)) for c in columns
     )
 
 
 def write_tables(directory: Path, summary_row: Mapping[str, Any], cycle: Table) -> None:
-    """Write ``summary.csv`` (one row) and ``cycle.csv`` into ``directory``."""
-    import pandas as pd
-
-    pd.DataFrame([dict(summary_row)]).to_csv(Path(directory) / "summary.csv", index=False)
-    as_table(cycle).to_csv(Path(directory) / "cycle.csv", index=False)
+    """Write ``summary.csv`` (one row) and ``cycle.csv`` into ``directory`` (the bytes
+    pandas' ``to_csv`` writes, :mod:`.csv_tables`)."""
+    table = as_columns(cycle)
+    write_row_csv(Path(directory) / "summary.csv", summary_row)
+    write_columns_csv(
+        Path(directory) / "cycle.csv", {name: table[name].to_numpy() for name in table.columns}
+    )
 
 
 def write_report_share(
@@ -74,7 +77,7 @@ def write_report_share(
 ) -> None:
     """One report process's share of a report: its tables (``tables``), then the figures
     ``names``."""
-    table = as_table(cycle)
+    table = as_columns(cycle)
     if tables:
         write_tables(directory, summary_row, table)
     if names:
@@ -95,7 +98,7 @@ def draw_report_figures(
     title = run_title(summary_row)
     cycle_names = [name for name in names if name != "loss_breakdown"]
     if cycle_names:
-        save_cycle_figures(as_table(cycle), directory, plenum, title, cycle_names)
+        save_cycle_figures(as_columns(cycle), directory, plenum, title, cycle_names)
     if "loss_breakdown" in names:
         from recipsim.report.loss_plot import plot_loss_breakdown
         from recipsim.report.plotting import PNG_OPTIONS, fixed_margins

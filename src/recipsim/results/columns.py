@@ -1,5 +1,6 @@
 """A cycle table without pandas: the columns of :func:`recipsim.results.tables.cycle_table`
-as numpy arrays, for the summary of a point whose table is not kept (a sweep point).
+as numpy arrays, for the summary of a point whose table is not kept (a sweep point) and
+for the figures and tables of a report process (which does not import pandas).
 
 The summary reads a cycle table through :class:`CycleLike`: ``cycle[name].to_numpy()``,
 ``.min()`` and ``.max()`` (pandas' meaning: NaN skipped, NaN when every value is),
@@ -21,7 +22,7 @@ import numpy as np
 class ColumnLike(Protocol):
     """One column of a cycle table."""
 
-    def to_numpy(self) -> Any: ...
+    def to_numpy(self, dtype: Any = None) -> Any: ...
 
     def min(self) -> Any: ...
 
@@ -47,9 +48,9 @@ class Column:
     def __init__(self, values: np.ndarray) -> None:
         self.values = values
 
-    def to_numpy(self) -> np.ndarray:
-        """The values (not a copy)."""
-        return self.values
+    def to_numpy(self, dtype: Any = None) -> np.ndarray:
+        """The values (not a copy, unless ``dtype`` asks for another type)."""
+        return self.values if dtype is None else np.asarray(self.values, dtype=dtype)
 
     def _finite_part(self) -> np.ndarray:
         v = self.values
@@ -84,6 +85,13 @@ class Columns:
     def columns(self) -> Iterable[str]:
         """The column names, in order."""
         return list(self._data)
+
+
+def as_columns(cycle: Any) -> Any:
+    """The cycle table as a :class:`CycleLike`: ``cycle`` itself (a DataFrame or
+    :class:`Columns`), or :class:`Columns` of it (a dict of numpy arrays), without
+    pandas."""
+    return Columns(cycle) if isinstance(cycle, dict) else cycle
 
 
 def as_table(cycle: Any) -> Any:

@@ -36,7 +36,8 @@ class CaseRun:
         The converged revolution: the table, or its columns
         (:func:`recipsim.results.cycle.cycle_columns`), from which :attr:`cycle` builds
         the table when first asked (importing pandas then, 0.2-0.3 s: ``recipsim run``
-        hands the columns to a report process that has imported it meanwhile).
+        hands the columns to a report process, which writes and draws them without
+        pandas).
     row : dict
         The summary row (:func:`recipsim.results.tables.summary`), units in the keys.
     meta : dict
