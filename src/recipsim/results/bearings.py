@@ -201,22 +201,13 @@ def pinned_columns(
     pinned_reactions_array(
         np.ascontiguousarray(theta), omega, np.ascontiguousarray(pressure), mech_par, out
     )
-    return pinned_reaction_columns(out, omega, components)
-
-
-def pinned_reaction_columns(
-    reactions: np.ndarray, omega: float, components: bool = True
-) -> tuple[dict[str, np.ndarray], np.ndarray]:
-    """:func:`pinned_columns` from the pinned reactions already computed, shape
-    (n, ``N_PIN_OUT``), at constant speed ``omega`` [rad/s]."""
-    n = reactions.shape[0]
-    forces = _bearing_series(reactions, _PIN_FORCES)
+    forces = _bearing_series(out, _PIN_FORCES)
     cols = bearing_columns(forces, None, components)
-    cols[_column("crank_speed")] = np.full(n, omega)
-    zero = _zeros(n)
+    cols[_column("crank_speed")] = np.full(theta.shape, omega)
+    zero = _zeros(theta.shape[0])
     for field in _FLEXIBLE_OUTPUTS[1:]:
         cols[_column(field)] = zero  # the same columns as the flexible crank's
-    return cols, reactions[:, _PIN_DRIVE_TORQUE].copy()
+    return cols, out[:, _PIN_DRIVE_TORQUE].copy()
 
 
 #: Summary columns per bearing: RMS load, peak load, largest orbit radius.

@@ -100,36 +100,37 @@ def wait_for_compile_ahead() -> None:
 
 def compile_outputs_while_waiting(model: Model) -> None:
     """While the compiling child compiles the solver, compile here what the cycle table
-    runs after the solve: the scene's sample outputs (on the rigid crank, with the
-    pinned reactions, :func:`recipsim.solve.revolution.rigid_cycle`), by evaluating them
-    once at the model's start state (the same argument types as the cycle table's):
-    this process, which has built its table and would only wait, spends that time (1.9 s
-    of CPU for the default case) before the solve instead of after it. Nothing when no
-    child is pending."""
+    runs after the solve: the scene's sample outputs and, on the rigid crank, the pinned
+    reactions, by evaluating them once at the model's start state (the same argument
+    types as the cycle table's): this process, which has built its table and would only
+    wait, spends that time (1.9 s of CPU for the default case) before the solve instead
+    of after it. Nothing when no child is pending."""
     if not _pending:
         return
     import numpy as np
 
     from recipsim.model.build import case_mechanism_parameters, scenes
-    from recipsim.physics.mechanics.pinned import N_PIN_OUT
-    from recipsim.results.cycle import CYLINDER_WIDTH
-    from recipsim.solve.scene_outputs import evaluate_samples, rigid_cycle_samples
+    from recipsim.results.bearings import pinned_columns
+    from recipsim.solve.scene_outputs import evaluate_samples
 
     work = model.for_solve()
-    # one sample at the start state, with the argument types of the cycle table's call
-    times, state, modes = np.zeros(1), work.y0[None, :].copy(), work.mode0[None, :].copy()
-    par, props = work.detailed_output_par(), work.props
+    out = np.zeros((1, scenes.N_AUX))
     try:
+        evaluate_samples(
+            np.zeros(1),
+            work.y0[None, :].copy(),
+            work.mode0[None, :].copy(),
+            work.detailed_output_par(),
+            work.ipar,
+            work.props,
+            work.props.buffer,
+            out,
+        )
         if model.scene == scenes.SCENE_CYLINDER:
-            omega = model.case.operating_point.shaft_speed
-            mech = case_mechanism_parameters(model.case)
-            rigid_cycle_samples(
-                times, state, modes, par, work.ipar, props, props.buffer, omega, mech,
-                CYLINDER_WIDTH, N_PIN_OUT,
-            )  # fmt: skip
-        else:
-            out = np.zeros((1, scenes.N_AUX))
-            evaluate_samples(times, state, modes, par, work.ipar, props, props.buffer, out)
+            op = model.case.operating_point
+            pressure = np.full(1, op.suction_pressure)
+            par = case_mechanism_parameters(model.case)
+            pinned_columns(np.zeros(1), pressure, op.shaft_speed, par, False)
     except Exception:  # noqa: BLE001 - a head start only: the cycle table compiles them anyway
         logger.debug("compiling the sample outputs ahead failed", exc_info=True)
     timeline.mark("outputs compiled ahead")

@@ -20,9 +20,8 @@ from recipsim.model.build import case_mechanism_parameters, scenes
 from recipsim.physics.kinematics import piston_displacement
 from recipsim.physics.mechanics.tabulated import tabulated_pressure
 from recipsim.physics.thermo import cylinder as cyl
-from recipsim.results.bearings import flexible_columns, pinned_columns, pinned_reaction_columns
+from recipsim.results.bearings import flexible_columns, pinned_columns
 from recipsim.solve.periodic import PeriodicSolution, sample_outputs
-from recipsim.solve.revolution import rigid_cycle
 
 if TYPE_CHECKING:
     import pandas as pd
@@ -75,7 +74,7 @@ GAS_COLUMNS = {_column(i) for i in _GAS_OUTPUTS}
 
 #: The scene outputs the cycle table reads on the rigid crank: the first this many (the
 #: cylinder's; the mechanism's block is the pinned mechanism's inverse dynamics there).
-CYLINDER_WIDTH = 1 + max(i for i in _CYCLE_OUTPUTS)
+_CYLINDER_WIDTH = 1 + max(i for i in _CYCLE_OUTPUTS)
 #: The scene output holding the crank angle (by name: a bundle of all 111 costs more).
 _CRANK_ANGLE = scenes.OUTPUTS.entry("crank_angle").index
 
@@ -124,7 +123,24 @@ def cycle_columns(solution: PeriodicSolution, full: bool = True) -> dict[str, np
         its summary row).
     """
     model = solution.model
-    grid, rows, modes, reactions = sorted_samples(solution)
+    rev = solution.final
+    rigid = model.scene == scenes.SCENE_CYLINDER
+    out = sample_outputs(model, rev, cylinder_only=rigid)
+    theta = np.mod(out[:, _CRANK_ANGLE], 2.0 * math.pi)
+    # the TDC sample can land a round-off below 2 pi (then it would sort last as 360 deg)
+    theta = np.where(theta > 2.0 * math.pi - 1e-9, 0.0, theta)
+    if rigid:  # copy (sort) only the columns read
+        out = out[:, :_CYLINDER_WIDTH]
+    # the outputs as rows (slot, sample), sorted by crank angle: each column contiguous
+    if model.free_speed:
+        grid = _uniform_angles(model.case.solver.samples_per_revolution)
+        rows = _periodic_resample(theta, out, grid)
+        modes = np.rint(_periodic_resample(theta, rev.sample_modes.astype(float), grid))
+    else:
+        order = np.argsort(theta, kind="stable")
+        grid = theta[order]
+        rows = np.ascontiguousarray(out[order].T)
+        modes = rev.sample_modes[order].T
     data: dict[str, Any] = {"crank_angle [deg]": np.degrees(grid)}
     has_gas = model.has_gas
     for name, idx in CYCLE_COLUMNS:
@@ -133,8 +149,10 @@ def cycle_columns(solution: PeriodicSolution, full: bool = True) -> dict[str, np
     if has_gas:
         data["suction_valve_state [-]"] = modes[0].astype(np.int64)
         data["discharge_valve_state [-]"] = modes[1].astype(np.int64)
-    if reactions is not None:
-        mech, _ = pinned_reaction_columns(reactions, model.case.operating_point.shaft_speed, full)
+    omega = model.case.operating_point.shaft_speed
+    if model.scene == scenes.SCENE_CYLINDER:
+        par = case_mechanism_parameters(model.case)
+        mech, _ = pinned_columns(grid, data[_column(cyl.A_PRESSURE)], omega, par, full)
     else:
         mech = flexible_columns(model.mechanism_outputs(rows.T), model.mechanism_par, full)
     data.update(mech)
@@ -143,42 +161,6 @@ def cycle_columns(solution: PeriodicSolution, full: bool = True) -> dict[str, np
         columns["time [s]"] = _time_from_tdc(grid, np.asarray(data["crank_speed [rad/s]"]))
     columns.update(data)
     return columns
-
-
-def sorted_samples(
-    solution: PeriodicSolution,
-) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray | None]:
-    """The converged revolution's outputs at its samples by crank angle.
-
-    Returns
-    -------
-    grid : ndarray
-        Crank angles in [0, 2 pi), ascending [rad].
-    rows : ndarray
-        Output slot ``j`` at those angles in row ``j`` (each column contiguous; on the
-        rigid crank only the cylinder's first slots, those the table reads).
-    modes : ndarray
-        The valve modes there, one row per valve.
-    reactions : ndarray or None
-        On the rigid crank, the pinned mechanism's reactions there (computed in the same
-        compiled call, :func:`recipsim.solve.revolution.rigid_cycle`); else None.
-    """
-    model = solution.model
-    rev = solution.final
-    if model.scene == scenes.SCENE_CYLINDER:  # the pinned mechanism: constant speed
-        par = case_mechanism_parameters(model.case)
-        return rigid_cycle(model, rev, CYLINDER_WIDTH, par)
-    out = sample_outputs(model, rev)
-    theta = np.mod(out[:, _CRANK_ANGLE], 2.0 * math.pi)
-    # the TDC sample can land a round-off below 2 pi (then it would sort last as 360 deg)
-    theta = np.where(theta > 2.0 * math.pi - 1e-9, 0.0, theta)
-    if model.free_speed:
-        grid = _uniform_angles(model.case.solver.samples_per_revolution)
-        rows = _periodic_resample(theta, out, grid)
-        modes = np.rint(_periodic_resample(theta, rev.sample_modes.astype(float), grid))
-        return grid, rows, modes, None
-    order = np.argsort(theta, kind="stable")
-    return theta[order], np.ascontiguousarray(out[order].T), rev.sample_modes[order].T, None
 
 
 def pinned_tabulated_cycle(case: Case) -> pd.DataFrame:

@@ -16,7 +16,6 @@ import numpy as np
 from recipsim.errors import SolverError
 from recipsim.model.build import Model, WorkingModel, scenes
 from recipsim.model.scenes import N_AUX
-from recipsim.physics.mechanics.pinned import N_PIN_OUT
 from recipsim.solve.integrator import (
     CHATTERING,
     METHOD_AUTO,
@@ -40,7 +39,7 @@ from recipsim.solve.residual import (  # noqa: F401  (re-exported: callers impor
     state_change,
 )
 from recipsim.solve.scene_entries import integrate
-from recipsim.solve.scene_outputs import evaluate_samples, rigid_cycle_samples
+from recipsim.solve.scene_outputs import evaluate_samples
 
 _FAILURES = {
     STEP_UNDERFLOW: "the step size fell below its floor",
@@ -344,13 +343,22 @@ class _Tally:
             setattr(self, name, total + count if total >= 0 and count >= 0 else -1)
 
 
-def sample_outputs(model: Model, rev: Revolution) -> np.ndarray:
+def sample_outputs(model: Model, rev: Revolution, cylinder_only: bool = False) -> np.ndarray:
     """Auxiliary outputs (layout ``A_*`` of the scene) at every sample, in time order,
     with the post-processing outputs (peak film pressures) switched on; ``model`` is a
-    working copy, e.g. the solution's (:func:`working`). (The cycle table of the rigid
-    crank reads them through :func:`rigid_cycle`.)
+    working copy, e.g. the solution's (:func:`working`).
+
+    ``cylinder_only``: only the cylinder's block (its first ``cylinder.N_AUX`` columns),
+    for the cylinder on the rigid crank, whose right-hand side fills nothing else (the
+    summary of a rigid-crank point: 15 % less of this compiled evaluation than all of the
+    scene's 111 outputs, most of them the mechanism's).
     """
-    out = np.zeros((rev.times.shape[0], N_AUX))
+    width = N_AUX
+    if cylinder_only:
+        if model.scene != scenes.SCENE_CYLINDER:
+            raise ValueError("cylinder_only is for the cylinder on the rigid crank")
+        width = scenes.A_MECH
+    out = np.zeros((rev.times.shape[0], width))
     par = working(model).detailed_output_par()
     evaluate_samples(
         rev.times,
@@ -363,29 +371,3 @@ def sample_outputs(model: Model, rev: Revolution) -> np.ndarray:
         out,
     )
     return out
-
-
-def rigid_cycle(
-    model: Model, rev: Revolution, width: int, mech_par: np.ndarray
-) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """On the rigid crank, :func:`sample_outputs`' first ``width`` columns sorted by crank
-    angle, as rows, and the pinned reactions at those angles
-    (:func:`recipsim.solve.scene_outputs.rigid_cycle_samples`, which says what each
-    array holds); ``model`` a working copy, ``mech_par`` the pinned mechanism's
-    parameters."""
-    work = working(model)
-    if work.scene != scenes.SCENE_CYLINDER or work.free_speed:
-        raise ValueError("rigid_cycle: the cylinder's scene, on the rigid crank at constant speed")
-    return rigid_cycle_samples(
-        rev.times,
-        rev.samples,
-        rev.sample_modes,
-        work.detailed_output_par(),
-        work.ipar,
-        work.props,
-        work.props.buffer,
-        work.case.operating_point.shaft_speed,
-        mech_par,
-        width,
-        N_PIN_OUT,
-    )

@@ -52,7 +52,7 @@ def test_the_child_compiles_the_cases_scene_into_the_cache(fresh_cache) -> None:
     assert "integrator.integrate_cylinder" in names
     # the entry alone, for the argument types every run passes (test below): not the
     # cycle table's outputs (the parent's), not the W-step (a stiff stretch's)
-    assert "scene_outputs._rigid_cycle" not in names
+    assert "scene_outputs._cylinder_outputs" not in names
     assert "integrator.integrate_cylinder_w" not in names
 
 
@@ -99,13 +99,14 @@ def test_the_parent_builds_its_model_before_it_waits_for_the_child(monkeypatch) 
 
 _OUTPUTS_AHEAD = """
 from recipsim.case.load import load_case
+from recipsim.physics.mechanics.pinned import pinned_reactions_array
 from recipsim.results import compile_ahead
 from recipsim.results.cycle import cycle_columns
 from recipsim.solve.drive import build_model_for
 from recipsim.solve.periodic import solve_periodic
-from recipsim.solve.scene_outputs import _rigid_cycle
+from recipsim.solve.scene_outputs import _cylinder_outputs
 
-compiled = lambda: (len(_rigid_cycle.signatures),)
+compiled = lambda: (len(_cylinder_outputs.signatures), len(pinned_reactions_array.signatures))
 model = build_model_for(load_case("reference_r134a_lbp"))
 compile_ahead.compile_outputs_while_waiting(model)
 print(*compiled())  # nothing: no child pending
@@ -119,14 +120,14 @@ print(*compiled())
 
 
 def test_the_outputs_compiled_while_waiting_are_those_the_cycle_table_runs() -> None:
-    """The rigid crank's sample outputs and pinned reactions compiled (or loaded) ahead
-    have the argument types of the cycle table's call: the cycle table adds no second
+    """The sample outputs and pinned reactions compiled (or loaded) ahead have the
+    argument types of the cycle table's calls: the cycle table adds no second
     specialisation (in a fresh process, numba's disk cache warm)."""
     done = subprocess.run(
         [sys.executable, "-c", _OUTPUTS_AHEAD], capture_output=True, text=True, timeout=600
     )
     assert done.returncode == 0, done.stderr
-    assert done.stdout.split("\n")[:3] == ["0", "1", "1"]
+    assert done.stdout.split("\n")[:3] == ["0 0", "1 1", "1 1"]
 
 
 def test_a_moment_of_load_does_not_keep_the_child_from_starting(monkeypatch) -> None:

@@ -15,9 +15,8 @@ Per point:
 - ``solve_call``: :func:`recipsim.solve.periodic.solve_periodic` less the solve's own
   timer (the point's ``wall_time [s]``, the denominator of the ratio): the model's
   working copy;
-- ``sampled_outputs``: the scene's outputs at the samples of the converged revolution,
-  in crank-angle order (:func:`recipsim.results.cycle.sorted_samples`; on the rigid
-  crank one compiled call that also sorts them and computes the pinned reactions);
+- ``sampled_outputs``: the scene's outputs at the samples of the converged revolution
+  (compiled; :func:`recipsim.solve.revolution.sample_outputs`);
 - ``summary``: the summary row less ``sampled_outputs``
   (:func:`recipsim.results.tables.summary_row`);
 - ``record``: the point's record saved (:meth:`recipsim.studies.sweep.store.PointStore.save`).
@@ -54,7 +53,7 @@ STAGE_FUNCTIONS: dict[str, tuple[str, str]] = {
     "case": ("recipsim.studies.sweep.worker", "point_case"),
     "model_build": ("recipsim.solve.drive", "build_model_for"),
     "solve_call": ("recipsim.solve.periodic", "solve_periodic"),
-    "sampled_outputs": ("recipsim.results.cycle", "sorted_samples"),
+    "sampled_outputs": ("recipsim.results.cycle", "sample_outputs"),
     "summary": ("recipsim.results.tables", "summary_row"),
     "record": ("recipsim.studies.sweep.store", "PointStore.save"),
     "plan": ("recipsim.studies.sweep.engine", "_plan"),
