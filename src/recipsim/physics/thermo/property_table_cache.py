@@ -129,7 +129,7 @@ def _read(
         with np.load(path, allow_pickle=False) as npz:
             if str(npz["key"]) != key_text:
                 return None
-            data = np.asarray(npz["data"], dtype=np.float64)  # read into a new array
+            data = np.asarray(npz["data"], dtype=np.float64)  # already a new array: no copy
             entropy = np.asarray(npz["entropy"], dtype=np.float64)
             error_text = str(npz["error"])
             error = json.loads(error_text)

@@ -80,17 +80,6 @@ class PointTask:
     allow_external_paths: bool = False
 
 
-#: Types a row's values have but for a few numpy scalars: kept as they are (a type test
-#: per value instead of an attribute lookup, 0.06 ms of a rigid-crank point)
-_PLAIN_TYPES = frozenset((float, int, str, bool, type(None)))
-
-
-def _plain_row(row: dict[str, Any]) -> dict[str, Any]:
-    """``row`` with its numpy scalars as Python ones (:func:`_plain`)."""
-    plain = _PLAIN_TYPES
-    return {k: v if type(v) in plain else _plain(v) for k, v in row.items()}
-
-
 def _plain(value: Any) -> Any:
     """numpy scalars to Python ones, so that a row pickles small and writes as JSON."""
     item = getattr(value, "item", None)
@@ -138,10 +127,10 @@ def _solved_point(task: PointTask) -> dict[str, Any]:
         argv = ["recipsim", "sweep", f"point {task.point_id}"]
         case = point_case(task.case, task.overrides, task.allow_external_paths)
         if task.report_dir is None:  # only the summary row is kept: no cycle table
-            row = _plain_row(simulate_row(case))
+            row = {k: _plain(v) for k, v in simulate_row(case).items()}
         else:
             run = simulate_case(case, argv)
-            row = _plain_row(run.row)
+            row = {k: _plain(v) for k, v in run.row.items()}
             write_case_report(run, Path(task.report_dir), list(task.overrides), task.plots)
     except OutsideEnvelopeError as exc:
         return {"status": OUTSIDE_ENVELOPE, "message": exc.message, "summary": {}}
