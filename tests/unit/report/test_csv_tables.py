@@ -45,6 +45,9 @@ def test_a_runs_tables_are_the_bytes_pandas_writes(run, tmp_path: Path) -> None:
 
 EDGE_COLUMNS = {
     "float": [0.1, -0.0, np.inf, -np.inf, np.nan, 1e16, 1e-5, 1.2345678901234568e17, 5e-324, 2.5],
+    "float32": np.array(
+        [0.1, -0.0, np.inf, np.nan, 1e16, 1e-5, 3.4e38, 1e-45, 2.5, 7.0], dtype=np.float32
+    ),
     "int": np.arange(-3, 7, dtype=np.int64),
     "bool": np.array([True, False] * 5),
     "text": ["a,b", 'say "x"', "two\nlines", "", None, "plain", "x", "é", " lead", np.nan],
@@ -54,6 +57,20 @@ EDGE_COLUMNS = {
 def test_edge_values_are_written_as_pandas_writes_them(tmp_path: Path) -> None:
     write_columns_csv(tmp_path / "ours.csv", EDGE_COLUMNS)
     pd.DataFrame(EDGE_COLUMNS).to_csv(tmp_path / "pandas.csv", index=False)
+    assert (tmp_path / "ours.csv").read_bytes() == (tmp_path / "pandas.csv").read_bytes()
+
+
+def test_any_float64_is_written_as_pandas_writes_it(tmp_path: Path) -> None:
+    """Python's repr (the float64 path) against pandas' text on doubles drawn from random
+    bit patterns (every exponent, subnormals, NaN payloads, both signs of zero) and of a
+    report's magnitudes."""
+    rng = np.random.default_rng(17)
+    bits = rng.integers(0, 2**64, 20_000, dtype=np.uint64)
+    # and the magnitudes of a report, across the positional/scientific switch (1e-4, 1e16)
+    scaled = rng.standard_normal(20_000) * 10.0 ** rng.integers(-8, 20, 20_000)
+    values = np.concatenate([bits.view(np.float64), scaled, np.round(scaled, 3)])
+    write_columns_csv(tmp_path / "ours.csv", {"x": values})
+    pd.DataFrame({"x": values}).to_csv(tmp_path / "pandas.csv", index=False)
     assert (tmp_path / "ours.csv").read_bytes() == (tmp_path / "pandas.csv").read_bytes()
 
 

@@ -101,6 +101,9 @@ operating_point.evaporating_temperature = ["-30 degC", "70 degC"]
     assert again.computed == [] and len(again.reused) == 4
     parquet = pd.read_parquet(root / "summary.parquet")
     pd.testing.assert_frame_equal(parquet, again.table)
+    # summary.csv (written without pandas) holds the bytes pandas would write, for every
+    # status's row: invalid points' empty cells, a message column with missing values
+    assert (root / "summary.csv").read_text(encoding="utf-8") == again.table.to_csv(index=False)
     retry = run_sweep(sweep, out=out, jobs=1, plots=False, retry_failed=True)
     assert sorted(retry.computed) == sorted(table.loc[[0, 1, 3], "point_id"])
     pd.testing.assert_frame_equal(comparable(retry.table), comparable(again.table))
