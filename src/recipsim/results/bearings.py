@@ -20,15 +20,6 @@ from recipsim.physics.mechanics import layout as lay
 from recipsim.physics.mechanics.pinned import N_PIN_OUT, pinned_reactions_array
 from recipsim.physics.mechanics.pinned import OUTPUTS as PIN_OUTPUTS
 from recipsim.results.columns import CycleLike
-from recipsim.results.cycle_statistics import (
-    S_FORCE_MAX,
-    S_FORCE_RMS,
-    S_INVERSE_SPEED_MEAN,
-    S_ORBIT_MAX,
-    S_SPEED_MAX,
-    S_SPEED_MIN,
-    cycle_statistics,
-)
 
 #: Displacement components reported for every bearing (normal to the Z journal axis;
 #: the piston bearings, axis X, report X as 0).
@@ -226,30 +217,34 @@ _ORBIT_COLUMNS = tuple(f"orbit_radius_max_{name} [m]" for name in lay.BEARING_NA
 
 
 def mechanism_summary(cycle: CycleLike, pinned: bool = False) -> dict[str, Any]:
-    """Per-bearing RMS and peak load, largest orbit radius; crank speed and its ripple
-    (:func:`mechanism_columns` of the table's statistics).
-
-    ``pinned``: the table is the pinned mechanism's, whose journals do not move in their
-    bushings (its displacement columns are 0): the orbit radii are 0 without reading them.
-    """
-    return mechanism_columns(cycle_statistics(cycle, pinned))
-
-
-def mechanism_columns(stats: list[float]) -> dict[str, Any]:
-    """Per-bearing RMS and peak load, largest orbit radius; crank speed and its ripple,
-    from the cycle's statistics (:func:`recipsim.results.cycle_statistics.cycle_statistics`).
+    """Per-bearing RMS and peak load, largest orbit radius; crank speed and its ripple.
 
     Statistics over the uniform crank-angle samples of the cycle table (an RMS over
-    crank angle; at constant speed the same as over time); the mean crank speed is the
-    time mean, the harmonic mean over uniform crank angles.
+    crank angle; at constant speed the same as over time). ``pinned``: the table is the
+    pinned mechanism's, whose journals do not move in their bushings (its displacement
+    columns are 0): the orbit radii are 0 without reading them.
     """
+    # one row per bearing: each row's reduction is the column's own (same summation)
+    f = np.stack([cycle[c].to_numpy() for c in FORCE_COLUMNS])
+    rms = np.sqrt(np.mean(f * f, axis=1)).tolist()
+    peak = f.max(axis=1).tolist()
+    if pinned:
+        orbit = [0.0] * len(lay.BEARING_NAMES)
+    else:
+        x = np.stack([cycle[moved[0]].to_numpy() for moved in _DISPLACEMENT_COLUMNS])
+        y = np.stack([cycle[moved[1]].to_numpy() for moved in _DISPLACEMENT_COLUMNS])
+        r2 = x * x + y * y  # the X and Y displacements (_DISPLACEMENT_AXES)
+        orbit = np.sqrt(np.max(r2, axis=1)).tolist()
     row: dict[str, Any] = {}
-    for b, (rms_column, max_column) in enumerate(zip(_RMS_COLUMNS, _MAX_COLUMNS, strict=True)):
-        row[rms_column] = stats[S_FORCE_RMS + b]
-        row[max_column] = stats[S_FORCE_MAX + b]
-    orbits = stats[S_ORBIT_MAX : S_ORBIT_MAX + len(_ORBIT_COLUMNS)]
-    row.update(zip(_ORBIT_COLUMNS, orbits, strict=True))
-    mean = 1.0 / stats[S_INVERSE_SPEED_MEAN]
+    for rms_column, max_column, rms_value, peak_value in zip(
+        _RMS_COLUMNS, _MAX_COLUMNS, rms, peak, strict=True
+    ):
+        row[rms_column] = rms_value
+        row[max_column] = peak_value
+    row.update(zip(_ORBIT_COLUMNS, orbit, strict=True))
+    speed = cycle["crank_speed [rad/s]"].to_numpy()
+    # time mean (revolutions per second): the harmonic mean over uniform crank angles
+    mean = float(1.0 / np.mean(1.0 / speed))
     row["mean_crank_speed [rpm]"] = mean * 60.0 / (2.0 * math.pi)
-    row["crank_speed_ripple [-]"] = (stats[S_SPEED_MAX] - stats[S_SPEED_MIN]) / mean
+    row["crank_speed_ripple [-]"] = float((speed.max() - speed.min()) / mean)
     return row

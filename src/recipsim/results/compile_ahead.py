@@ -100,20 +100,17 @@ def wait_for_compile_ahead() -> None:
 
 def compile_outputs_while_waiting(model: Model) -> None:
     """While the compiling child compiles the solver, compile here what the cycle table
-    and the summary run after the solve: the scene's sample outputs and, on the rigid
-    crank, the pinned reactions, by evaluating them once at the model's start state (the
-    same argument types as the cycle table's), and the summary's statistics
-    (:func:`recipsim.results.cycle_statistics.compile_statistics`): this process, which
-    has built its table and would only wait, spends that time (1.9 s of CPU for the
-    default case, 2 s more for the statistics) before the solve instead of after it.
-    Nothing when no child is pending."""
+    runs after the solve: the scene's sample outputs and, on the rigid crank, the pinned
+    reactions, by evaluating them once at the model's start state (the same argument
+    types as the cycle table's): this process, which has built its table and would only
+    wait, spends that time (1.9 s of CPU for the default case) before the solve instead
+    of after it. Nothing when no child is pending."""
     if not _pending:
         return
     import numpy as np
 
     from recipsim.model.build import case_mechanism_parameters, scenes
     from recipsim.results.bearings import pinned_columns
-    from recipsim.results.cycle_statistics import compile_statistics
     from recipsim.solve.scene_outputs import evaluate_samples
 
     work = model.for_solve()
@@ -134,7 +131,6 @@ def compile_outputs_while_waiting(model: Model) -> None:
             pressure = np.full(1, op.suction_pressure)
             par = case_mechanism_parameters(model.case)
             pinned_columns(np.zeros(1), pressure, op.shaft_speed, par, False)
-        compile_statistics()
     except Exception:  # noqa: BLE001 - a head start only: the cycle table compiles them anyway
         logger.debug("compiling the sample outputs ahead failed", exc_info=True)
     timeline.mark("outputs compiled ahead")

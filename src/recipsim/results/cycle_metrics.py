@@ -1,50 +1,52 @@
-"""Crank-angle metrics of a cycle for the summary: when each valve opens and closes,
-the extremes of the cylinder pressure and of the shaft torque
-(:func:`recipsim.results.tables.summary` writes them), from the cycle's statistics
-(:mod:`recipsim.results.cycle_statistics`).
+"""Crank-angle metrics of a cycle table for the summary: when each valve opens and
+closes, the extremes of the cylinder pressure and of the shaft torque
+(:func:`recipsim.results.tables.summary` writes them).
 """
 
 from __future__ import annotations
 
 import math
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from recipsim.case.load import Case
-from recipsim.results.cycle_statistics import (
-    ALWAYS_OPEN,
-    NEVER_OPEN,
-    S_CLOSE_SAMPLE,
-    S_OPEN_SAMPLE,
-    S_PRESSURE_MAX,
-    S_PRESSURE_MIN,
-    S_TORQUE_MAX,
-    S_TORQUE_MIN,
-)
+from recipsim.results.columns import CycleLike
+
+if TYPE_CHECKING:
+    from recipsim.solve.periodic import PeriodicSolution
 
 
-def interval_angles(angles: np.ndarray, first: float, last: float) -> tuple[float, float]:
-    """Opening and closing crank angle [deg] of an open run from its first and last
-    sample (:func:`recipsim.results.cycle_statistics._longest_open_run`): NaN if the
-    valve never opens, (0, 360) if it never closes."""
-    if first == NEVER_OPEN:
+def _open_interval(angles: np.ndarray, flowing: np.ndarray) -> tuple[float, float]:
+    """Opening and closing crank angle [deg] of the longest circular run of ``flowing``."""
+    n = flowing.shape[0]
+    closed = np.flatnonzero(~flowing)
+    if closed.size == n:
         return math.nan, math.nan
-    if first == ALWAYS_OPEN:
+    if closed.size == 0:
         return 0.0, 360.0
-    return float(angles[int(first)]), float(angles[int(last)])
+    start = int(closed[0])  # a closed sample: unroll the circle from here
+    rolled = np.concatenate((flowing[start:], flowing[:start], [False]))
+    # closed at both ends: the changes alternate, the sample before a run and its last
+    change = np.flatnonzero(rolled[1:] != rolled[:-1])
+    before, last = change[0::2], change[1::2]
+    best = int(np.argmax(last - before))  # the first of the longest
+    return float(angles[(before[best] + 1 + start) % n]), float(angles[(last[best] + start) % n])
 
 
-def valve_timing(stats: list[float], angles: np.ndarray) -> dict[str, float]:
-    """Opening and closing crank angle of each valve: the ends of its longest circular
-    run of open samples (a reed that lifts, or a mass flow above 1e-12 of its largest;
-    NaN without a gas state).
+def valve_timing(
+    solution: PeriodicSolution | None, case: Case, cycle: CycleLike
+) -> dict[str, float]:
+    """Opening and closing crank angle of each valve (NaN without a gas state).
 
     Parameters
     ----------
-    stats : list of float
-        The cycle's statistics (:func:`recipsim.results.cycle_statistics.cycle_statistics`).
-    angles : ndarray
-        The cycle table's crank angles [deg].
+    solution : PeriodicSolution or None
+        As in :func:`recipsim.results.tables.summary`.
+    case : Case
+        Its ``options.valves`` picks the test: reed lift above 0, else a mass flow.
+    cycle : CycleLike
+        The cycle table.
 
     Returns
     -------
@@ -52,11 +54,20 @@ def valve_timing(stats: list[float], angles: np.ndarray) -> dict[str, float]:
         ``<side>_valve_opening_angle [deg]`` and ``..._closing_angle [deg]``, suction
         then discharge.
     """
+    model = solution.model if solution is not None else None
+    angles = cycle["crank_angle [deg]"].to_numpy()
     row: dict[str, float] = {}
-    for k, side in enumerate(("suction", "discharge")):
-        opening, closing = interval_angles(
-            angles, stats[S_OPEN_SAMPLE + k], stats[S_CLOSE_SAMPLE + k]
-        )
+    for side in ("suction", "discharge"):
+        if model is None or not model.has_gas:
+            row[f"{side}_valve_opening_angle [deg]"] = math.nan
+            row[f"{side}_valve_closing_angle [deg]"] = math.nan
+            continue
+        if case.options.valves == "reed":
+            flowing = cycle[f"{side}_valve_lift [m]"].to_numpy() > 0.0
+        else:
+            flow = np.abs(cycle[f"{side}_mass_flow [kg/s]"].to_numpy())
+            flowing = flow > 1e-12 * max(flow.max(), 1e-300)
+        opening, closing = _open_interval(angles, flowing)
         row[f"{side}_valve_opening_angle [deg]"] = opening
         row[f"{side}_valve_closing_angle [deg]"] = closing
     return row
@@ -64,7 +75,7 @@ def valve_timing(stats: list[float], angles: np.ndarray) -> dict[str, float]:
 
 def pressure_and_torque(
     case: Case,
-    stats: list[float],
+    cycle: CycleLike,
     drive_work: float,
     p_shaft: float,
     p_drive: float,
@@ -76,8 +87,8 @@ def pressure_and_torque(
     ----------
     case : Case
         Its plenum pressures are the references of the over- and underpressure.
-    stats : list of float
-        The cycle's statistics (:func:`recipsim.results.cycle_statistics.cycle_statistics`).
+    cycle : CycleLike
+        The cycle table.
     drive_work : float
         Work of the drive per revolution [J].
     p_shaft, p_drive : float
@@ -91,7 +102,9 @@ def pressure_and_torque(
         Column name to value.
     """
     op = case.operating_point
-    p_max, p_min = stats[S_PRESSURE_MAX], stats[S_PRESSURE_MIN]
+    p = cycle["cylinder_pressure [Pa]"].to_numpy()
+    torque = cycle["shaft_torque [N m]"].to_numpy()
+    p_max, p_min = float(p.max()), float(p.min())
     return {
         "peak_cylinder_pressure [Pa]": p_max,
         "minimum_cylinder_pressure [Pa]": p_min,
@@ -101,6 +114,6 @@ def pressure_and_torque(
         "mean_shaft_torque [N m]": float(
             drive_work / (2.0 * math.pi) + (p_shaft - p_drive) / (2.0 * math.pi * freq)
         ),
-        "peak_shaft_torque [N m]": stats[S_TORQUE_MAX],
-        "minimum_shaft_torque [N m]": stats[S_TORQUE_MIN],
+        "peak_shaft_torque [N m]": float(torque.max()),
+        "minimum_shaft_torque [N m]": float(torque.min()),
     }

@@ -36,7 +36,10 @@ from __future__ import annotations
 import math
 from typing import TYPE_CHECKING, Any
 
+import numpy as np
+
 from recipsim.model.plenum import isentropic_state
+from recipsim.results.columns import CycleLike
 
 if TYPE_CHECKING:  # the figure processes read LOSS_COLUMNS without importing the solver
     from recipsim.solve.periodic import PeriodicSolution
@@ -54,8 +57,34 @@ LOSS_COLUMNS = (
 )
 
 
+_SIDES = ("suction", "discharge")
+
+
+def _next(a: np.ndarray) -> np.ndarray:
+    """``a`` one sample on round the revolution, along its last axis
+    (``numpy.roll(a, -1, axis=-1)``)."""
+    return np.concatenate((a[..., 1:], a[..., :1]), axis=-1)
+
+
+def _valve_areas(cycle: CycleLike, p_suction: float, p_discharge: float) -> tuple[float, float]:
+    """p-V areas of one revolution [J]: below ``p_suction`` while the suction valve
+    flows, above ``p_discharge`` while the discharge valve flows (trapezoids)."""
+    p = cycle["cylinder_pressure [Pa]"].to_numpy()
+    v = cycle["cylinder_volume [m3]"].to_numpy()
+    dv = _next(v) - v
+    p_mid = 0.5 * (p + _next(p))
+    # one row per valve: suction (p_s - p) dV with dV > 0; discharge (p - p_d)(-dV), the
+    # same form; each row summed as the 1-D array would be
+    flows = np.stack([cycle[f"{side}_mass_flow [kg/s]"].to_numpy() for side in _SIDES])
+    passing = flows != 0.0
+    flowing = passing | _next(passing)
+    plenum = np.array([[p_suction], [p_discharge]])
+    suction, discharge = np.sum(np.where(flowing, (plenum - p_mid) * dv, 0.0), axis=1).tolist()
+    return suction, discharge
+
+
 def loss_breakdown(
-    row: dict[str, Any], valve_areas: tuple[float, float], solution: PeriodicSolution | None
+    row: dict[str, Any], cycle: CycleLike, solution: PeriodicSolution | None
 ) -> dict[str, float]:
     """The breakdown columns (NaN where the scene has no gas model).
 
@@ -63,11 +92,8 @@ def loss_breakdown(
     ----------
     row : dict
         The summary row so far (powers, mass flows, plenum pressures, motor columns).
-    valve_areas : tuple of float
-        p-V areas of one revolution [J] (trapezoids on the cycle's samples): below the
-        suction plenum pressure while the suction valve passes gas, above the discharge
-        plenum pressure while the discharge valve does
-        (:func:`recipsim.results.cycle_statistics.cycle_statistics`).
+    cycle : DataFrame
+        The cycle table.
     solution : PeriodicSolution or None
         The periodic solution (its model's fluid and plenum states).
     """
@@ -81,7 +107,7 @@ def loss_breakdown(
     fluid, inlet = model.fluid, model.compressor_inlet
     p_s = row.get("suction_plenum_pressure [Pa]", op.suction_pressure)
     p_d = row.get("discharge_plenum_pressure [Pa]", op.discharge_pressure)
-    suction_area, discharge_area = valve_areas
+    suction_area, discharge_area = _valve_areas(cycle, p_s, p_d)
     mdot = row["discharge_mass_flow [kg/s]"]
     h_2s = isentropic_state(fluid, inlet, op.discharge_pressure)["h"]
     dh_s_line = h_2s - inlet.enthalpy

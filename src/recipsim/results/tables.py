@@ -35,7 +35,7 @@ import numpy as np
 from recipsim.case.load import Case
 from recipsim.model.build import scenes
 from recipsim.model.plenum import isentropic_state
-from recipsim.results.bearings import film_summary, mechanism_columns
+from recipsim.results.bearings import film_summary, mechanism_summary
 from recipsim.results.columns import Columns, CycleLike
 from recipsim.results.cycle import (  # re-exported (__all__): the cycle table is in .cycle
     CYCLE_COLUMNS,
@@ -45,11 +45,6 @@ from recipsim.results.cycle import (  # re-exported (__all__): the cycle table i
     pinned_tabulated_cycle,
 )
 from recipsim.results.cycle_metrics import pressure_and_torque, valve_timing
-from recipsim.results.cycle_statistics import (
-    S_TORQUE_OVER_SPEED_MEAN,
-    S_VALVE_AREA,
-    cycle_statistics,
-)
 from recipsim.results.electrical import loss_columns, rating_enthalpies
 from recipsim.results.loss_breakdown import loss_breakdown
 from recipsim.results.outcome import (
@@ -212,17 +207,8 @@ def summary(
     assert case is not None and cycle is not None
     row = _operating_columns(case)
     model = solution.model if solution is not None else None
-    thermal = thermal_columns(solution, case)
-    plenum = (thermal["suction_plenum_pressure [Pa]"], thermal["discharge_plenum_pressure [Pa]"])
-    stats = cycle_statistics(
-        cycle,
-        # the pinned mechanism (a rigid crank, or the tabulated pressure's): no orbits
-        pinned=model is None or model.scene == scenes.SCENE_CYLINDER,
-        gas=model is not None and model.has_gas,
-        reed=case.options.valves == "reed",
-        plenum=plenum,
-    )
-    mech = mechanism_columns(stats)
+    # the pinned mechanism (a rigid crank, or the tabulated pressure's): no orbits
+    mech = mechanism_summary(cycle, model is None or model.scene == scenes.SCENE_CYLINDER)
     # one revolution's frequency: the mean crank speed when the speed is free
     drive_work, bearing_loss, freq = _drive_work(
         solution, cycle, mech["mean_crank_speed [rpm]"] / 60.0
@@ -234,7 +220,7 @@ def summary(
     row.update(valve_summary(case.name, solution))
     row["shaft_power [W]"] = p_shaft
     row["bearing_dissipation_power [W]"] = bearing_loss * freq
-    row.update(_motor_metrics(case, stats, freq, p_drive))
+    row.update(_motor_metrics(case, cycle, freq, p_drive))
     row.update(losses)
     row.update(mech)
     row.update(film_summary(cycle))
@@ -245,11 +231,10 @@ def summary(
             p_drive - row["indicated_power [W]"] - bearing_loss * freq, p_drive
         )
     row.update(_solver_metrics(solution))
-    row.update(thermal)
-    areas = (stats[S_VALVE_AREA], stats[S_VALVE_AREA + 1])
-    row.update(loss_breakdown(row, areas, solution))
-    row.update(valve_timing(stats, cycle["crank_angle [deg]"].to_numpy()))
-    row.update(pressure_and_torque(case, stats, drive_work, p_shaft, p_drive, freq))
+    row.update(thermal_columns(solution, case))
+    row.update(loss_breakdown(row, cycle, solution))
+    row.update(valve_timing(solution, case, cycle))
+    row.update(pressure_and_torque(case, cycle, drive_work, p_shaft, p_drive, freq))
     return row
 
 
@@ -331,15 +316,17 @@ def _gas_summary(
 MOTOR_SUMMARY = ("motor_input_power [W]", "motor_rotor_loss_power [W]", "motor_slip [-]")
 
 
-def _motor_metrics(case: Case, stats: list[float], freq: float, p_shaft: float) -> dict[str, Any]:
+def _motor_metrics(case: Case, cycle: CycleLike, freq: float, p_shaft: float) -> dict[str, Any]:
     """Air-gap power, rotor copper loss and slip of the induction motor drive (NaN for
     other drives). The air-gap power ``omega_s * mean(T)`` (time mean) is the motor's
     input less its stator losses, which are not modelled."""
     if case.options.drive != "induction_motor" or case.motor is None:
         return dict.fromkeys(MOTOR_SUMMARY, math.nan)
     sync = case.motor.synchronous_speed
+    torque = cycle["shaft_torque [N m]"].to_numpy()
+    speed = cycle["crank_speed [rad/s]"].to_numpy()
     # time mean of T over one revolution from uniform crank-angle samples: dt = dtheta/omega
-    mean_torque = stats[S_TORQUE_OVER_SPEED_MEAN] * 2.0 * math.pi * freq
+    mean_torque = float(np.mean(torque / speed)) * 2.0 * math.pi * freq
     p_in = sync * mean_torque
     return {
         "motor_input_power [W]": p_in,

@@ -8,13 +8,7 @@ import math
 import numpy as np
 import pytest
 
-from recipsim.results.cycle_metrics import interval_angles
-from recipsim.results.cycle_statistics import _longest_open_run
-
-
-def _open_interval(angles: np.ndarray, flowing: np.ndarray) -> tuple[float, float]:
-    """The compiled search's samples as crank angles (what the summary reports)."""
-    return interval_angles(angles, *_longest_open_run(flowing))
+from recipsim.results.cycle_metrics import _open_interval
 
 
 def _longest_run_by_walking(angles: np.ndarray, flowing: np.ndarray) -> tuple[float, float]:
