@@ -61,7 +61,9 @@ from recipsim.physics.thermo.properties import (
     PROP_VISCOSITY,
     STATUS_OK,
 )
+from recipsim.physics.thermo.property_slots import N_PROPS
 from recipsim.physics.thermo.property_table import (
+    H_TRANSPORT,
     H_TS0,
     H_TSAT_MAX,
     S_D2HDP2_L,
@@ -149,8 +151,10 @@ class TableFluid:
         self.gas_constant = gas_constant
         self.critical_temperature = critical_temperature
         self.critical_pressure = critical_pressure
+        # one buffer, its transport flag set for the calls that ask for transport
+        # properties only (:meth:`transport`): a second 11 MB copy of the table cost a
+        # run 2-25 ms of allocation and page faults
         self._buf = table.property_buffer(transport=False)
-        self._buf_transport = table.property_buffer(transport=True)
         #: the entropy sums of the table (:func:`.table_entropy.table_entropy_sums`: read
         #: with a cached table, else computed, 5-15 ms)
         self._entropy_tables = table_entropy_sums(table, self._buf)
@@ -280,7 +284,7 @@ class TableFluid:
 
     def saturated_vapour(self, temperature: float) -> dict[str, float]:
         """Saturated vapour at ``temperature`` [K]: properties and viscosity [Pa s]."""
-        buf = self._buf_transport
+        buf = self._buf  # saturation rows: the transport flag plays no part
         values = [saturation_row(temperature, slot, buf) for slot in (S_P, S_VV, S_HV_DOME, S_MUV)]
         p, v_v, h_v, mu = (float(v) for v in values)
         if not all(math.isfinite(v) for v in values):
@@ -299,8 +303,13 @@ class TableFluid:
             density = float(table_vapour_pt(pressure, temperature, self.gas_constant, self._buf)[2])
             if not math.isfinite(density):
                 raise TableMiss
-            buf = self._buf_transport
-            if table_props(temperature, density, buf) != STATUS_OK or buf[PROP_QUALITY] >= 0.0:
+            buf = self._buf
+            buf[N_PROPS + H_TRANSPORT] = 1.0
+            try:
+                status = table_props(temperature, density, buf)
+            finally:
+                buf[N_PROPS + H_TRANSPORT] = 0.0
+            if status != STATUS_OK or buf[PROP_QUALITY] >= 0.0:
                 raise TableMiss
             return {
                 "viscosity": float(buf[PROP_VISCOSITY]),
