@@ -127,9 +127,10 @@ def run_case(
             None if plots else 1, preload, share_pandas=False, at_least=1, busy_parent=True
         )
     try:
-        from recipsim.case.load import load_case
-        from recipsim.report.case_report import report_dir, write_case_report
-        from recipsim.results.run import simulate_case
+        with compiled_runtime.importing_numba():  # the case's modules import numba
+            from recipsim.case.load import load_case
+            from recipsim.report.case_report import report_dir, write_case_report
+            from recipsim.results.run import simulate_case
 
         timeline.mark("report processes started")
         case = load_case(path, overrides, allow_external_paths=allow_external_paths)

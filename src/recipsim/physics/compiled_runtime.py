@@ -1,4 +1,4 @@
-"""numba's code generator, started without importing scipy.linalg.
+"""numba imported and its code generator started without scipy.linalg, cffi or yaml.
 
 Before numba loads the first compiled function of a process (from its cache or by
 compiling it) it initialises its code generator once: it imports its implementation
@@ -12,6 +12,18 @@ still reads scipy's BLAS integer width from ``scipy.__config__``, and code that 
 need BLAS later imports the real module (the stand-in is gone by then), as numba's
 lowering of ``np.dot`` and ``np.linalg`` imports it again.
 
+The same initialisation imports numba's CFFI support, which imports ``cffi`` and makes
+an ``FFI()``, whose C parser compiles its lexer's regular expressions: 12 ms of every
+run, for a feature recipsim's compiled code does not use (it calls no CFFI function).
+While the stand-in is in place, ``cffi`` is also hidden (numba then works as it does
+where cffi is not installed: no CFFI calls in compiled code, in that process only);
+``cffi`` imports normally afterwards.
+
+numba's own import reads a configuration file, ``.numba_config.yaml`` in the working
+directory, with PyYAML, which it imports whether or not there is such a file (12 ms).
+:func:`importing_numba` hides ``yaml`` while numba imports where there is none (with
+the file, numba reads it as ever).
+
 Only the command line does this (:func:`allow_stand_in`, called by ``recipsim``'s
 entry point): a library does not touch ``sys.modules`` behind its caller's back, and a
 notebook pays numba's start once per session anyway.
@@ -22,11 +34,18 @@ from __future__ import annotations
 import os
 import sys
 import types
+from collections.abc import Iterator
+from contextlib import contextmanager
 
 from recipsim import start_up_collector
 
 #: The module numba imports only to see that it imports.
 _BLAS_MODULE = "scipy.linalg.cython_blas"
+#: The module numba's CFFI support imports (hidden while numba starts).
+_CFFI_MODULE = "cffi"
+#: The module numba's import reads its configuration file with, and that file's name.
+_YAML_MODULE = "yaml"
+_NUMBA_CONFIG_FILE = ".numba_config.yaml"
 
 _started = False
 _allowed = False
@@ -37,6 +56,28 @@ def allow_stand_in() -> None:
     line's choice, never a library's)."""
     global _allowed
     _allowed = True
+
+
+@contextmanager
+def importing_numba() -> Iterator[None]:
+    """A block that imports numba for the first time, without PyYAML where numba would
+    not use it (no ``.numba_config.yaml`` in the working directory; see the module
+    docstring); ``yaml`` imports normally after the block. Does nothing unless the
+    command line allowed it (:func:`allow_stand_in`) or where numba or yaml is already
+    imported."""
+    hide = (
+        _allowed
+        and "numba" not in sys.modules
+        and _YAML_MODULE not in sys.modules
+        and not os.path.isfile(_NUMBA_CONFIG_FILE)
+    )
+    if hide:
+        sys.modules[_YAML_MODULE] = None  # type: ignore[assignment]  # ImportError
+    try:
+        yield
+    finally:
+        if hide and sys.modules.get(_YAML_MODULE, 0) is None:
+            del sys.modules[_YAML_MODULE]
 
 
 def start_compiled_runtime() -> None:
@@ -76,9 +117,14 @@ def _start() -> None:
     timeline.mark("numba imported")
     stand_in = types.ModuleType(_BLAS_MODULE)
     sys.modules[_BLAS_MODULE] = stand_in
+    hide_cffi = _CFFI_MODULE not in sys.modules
+    if hide_cffi:
+        sys.modules[_CFFI_MODULE] = None  # type: ignore[assignment]  # ImportError
     try:
         cpu_target.target_context.refresh()  # what numba's first dispatch would do
     finally:
         if sys.modules.get(_BLAS_MODULE) is stand_in:
             del sys.modules[_BLAS_MODULE]
+        if hide_cffi and sys.modules.get(_CFFI_MODULE, 0) is None:
+            del sys.modules[_CFFI_MODULE]
     timeline.mark("numba started")
