@@ -63,8 +63,8 @@ def importing_numba() -> Iterator[None]:
     """A block that imports numba for the first time, without PyYAML where numba would
     not use it (no ``.numba_config.yaml`` in the working directory; see the module
     docstring); ``yaml`` imports normally after the block. Does nothing unless the
-    command line allowed it (:func:`allow_stand_in`) or where numba or yaml is already
-    imported."""
+    command line allowed it (:func:`allow_stand_in`), nor where numba or yaml is
+    already imported."""
     hide = (
         _allowed
         and "numba" not in sys.modules
