@@ -26,7 +26,6 @@ from __future__ import annotations
 import argparse
 import contextlib
 import json
-import math
 import sys
 import time
 from dataclasses import dataclass
@@ -41,14 +40,6 @@ if TYPE_CHECKING:
     from recipsim.report.figure_process import FigureProcesses
     from recipsim.results.run import CaseRun
 
-#: Rows printed to the console (the rest is in comparison.csv).
-_CONSOLE_ROWS = (
-    "discharge_mass_flow [kg/s]",
-    "cooling_capacity [W]",
-    "indicated_power [W]",
-    "shaft_power [W]",
-)
-
 
 @dataclass
 class Comparison:
@@ -60,10 +51,10 @@ class Comparison:
         Case A and case B as simulated.
     labels : tuple of str
         Their column labels in ``comparison.csv``.
-    table : pandas.DataFrame
-        The comparison table (:func:`recipsim.studies.compare.comparison_table`).
-    cases : pandas.DataFrame
-        The text columns per case (:func:`recipsim.studies.compare.cases_table`).
+    columns : dict
+        The comparison table's columns (:func:`recipsim.studies.compare.comparison_columns`).
+    records : list of dict
+        The text columns per case (:func:`recipsim.studies.compare.case_records`).
     out : Path
         The output directory.
     wall_time : float
@@ -72,10 +63,24 @@ class Comparison:
 
     runs: tuple[CaseRun, CaseRun]
     labels: tuple[str, str]
-    table: pd.DataFrame
-    cases: pd.DataFrame
+    columns: dict[str, Any]
+    records: list[dict[str, Any]]
     out: Path
     wall_time: float
+
+    @property
+    def table(self) -> pd.DataFrame:
+        """The comparison table (the contents of ``comparison.csv``), a DataFrame."""
+        import pandas as pd
+
+        return pd.DataFrame(self.columns)
+
+    @property
+    def cases(self) -> pd.DataFrame:
+        """The text columns per case (the contents of ``cases.csv``), a DataFrame."""
+        import pandas as pd
+
+        return pd.DataFrame.from_records(self.records)
 
 
 def add_compare_parser(sub: Any) -> argparse.ArgumentParser:
@@ -143,7 +148,11 @@ def run_compare_command(args: argparse.Namespace, argv: list[str] | None) -> int
                     figures.wait()
             raise
         if not args.quiet:
-            print(console_summary(comparison))
+            from recipsim.cli.compare_console import console_summary
+
+            rows = [run.row for run in comparison.runs]
+            out, wall = comparison.out, comparison.wall_time
+            print(console_summary(comparison.labels, comparison.columns, rows, out, wall))
         return 0
 
     return exit_status(action)
@@ -213,7 +222,7 @@ def run_comparison(
         A case failed (the message names its file); nothing is written.
     """
     from recipsim.case.load import load_case
-    from recipsim.studies.compare import case_labels, cases_table, comparison_table
+    from recipsim.studies.compare import case_labels, case_records, comparison_columns
 
     start = time.perf_counter()
     paths = (Path(path_a), Path(path_b))
@@ -228,14 +237,14 @@ def run_comparison(
     labels = case_labels(cases[0].name, cases[1].name)
     target = _output_directory(out, parent, [c.name for c in cases], sets)
     runs = (_simulate(paths[0], cases[0], argv), _simulate(paths[1], cases[1], argv))
-    table = comparison_table(runs[0].row, runs[1].row, *labels)
+    columns = comparison_columns(runs[0].row, runs[1].row, *labels)
     extra = [
         {"file": str(p), "overrides": "; ".join(s), "report": f"{label}/"}
         for p, s, label in zip(paths, sets, labels, strict=True)
     ]
-    case_rows = cases_table([r.row for r in runs], labels, extra)
-    _write(target, runs, labels, sets, table, case_rows, plots, argv, start, figures)
-    return Comparison(runs, labels, table, case_rows, target, time.perf_counter() - start)
+    records = case_records([r.row for r in runs], labels, extra)
+    _write(target, runs, labels, sets, (columns, records), plots, argv, start, figures)
+    return Comparison(runs, labels, columns, records, target, time.perf_counter() - start)
 
 
 #: Default ``--out`` of ``recipsim compare`` (the parent of ``<A>_vs_<B>``).
@@ -263,17 +272,21 @@ def _write(
     runs: tuple[CaseRun, CaseRun],
     labels: tuple[str, str],
     sets: list[list[str]],
-    table: pd.DataFrame,
-    case_rows: pd.DataFrame,
+    tables: tuple[dict[str, Any], list[dict[str, Any]]],
     plots: bool,
     argv: list[str] | None,
     start: float,
     figures: FigureProcesses | None = None,
 ) -> None:
-    """Build the output directory beside ``target`` and swap it in (``figures``: see
+    """Build the output directory beside ``target`` and swap it in (``tables``: the
+    comparison's columns and the cases' records; ``figures``: see
     :func:`run_comparison`)."""
     from recipsim.atomic import atomic_directory
     from recipsim.report.case_report import write_case_report
+    from recipsim.report.csv_tables import write_columns_csv
+    from recipsim.studies.compare import records_columns
+
+    columns, records = tables
 
     with atomic_directory(target) as tmp:
         reports: list[dict[str, Any]] | None = [] if figures is not None else None
@@ -305,9 +318,10 @@ def _write(
             from recipsim.report.compare_plots import save_overlay_figures
 
             save_overlay_figures(**overlay)
-        table.to_csv(tmp / "comparison.csv", index=False)
-        case_rows.to_csv(tmp / "cases.csv", index=False)
-        meta = _provenance(runs, labels, case_rows, argv)
+        # pandas' bytes (its to_csv of the Comparison's DataFrames), without importing it
+        write_columns_csv(tmp / "comparison.csv", columns)
+        write_columns_csv(tmp / "cases.csv", records_columns(records))
+        meta = _provenance(runs, labels, records, argv)
         if figures is not None:
             figures.wait()
         meta["wall_time_s"] = time.perf_counter() - start
@@ -317,7 +331,7 @@ def _write(
 def _provenance(
     runs: tuple[CaseRun, CaseRun],
     labels: tuple[str, str],
-    case_rows: pd.DataFrame,
+    records: list[dict[str, Any]],
     argv: list[str] | None,
 ) -> dict[str, Any]:
     """Versions and command (from case A's provenance) and, per case, file, overrides,
@@ -334,9 +348,7 @@ def _provenance(
             **{k: run.meta[k] for k in per_case if k in run.meta},
             **{k: run.meta[k] for k in _SOLVER_KEYS if k in run.meta},
         }
-        for run, label, record in zip(
-            runs, labels, case_rows.to_dict(orient="records"), strict=True
-        )
+        for run, label, record in zip(runs, labels, records, strict=True)
     }
     return shared
 
@@ -354,36 +366,3 @@ _SHARED_KEYS = (
     "created",
 )
 _SOLVER_KEYS = ("revolutions", "cycle_residual", "rhs_evaluations", "steps", "wall_time_s")
-
-
-def console_summary(comparison: Comparison) -> str:
-    """A few key rows of the comparison as text: mass flow, capacity, powers and the
-    RMS load of every bearing, with the relative difference in percent."""
-    label_a, label_b = comparison.labels
-    table = comparison.table
-    keep = table["quantity"].isin(_CONSOLE_ROWS) | table["quantity"].str.startswith("bearing_rms_")
-    rows = table[keep]
-    width = max(len(q) for q in rows["quantity"])
-    cols = [max(len(label_a), 10), max(len(label_b), 10)]
-    lines = []
-    for k, run in enumerate(comparison.runs):
-        row = run.row
-        conv = "" if row.get("converged [-]", True) else ", NOT converged"
-        lines.append(
-            f"{'AB'[k]} {comparison.labels[k]}: {row['refrigerant']}, "
-            f"{row['shaft_speed [rpm]']:.0f} rpm, pressure {row['pressure']}, "
-            f"mechanics {row['mechanics']}, drive {row['drive']}{conv}"
-        )
-    lines.append(
-        f"  {'quantity':<{width}}  {label_a:>{cols[0]}}  {label_b:>{cols[1]}}  {'B-A [%]':>8}"
-    )
-    for rec in rows.itertuples(index=False):
-        a, b, rel = float(rec[2]), float(rec[3]), float(rec[5])
-        pct = "-" if math.isnan(rel) else f"{100.0 * rel:+.2f}"
-        lines.append(f"  {rec[0]:<{width}}  {_fmt(a):>{cols[0]}}  {_fmt(b):>{cols[1]}}  {pct:>8}")
-    lines.append(f"-> {comparison.out} ({comparison.wall_time:.1f} s)")
-    return "\n".join(lines)
-
-
-def _fmt(value: float) -> str:
-    return "-" if math.isnan(value) else f"{value:.5g}"

@@ -5,7 +5,7 @@ column is its layout entry's or declared in :mod:`.column_docs` (``reports/READM
 tables are generated from them). :func:`cycle_columns` gives the columns as
 numpy arrays, :func:`cycle_table` the DataFrame of them (the same values);
 :func:`pinned_tabulated_cycle` is the table of the pinned mechanism under a tabulated
-pressure, where nothing is integrated.
+pressure, where nothing is integrated (:func:`pinned_tabulated_columns` its columns).
 """
 
 from __future__ import annotations
@@ -164,7 +164,16 @@ def cycle_columns(solution: PeriodicSolution, full: bool = True) -> dict[str, np
 
 
 def pinned_tabulated_cycle(case: Case) -> pd.DataFrame:
-    """Cycle table of the pinned mechanism under the case's tabulated pressure.
+    """Cycle table of the pinned mechanism under the case's tabulated pressure (the
+    DataFrame of :func:`pinned_tabulated_columns`)."""
+    import pandas as pd
+
+    return pd.DataFrame(pinned_tabulated_columns(case))
+
+
+def pinned_tabulated_columns(case: Case) -> dict[str, np.ndarray]:
+    """The columns of :func:`pinned_tabulated_cycle`, in its order, as numpy arrays (what
+    a run keeps: its report processes and its summary read them without pandas).
 
     Nothing is integrated: inverse dynamics at every uniform crank angle.
     """
@@ -194,6 +203,4 @@ def pinned_tabulated_cycle(case: Case) -> pd.DataFrame:
         _column(cyl.A_TORQUE_SHAFT): torque,
     }
     data.update(mech)
-    import pandas as pd
-
-    return pd.DataFrame(data)
+    return data

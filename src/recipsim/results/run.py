@@ -103,18 +103,17 @@ def simulate_case(case: Case, argv: list[str] | None = None) -> CaseRun:
     from recipsim.results.columns import Columns, CycleLike
     from recipsim.results.outcome import classify, explained
     from recipsim.results.provenance import case_provenance, provenance
-    from recipsim.results.tables import cycle_columns, pinned_tabulated_cycle, summary
+    from recipsim.results.tables import cycle_columns, pinned_tabulated_columns, summary
 
     case, solution, startup = _solve(case)
-    table: pd.DataFrame | dict[str, np.ndarray]
-    cycle: CycleLike
+    # the columns: the summary reads them as it reads the DataFrame (.columns)
     if solution is None:  # pinned mechanism, tabulated pressure: inverse dynamics only
-        table = cycle = pinned_tabulated_cycle(case)
+        table = pinned_tabulated_columns(case)
         meta = case_provenance(case, argv)
-    else:  # the columns: the summary reads them as it reads the DataFrame (.columns)
+    else:
         table = cycle_columns(solution)
-        cycle = Columns(table)
         meta = provenance(solution, argv)
+    cycle: CycleLike = Columns(table)
     with explained("post-processing the converged revolution"):
         row = summary(solution, cycle, case)
         _add_startup(row, startup)

@@ -42,6 +42,7 @@ from recipsim.results.cycle import (  # re-exported (__all__): the cycle table i
     GAS_COLUMNS,
     cycle_columns,
     cycle_table,
+    pinned_tabulated_columns,
     pinned_tabulated_cycle,
 )
 from recipsim.results.cycle_metrics import pressure_and_torque, valve_timing
@@ -63,6 +64,7 @@ __all__ = [
     "GAS_SUMMARY",
     "cycle_columns",
     "cycle_table",
+    "pinned_tabulated_columns",
     "pinned_tabulated_cycle",
     "summary",
     "summary_row",

@@ -88,9 +88,13 @@ def test_a_row_is_written_as_pandas_writes_it(row, tmp_path: Path) -> None:
     assert (tmp_path / "ours.csv").read_bytes() == (tmp_path / "pandas.csv").read_bytes()
 
 
-def test_a_report_from_a_runs_columns_never_imports_pandas(tmp_path: Path) -> None:
-    """What ``recipsim run``'s parent and report processes run: the solve, the tables and
-    every figure (here in one fresh interpreter), without pandas."""
+@pytest.mark.parametrize(("case", "figures"), [(REFERENCE, 7), (CASES / "paper_tabulated.toml", 6)])
+def test_a_report_from_a_runs_columns_never_imports_pandas(
+    tmp_path: Path, case: Path, figures: int
+) -> None:
+    """What ``recipsim run``'s parent and report processes run: the solve (or, under a
+    tabulated pressure, the pinned mechanism's inverse dynamics), the tables and every
+    figure (here in one fresh interpreter), without pandas."""
     code = (
         "import sys\n"
         "from recipsim.case.load import load_case\n"
@@ -99,7 +103,7 @@ def test_a_report_from_a_runs_columns_never_imports_pandas(tmp_path: Path) -> No
         "from recipsim.results.run import simulate_case\n"
         "import importlib\n"
         "for module in REPORT_PRELOAD: importlib.import_module(module)\n"
-        f"run = simulate_case(load_case({str(REFERENCE)!r}), [])\n"
+        f"run = simulate_case(load_case({str(case)!r}), [])\n"
         "names = report_figure_names(run.table, run.row)\n"
         f"write_report_share({str(tmp_path)!r}, run.table, run.row, None, names, tables=True)\n"
         "print(','.join(names), 'pandas' in sys.modules)\n"
@@ -108,6 +112,6 @@ def test_a_report_from_a_runs_columns_never_imports_pandas(tmp_path: Path) -> No
     assert out.returncode == 0, out.stderr
     names, imported = out.stdout.split()
     assert imported == "False"
-    assert len(names.split(",")) == 7
+    assert len(names.split(",")) == figures
     assert sorted(p.stem for p in tmp_path.glob("*.png")) == sorted(names.split(","))
     assert (tmp_path / "cycle.csv").is_file() and (tmp_path / "summary.csv").is_file()

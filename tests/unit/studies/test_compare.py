@@ -5,6 +5,8 @@ from __future__ import annotations
 import json
 import math
 import os
+import subprocess
+import sys
 from pathlib import Path
 
 import numpy as np
@@ -187,6 +189,36 @@ def test_output_directory_layout(tab_vs_coupled):
     assert set(meta["cases"]) == {label_a, label_b}
     assert meta["cases"][label_b]["options"]["mechanics"] == "flexible"
     assert meta["command"] == ["test"] and "recipsim" in meta and "CoolProp" in meta
+
+
+def test_the_tables_are_the_bytes_pandas_writes(tab_vs_coupled):
+    """comparison.csv and cases.csv, written without pandas, hold the bytes of pandas'
+    to_csv of the comparison's DataFrames (text, floats, NaN, booleans, a column one
+    case lacks)."""
+    out = tab_vs_coupled.out
+    written = (out / "comparison.csv").read_text(encoding="utf-8")
+    assert written == tab_vs_coupled.table.to_csv(index=False)
+    assert (out / "cases.csv").read_text(encoding="utf-8") == tab_vs_coupled.cases.to_csv(
+        index=False
+    )
+
+
+def test_the_command_line_compares_without_importing_pandas(tmp_path):
+    """``recipsim compare`` (its report processes forked, the console summary printed)
+    never imports pandas in its own process: 0.3 s before the solves, which its report
+    processes waited for."""
+    code = (
+        "import sys\n"
+        "from recipsim.cli.main import main\n"
+        f"status = main(['compare', {str(PAPER)!r}, {str(_coupled_twin(tmp_path))!r},\n"
+        f"             '--out', {str(tmp_path / 'out')!r}])\n"
+        "print(status, 'pandas' in sys.modules)\n"
+    )
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=600)
+    assert out.returncode == 0, out.stderr
+    assert "cooling_capacity [W]" in out.stdout  # the console summary
+    assert out.stdout.split()[-2:] == ["0", "False"]
+    assert len(list((tmp_path / "out").glob("*/comparison.csv"))) == 1
 
 
 def test_report_processes_write_the_in_process_files(tab_vs_coupled, tmp_path):
