@@ -283,8 +283,7 @@ def _write(
     :func:`run_comparison`)."""
     from recipsim.atomic import atomic_directory
     from recipsim.report.case_report import write_case_report
-    from recipsim.report.csv_tables import write_columns_csv
-    from recipsim.studies.compare import records_columns
+    from recipsim.report.csv_tables import write_columns_csv, write_records_csv
 
     columns, records = tables
 
@@ -320,7 +319,7 @@ def _write(
             save_overlay_figures(**overlay)
         # pandas' bytes (its to_csv of the Comparison's DataFrames), without importing it
         write_columns_csv(tmp / "comparison.csv", columns)
-        write_columns_csv(tmp / "cases.csv", records_columns(records))
+        write_records_csv(tmp / "cases.csv", records)
         meta = _provenance(runs, labels, records, argv)
         if figures is not None:
             figures.wait()

@@ -8,14 +8,14 @@ Python's repr, the same text at half the cost), missing values (NaN, None) empty
 integers and booleans as ``str`` gives them, the rest as Python's ``csv`` module quotes
 them (minimal quoting, ``"\\n"`` line ends), which is what pandas' writer calls too.
 ``tests/unit/report/test_csv_tables.py`` compares the bytes with pandas' for the tables
-of every scene, the sweep's table and the edge values.
+of every scene, the sweep's table, records with different keys and the edge values.
 """
 
 from __future__ import annotations
 
 import csv
 import math
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
@@ -67,7 +67,26 @@ def write_columns_csv(path: str | Path, columns: Mapping[str, Any]) -> None:
         writer.writerows(zip(*cells, strict=True))
 
 
+def write_records_csv(path: str | Path, records: Sequence[Mapping[str, Any]]) -> None:
+    """Write ``records`` (column name -> value, one mapping per row) as a CSV table, as
+    ``pandas.DataFrame.from_records(records).to_csv(path, index=False)`` does: every
+    name in the order it first appears, a cell empty where a record lacks it."""
+    names: dict[str, None] = {}
+    for record in records:
+        names.update(dict.fromkeys(record))
+    columns: dict[str, Any] = {}
+    for name in names:
+        cells = [record.get(name) for record in records]
+        present = [cell for cell in cells if cell is not None]
+        numbers = all(isinstance(v, int | float) and not isinstance(v, bool) for v in present)
+        if numbers and len(present) < len(cells):  # pandas: floats, NaN where missing
+            columns[name] = np.array([math.nan if v is None else v for v in cells], float)
+        else:
+            columns[name] = cells
+    write_columns_csv(path, columns)
+
+
 def write_row_csv(path: str | Path, row: Mapping[str, Any]) -> None:
     """Write one row (a summary: column name -> value) as a one-row CSV table, as
     ``pandas.DataFrame([row]).to_csv(path, index=False)`` does."""
-    write_columns_csv(path, {name: [value] for name, value in row.items()})
+    write_records_csv(path, [row])

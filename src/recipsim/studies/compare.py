@@ -297,15 +297,6 @@ def case_records(
     return records
 
 
-def records_columns(records: Sequence[Mapping[str, Any]]) -> dict[str, list[Any]]:
-    """Records as columns, as ``pandas.DataFrame.from_records`` lays them out: every key
-    in the order it first appears, None where a record lacks it."""
-    names: dict[str, None] = {}
-    for record in records:
-        names.update(dict.fromkeys(record))
-    return {name: [record.get(name) for record in records] for name in names}
-
-
 def cases_table(
     rows: Sequence[Mapping[str, Any]],
     labels: Sequence[str],

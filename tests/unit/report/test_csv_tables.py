@@ -15,7 +15,7 @@ import pandas as pd
 import pytest
 
 from helpers import CASES, REFERENCE
-from recipsim.report.csv_tables import write_columns_csv, write_row_csv
+from recipsim.report.csv_tables import write_columns_csv, write_records_csv, write_row_csv
 
 
 @pytest.fixture(scope="module", params=["rigid", "coupled", "lubricated", "tabulated"])
@@ -85,6 +85,19 @@ def test_any_float64_is_written_as_pandas_writes_it(tmp_path: Path) -> None:
 def test_a_row_is_written_as_pandas_writes_it(row, tmp_path: Path) -> None:
     write_row_csv(tmp_path / "ours.csv", row)
     pd.DataFrame([row]).to_csv(tmp_path / "pandas.csv", index=False)
+    assert (tmp_path / "ours.csv").read_bytes() == (tmp_path / "pandas.csv").read_bytes()
+
+
+def test_records_are_written_as_pandas_writes_them(tmp_path: Path) -> None:
+    """Records with different keys (a column one record lacks, one that appears later):
+    the columns in the order they first appear, the missing cells empty."""
+    records = [
+        {"label": "a", "converged [-]": True, "x": 1.5},
+        {"label": "b", "extra": "y,z", "converged [-]": False},
+        {"label": "c", "x": None, "late": 3},
+    ]
+    write_records_csv(tmp_path / "ours.csv", records)
+    pd.DataFrame.from_records(records).to_csv(tmp_path / "pandas.csv", index=False)
     assert (tmp_path / "ours.csv").read_bytes() == (tmp_path / "pandas.csv").read_bytes()
 
 
