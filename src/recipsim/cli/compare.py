@@ -126,9 +126,7 @@ def run_compare_command(args: argparse.Namespace, argv: list[str] | None) -> int
             from recipsim.report.compare_figures import COMPARE_PRELOAD
             from recipsim.report.figure_process import start_figure_processes
 
-            figures = start_figure_processes(
-                None, COMPARE_PRELOAD, share_pandas=False, at_least=1, busy_parent=True
-            )
+            figures = start_figure_processes(None, COMPARE_PRELOAD, at_least=1, busy_parent=True)
         try:
             comparison = run_comparison(
                 args.case_a,

@@ -124,7 +124,7 @@ def run_case(
         # the report processes import pandas (and matplotlib) while this one solves
         preload = REPORT_PRELOAD if plots else TABLES_PRELOAD
         figures = start_figure_processes(
-            None if plots else 1, preload, share_pandas=False, at_least=1, busy_parent=True
+            None if plots else 1, preload, at_least=1, busy_parent=True
         )
     try:
         with compiled_runtime.importing_numba():  # the case's modules import numba

@@ -112,7 +112,7 @@ def _run_sweep(args: argparse.Namespace, argv: list[str] | None, started: float)
 
     resume = f"rerun `{_command_line(argv)}` to resume (finished points are not recomputed)"
     figures = None
-    if not args.no_plots:  # map plots drawn by forked processes that import matplotlib now
+    if not args.no_plots:  # map plots drawn by forked processes that import them now
         from recipsim.report.figure_process import start_figure_processes
         from recipsim.studies.sweep.plots import MAP_PRELOAD
 
@@ -150,8 +150,9 @@ def _run_sweep(args: argparse.Namespace, argv: list[str] | None, started: float)
 
 
 def format_outcome(outcome: Any) -> str:
-    """The closing lines: counts, timing and the points that did not converge."""
-    table = outcome.table
+    """The closing lines: counts, timing and the points that did not converge (read from
+    the table's columns: no DataFrame is made)."""
+    columns = outcome.columns
     counts = outcome.counts
     bad = {k: v for k, v in sorted(counts.items()) if k != "ok"}
     detail = f" ({', '.join(f'{v} {k}' for k, v in bad.items())})" if bad else ""
@@ -164,27 +165,34 @@ def format_outcome(outcome: Any) -> str:
     else:
         where = ""
     lines = [
-        f"{outcome.spec.name}: {len(table)} points: {outcome.n_ok} ok, {outcome.n_failed} "
-        f"failed{detail}; {computed} computed, {len(outcome.reused)} reused; "
-        f"{outcome.wall_time:.1f} s{rate}{where}",
+        f"{outcome.spec.name}: {outcome.n_points} points: {outcome.n_ok} ok, "
+        f"{outcome.n_failed} failed{detail}; {computed} computed, {len(outcome.reused)} "
+        f"reused; {outcome.wall_time:.1f} s{rate}{where}",
         f"  -> {outcome.directory / 'summary.csv'}",
     ]
-    failed = table[table["status"] != "ok"]
-    for _, row in failed.head(_MAX_LISTED).iterrows():
-        values = ", ".join(f"{c}={_short(row[c])}" for c in outcome.axes)
-        message = _clipped(str(row["message"]))
-        lines.append(f"  point {row['point']} [{row['status']}] {values}: {message}")
+    status, messages, points = columns["status"], columns["message"], columns["point"]
+    failed = [i for i, s in enumerate(status) if s != "ok"]
+    for i in failed[:_MAX_LISTED]:
+        values = ", ".join(f"{c}={_short(columns[c][i])}" for c in outcome.axes)
+        message = _clipped(str(messages[i]))
+        lines.append(f"  point {points[i]} [{status[i]}] {values}: {message}")
     if len(failed) > _MAX_LISTED:
         lines.append(f"  ... and {len(failed) - _MAX_LISTED} more (see the status column)")
-    warned = table[(table["status"] == "ok") & (table["message"].fillna("").astype(str) != "")]
-    if len(warned):
-        first = warned.iloc[0]
+    warned = [i for i, s in enumerate(status) if s == "ok" and _text(messages[i])]
+    if warned:
+        first = warned[0]
         lines.append(
             f"  {len(warned)} ok point{'s' if len(warned) > 1 else ''} with warnings (see the "
-            f"message column), the first: point {first['point']}: "
-            + _clipped(str(first["message"]))
+            f"message column), the first: point {points[first]}: " + _clipped(str(messages[first]))
         )
     return "\n".join(lines)
+
+
+def _text(value: Any) -> str:
+    """A message cell as text: empty where it is missing (None or NaN)."""
+    if value is None or (isinstance(value, float) and value != value):
+        return ""
+    return str(value)
 
 
 def _clipped(message: str, most: int = 200) -> str:

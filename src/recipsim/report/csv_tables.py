@@ -67,6 +67,29 @@ def write_columns_csv(path: str | Path, columns: Mapping[str, Any]) -> None:
         writer.writerows(zip(*cells, strict=True))
 
 
+def record_column(cells: Sequence[Any]) -> Any:
+    """One column of records (Python values, None where a record lacks it) as pandas
+    holds it after ``DataFrame.from_records``: an int64 or float64 array where every value
+    is a number (float64, NaN where one is missing), a bool array where every value is a
+    bool, else the list itself (an object column).
+
+    Parameters
+    ----------
+    cells : sequence
+        The column's values, one per record.
+    """
+    kinds = set(map(type, cells))  # the few types present, not each value, are tested
+    missing = type(None) in kinds
+    kinds.discard(type(None))
+    if not kinds:
+        return list(cells)
+    if all(issubclass(k, int | float) and not issubclass(k, bool) for k in kinds):
+        return np.array(cells, float) if missing else np.array(cells)  # None -> NaN
+    if not missing and all(issubclass(k, bool) for k in kinds):
+        return np.array(cells, bool)
+    return list(cells)
+
+
 def write_records_csv(path: str | Path, records: Sequence[Mapping[str, Any]]) -> None:
     """Write ``records`` (column name -> value, one mapping per row) as a CSV table, as
     ``pandas.DataFrame.from_records(records).to_csv(path, index=False)`` does: every
@@ -74,15 +97,7 @@ def write_records_csv(path: str | Path, records: Sequence[Mapping[str, Any]]) ->
     names: dict[str, None] = {}
     for record in records:
         names.update(dict.fromkeys(record))
-    columns: dict[str, Any] = {}
-    for name in names:
-        cells = [record.get(name) for record in records]
-        present = [cell for cell in cells if cell is not None]
-        numbers = all(isinstance(v, int | float) and not isinstance(v, bool) for v in present)
-        if numbers and len(present) < len(cells):  # pandas: floats, NaN where missing
-            columns[name] = np.array([math.nan if v is None else v for v in cells], float)
-        else:
-            columns[name] = cells
+    columns = {name: record_column([record.get(name) for record in records]) for name in names}
     write_columns_csv(path, columns)
 
 

@@ -326,7 +326,6 @@ class FigureProcesses:
 def start_figure_processes(
     count: int | None = None,
     preload: tuple[str, ...] = REPORT_PRELOAD,
-    share_pandas: bool = True,
     at_least: int = 0,
     busy_parent: bool = False,
 ) -> FigureProcesses | None:
@@ -343,12 +342,11 @@ def start_figure_processes(
         is the number of processes that draw, 0: none, in-process).
     preload : tuple of str
         Modules the children import while they wait (default: the case report's).
-    share_pandas : bool
-        Import pandas here before forking, so that the children have it (a parent that
-        needs pandas anyway: the sweep). ``recipsim run`` does not: neither its parent
-        nor its report processes import pandas, and its parent never imports
-        matplotlib, so one child costs no import twice and pays on a busy machine too,
-        which is why it asks for ``at_least=1``.
+        Each child imports them itself: no parent that forks figure processes
+        imports pandas or matplotlib for them (``recipsim run`` and ``compare`` need
+        neither, and since their tables are written from columns neither does the
+        sweep), so on a busy machine one child costs no import twice, which is why
+        ``recipsim run`` asks for ``at_least=1``.
     at_least : int
         Fewest children where ``count`` is not given.
     busy_parent : bool
@@ -374,9 +372,4 @@ def start_figure_processes(
         count = max(idle_cores(2 + spare) - spare, at_least)
         if count == 0:
             return None
-    if share_pandas:
-        # pandas, which the parent needs anyway, is imported once before forking: the
-        # children import only matplotlib (0.25 s each instead of 0.5 s)
-        import pandas  # noqa: F401
-
     return FigureProcesses(count, preload, fan_out=fan_out)

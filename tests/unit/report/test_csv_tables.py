@@ -15,7 +15,12 @@ import pandas as pd
 import pytest
 
 from helpers import CASES, REFERENCE
-from recipsim.report.csv_tables import write_columns_csv, write_records_csv, write_row_csv
+from recipsim.report.csv_tables import (
+    record_column,
+    write_columns_csv,
+    write_records_csv,
+    write_row_csv,
+)
 
 
 @pytest.fixture(scope="module", params=["rigid", "coupled", "lubricated", "tabulated"])
@@ -99,6 +104,29 @@ def test_records_are_written_as_pandas_writes_them(tmp_path: Path) -> None:
     write_records_csv(tmp_path / "ours.csv", records)
     pd.DataFrame.from_records(records).to_csv(tmp_path / "pandas.csv", index=False)
     assert (tmp_path / "ours.csv").read_bytes() == (tmp_path / "pandas.csv").read_bytes()
+
+
+@pytest.mark.parametrize(
+    "cells",
+    [
+        [1, 2, 3],
+        [1, None, 3],
+        [1, 2.5, None],
+        [0.5, float("nan"), np.float64(2.0)],
+        [True, False],
+        [True, None],
+        [True, 1],
+        ["ok", None, "invalid"],
+        ["text", 1.5],
+        [None, None],
+    ],
+)
+def test_a_record_column_is_held_as_pandas_holds_it(cells: list) -> None:
+    """The dtype and values pandas gives a column built from records, one value each
+    (numbers with a missing one as floats, booleans with a missing one as objects)."""
+    ours = pd.DataFrame({"c": record_column(cells)})
+    theirs = pd.DataFrame.from_records([{"c": v} for v in cells])
+    pd.testing.assert_frame_equal(ours, theirs)
 
 
 @pytest.mark.parametrize(("case", "figures"), [(REFERENCE, 7), (CASES / "paper_tabulated.toml", 6)])

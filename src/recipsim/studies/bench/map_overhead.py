@@ -135,12 +135,12 @@ def stage_seconds_here(sweep: str, repeats: int) -> dict[str, Any]:
                 start = time.perf_counter()
                 outcome = run_sweep(spec, jobs=1, out=os.path.join(tmp, str(repeat)), plots=False)
                 wall = time.perf_counter() - start
-            solves = float(outcome.table["wall_time [s]"].fillna(0.0).sum())
+            solves = outcome.solve_seconds
             for outer, inner in _NESTED.items():
                 spent[outer] -= spent[inner]
             spent["solve_call"] -= solves
             runs.append({"wall [s]": wall, "solve_sum [s]": solves, "stages": spent})
-    return {"points": len(outcome.table), "runs": runs}
+    return {"points": outcome.n_points, "runs": runs}
 
 
 def overhead_stages(measured: dict[str, Any]) -> dict[str, Any]:

@@ -45,9 +45,8 @@ with tempfile.TemporaryDirectory() as tmp:
             outcome = run_sweep(spec, jobs=count, out=out, plots=False)
             walls.append(time.perf_counter() - start)
             cpus.append(time.process_time() - cpu)
-        solves = float(outcome.table["wall_time [s]"].fillna(0.0).sum())
-        ok = int((outcome.table["status"] == "ok").sum())
-        result[count] = [walls, cpus, solves, len(outcome.table), ok]
+        solves = outcome.solve_seconds
+        result[count] = [walls, cpus, solves, outcome.n_points, outcome.n_ok]
 print(json.dumps(result))
 """
 

@@ -25,7 +25,7 @@ from recipsim.report.case_report import report_dir
 from recipsim.studies.sweep.outputs import (
     Plots,
     SweepOutcome,
-    build_table,
+    build_columns,
     write_outputs,
     write_provenance,
 )
@@ -189,15 +189,15 @@ def _outcome(
     ``start``.
     """
     plots, parquet, figures = outputs
-    table = build_table(planned, work.records)
+    columns = build_columns(planned, work.records)
     axis_columns = {c for p in planned for c in p.columns}
-    axes = [c for c in table.columns if c in axis_columns]
-    files = write_outputs(spec, root, table, axes, plots, parquet, figures)
+    axes = [c for c in columns if c in axis_columns]
+    files = write_outputs(spec, root, columns, axes, plots, parquet, figures)
     wall = time.perf_counter() - start
     return SweepOutcome(
         spec=spec,
         directory=root,
-        table=table,
+        columns=columns,
         axes=axes,
         computed=work.computed,
         reused=work.reused,

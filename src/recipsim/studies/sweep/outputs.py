@@ -14,16 +14,16 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-import pandas as pd
-
 from recipsim import __version__
 from recipsim.atomic import atomic_file, atomic_write
-from recipsim.report.csv_tables import write_columns_csv
+from recipsim.report.csv_tables import record_column, write_columns_csv
 from recipsim.studies.sweep.plan import PlannedPoint
 from recipsim.studies.sweep.spec import SweepSpec
 from recipsim.studies.sweep.worker import OK
 
 if TYPE_CHECKING:
+    import pandas as pd
+
     from recipsim.report.figure_process import FigureProcesses
 
 ID_COLUMNS = ("point", "status", "message", "point_id")
@@ -42,8 +42,9 @@ class SweepOutcome:
         The sweep file as read.
     directory : Path
         Output directory ``<out>/<name>`` (``<out>/<name>+<digest>`` with overrides).
-    table : DataFrame
-        The summary table (one row per point, in sweep order).
+    columns : dict of str to array or list
+        The summary table's columns in order (:func:`build_columns`): what
+        ``summary.csv`` holds, without pandas.
     axes : list of str
         Axis columns of the table.
     computed : list of str
@@ -62,7 +63,7 @@ class SweepOutcome:
 
     spec: SweepSpec
     directory: Path
-    table: pd.DataFrame
+    columns: dict[str, Any]
     axes: list[str]
     computed: list[str]
     reused: list[str]
@@ -70,31 +71,58 @@ class SweepOutcome:
     files: list[Path] = field(default_factory=list)
     jobs: int = 1
     scheduler: str | None = None
+    _table: pd.DataFrame | None = field(default=None, init=False, repr=False, compare=False)
+
+    @property
+    def table(self) -> pd.DataFrame:
+        """The summary table (one row per point, in sweep order), made from
+        :attr:`columns` when first asked for (the sweep itself needs no DataFrame: the
+        command line's process does not import pandas for it)."""
+        if self._table is None:
+            import pandas as pd
+
+            self._table = pd.DataFrame(self.columns)
+        return self._table
+
+    @property
+    def n_points(self) -> int:
+        """Rows of the table."""
+        return len(self.columns["point"])
+
+    @property
+    def solve_seconds(self) -> float:
+        """The points' solve times (``wall_time [s]``) added up, 0 for a point without
+        one [s]."""
+        times = self.columns.get("wall_time [s]", ())
+        return float(sum(t for t in times if t is not None and t == t))
 
     @property
     def counts(self) -> dict[str, int]:
         """Number of points per status."""
-        return dict(Counter(self.table["status"]))
+        return dict(Counter(self.columns["status"]))
 
     @property
     def n_ok(self) -> int:
         """Points that converged."""
-        return int((self.table["status"] == OK).sum())
+        return sum(status == OK for status in self.columns["status"])
 
     @property
     def n_failed(self) -> int:
         """Points that did not (``not_converged``, ``invalid``, ``failed``, ``error``)."""
-        return len(self.table) - self.n_ok
+        return self.n_points - self.n_ok
 
 
-def build_table(
+def build_columns(
     planned: Sequence[PlannedPoint], records: dict[str, dict[str, Any]]
-) -> pd.DataFrame:
-    """Assemble the summary table: one row per point, in sweep order.
+) -> dict[str, Any]:
+    """The summary table's columns: one value per point, in sweep order.
 
     Columns: ``point``, the axis columns, ``status``, ``message``, the summary columns
-    of :func:`recipsim.results.tables.summary` (those not already given by an axis) and
-    ``point_id``.
+    of :func:`recipsim.results.tables.summary` (those not already given by an axis, in
+    the order the ``ok`` points' records name them, then the others') and ``point_id``.
+    Each is held as ``pandas.DataFrame(rows)`` would hold it
+    (:func:`recipsim.report.csv_tables.record_column`): numbers as an int64 or float64
+    array (NaN where a point has no value), the rest as a list.
     """
     axes: list[str] = list(dict.fromkeys(c for p in planned for c in p.columns))
     summary_columns: list[str] = []
@@ -106,25 +134,22 @@ def build_table(
             if column not in seen:
                 seen.add(column)
                 summary_columns.append(column)
-    rows = []
-    for point in planned:
-        record = records[point.point_id]
-        row: dict[str, Any] = {"point": point.index}
-        row.update({c: point.columns.get(c) for c in axes})
-        row["status"] = record["status"]
-        row["message"] = record["message"]
-        summary = record["summary"]
-        row.update({c: summary.get(c) for c in summary_columns})
-        row["point_id"] = point.point_id
-        rows.append(row)
-    columns = ["point", *axes, "status", "message", *summary_columns, "point_id"]
-    return pd.DataFrame(rows, columns=columns)
+    values: dict[str, Sequence[Any]] = {"point": [p.index for p in planned]}
+    for column in axes:
+        values[column] = [p.columns.get(column) for p in planned]
+    values["status"] = [record["status"] for record in in_order]
+    values["message"] = [record["message"] for record in in_order]
+    # a row of summary values per point, then transposed (C loops, not one per value)
+    rows = [list(map(record["summary"].get, summary_columns)) for record in in_order]
+    values.update(zip(summary_columns, zip(*rows, strict=True), strict=True))
+    values["point_id"] = [p.point_id for p in planned]
+    return {name: record_column(cells) for name, cells in values.items()}
 
 
 def write_outputs(
     spec: SweepSpec,
     root: Path,
-    table: pd.DataFrame,
+    columns: dict[str, Any],
     axes: list[str],
     plots: Plots,
     parquet: bool,
@@ -138,10 +163,10 @@ def write_outputs(
         The sweep (its text is copied to ``sweep.toml``).
     root : Path
         The sweep's output directory.
-    table : DataFrame
-        The summary table (:func:`build_table`), written to ``summary.csv``.
+    columns : dict of str to array or list
+        The summary table's columns (:func:`build_columns`), written to ``summary.csv``.
     axes : list of str
-        Axis columns of ``table`` (the map plots' axes).
+        Axis columns of the table (the map plots' axes).
     plots : bool or collection of str
         Draw all map plots, none, or those named.
     parquet : bool
@@ -158,16 +183,17 @@ def write_outputs(
     if plots and figures is not None:
         from recipsim.studies.sweep.plots import submit_map_plots
 
-        submit_map_plots(figures, table, axes, root, None if plots is True else plots)
+        submit_map_plots(figures, columns, axes, root, None if plots is True else plots)
     files = []
     csv = root / "summary.csv"
-    # the bytes of ``table.to_csv(p, index=False)``, faster (1000 points: 50-65 ms, not 100)
-    columns = {name: table[name].to_numpy() for name in table.columns}
+    # the bytes of ``DataFrame(columns).to_csv(p, index=False)``, without pandas
     atomic_write(csv, lambda p: write_columns_csv(p, columns))
     files.append(csv)
     if parquet:
+        import pandas as pd
+
         pq = root / "summary.parquet"
-        atomic_write(pq, lambda p: table.to_parquet(p, index=False))
+        atomic_write(pq, lambda p: pd.DataFrame(columns).to_parquet(p, index=False))
         files.append(pq)
     with atomic_file(root / "sweep.toml") as handle:
         handle.write(spec.text)
@@ -179,7 +205,7 @@ def write_outputs(
     elif plots:
         from recipsim.studies.sweep.plots import save_map_plots
 
-        files.extend(save_map_plots(table, axes, root, None if plots is True else plots))
+        files.extend(save_map_plots(columns, axes, root, None if plots is True else plots))
     return files
 
 
@@ -212,7 +238,7 @@ def write_provenance(outcome: SweepOutcome, scheduler: str | None, argv: list[st
         "base": str(outcome.spec.base),
         "scheduler": scheduler,
         "jobs": outcome.jobs,
-        "points": len(outcome.table),
+        "points": outcome.n_points,
         "computed": len(outcome.computed),
         "reused": len(outcome.reused),
         "status_counts": outcome.counts,

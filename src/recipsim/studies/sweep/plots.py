@@ -12,17 +12,16 @@ from __future__ import annotations
 
 import math
 import re
-from collections.abc import Collection, Iterable, Sequence
+from collections.abc import Collection, Iterable, Mapping, Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
-
-import pandas as pd
 
 from recipsim.atomic import atomic_write
 from recipsim.errors import CaseError
 from recipsim.report.figure_names import TITLE_Y
 
-if TYPE_CHECKING:  # matplotlib is imported where a plot is drawn
+if TYPE_CHECKING:  # matplotlib and pandas are imported where a plot is drawn
+    import pandas as pd
     from matplotlib.figure import Figure
 
 MAP_QUANTITIES: tuple[tuple[str, str, str], ...] = (
@@ -45,7 +44,9 @@ def _split(column: str) -> tuple[str, str]:
 
 
 def _numeric(table: pd.DataFrame, column: str) -> bool:
-    return bool(pd.api.types.is_numeric_dtype(table[column]))
+    from pandas.api.types import is_numeric_dtype
+
+    return bool(is_numeric_dtype(table[column]))
 
 
 def x_column(table: pd.DataFrame, axes: Sequence[str]) -> str | None:
@@ -272,7 +273,7 @@ def check_map_names(names: Iterable[str], where: str = "--plots") -> tuple[str, 
 
 
 def save_map_plots(
-    table: pd.DataFrame,
+    table: pd.DataFrame | Mapping[str, Any],
     axes: Sequence[str],
     out_dir: Path,
     only: Collection[str] | None = None,
@@ -281,8 +282,9 @@ def save_map_plots(
 
     Parameters
     ----------
-    table : DataFrame
-        The sweep's summary table (all points; only ``ok`` ones are drawn).
+    table : DataFrame or mapping
+        The sweep's summary table (all points; only ``ok`` ones are drawn), or its
+        columns (:func:`recipsim.studies.sweep.outputs.build_columns`).
     axes : sequence of str
         Its axis columns.
     out_dir : Path
@@ -295,10 +297,14 @@ def save_map_plots(
     list of Path
         The files written (none when no point is ``ok`` or nothing numeric varies).
     """
+    import pandas as pd
+
     from recipsim.report.figure_kit import clear_axes
     from recipsim.report.plotting import PNG_OPTIONS, single_axes
 
     wanted = set(MAP_NAMES if only is None else check_map_names(only))
+    if not isinstance(table, pd.DataFrame):
+        table = pd.DataFrame(table)
     ok = table[table["status"] == "ok"] if "status" in table else table
     if ok.empty:
         return []
@@ -338,13 +344,19 @@ def save_map_plots(
 #: each drawn alone, median of 5), used only to share the plots between figure processes.
 MAP_COST = {name: 0.125 for name in MAP_NAMES} | {"bearing_loads": 0.34}
 
-#: What a figure process of the map plots imports while the sweep runs.
-MAP_PRELOAD = ("matplotlib.figure", "recipsim.report.plotting", "recipsim.studies.sweep.plots")
+#: What a figure process of the map plots imports while the sweep runs (the sweep's own
+#: process needs neither pandas nor matplotlib).
+MAP_PRELOAD = (
+    "pandas",
+    "matplotlib.figure",
+    "recipsim.report.plotting",
+    "recipsim.studies.sweep.plots",
+)
 
 
 def submit_map_plots(
     figures: Any,
-    table: pd.DataFrame,
+    table: pd.DataFrame | Mapping[str, Any],
     axes: Sequence[str],
     out_dir: Path,
     only: Collection[str] | None = None,
@@ -353,6 +365,8 @@ def submit_map_plots(
     draw the map plots of :func:`save_map_plots`, shared between them by cost; returns at
     once, ``figures.wait()`` waits for them and returns each process's list of files.
 
+    ``table`` is sent to each process: the columns of
+    :func:`~recipsim.studies.sweep.outputs.build_columns` (their DataFrame is made there).
     Where the figure processes fan out, the plots are shared between the cores idle now
     (the sweep's workers are done), up to one process per plot: on a 16-core machine the
     six plots of a 1000-point map took 2.5 s after the last point on the two figure
