@@ -219,8 +219,11 @@ def run_comparison(
     SolverError
         A case failed (the message names its file); nothing is written.
     """
-    from recipsim.case.load import load_case
-    from recipsim.studies.compare import case_labels, case_records, comparison_columns
+    from recipsim.physics.compiled_runtime import importing_numba
+
+    with importing_numba():  # the case's modules import numba
+        from recipsim.case.load import load_case
+        from recipsim.studies.compare import case_labels, case_records, comparison_columns
 
     start = time.perf_counter()
     paths = (Path(path_a), Path(path_b))

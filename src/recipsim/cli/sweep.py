@@ -107,8 +107,11 @@ def run_sweep_command(args: argparse.Namespace, argv: list[str] | None = None) -
 
 
 def _run_sweep(args: argparse.Namespace, argv: list[str] | None, started: float) -> int:
-    from recipsim.studies.sweep.engine import SweepInterrupted, run_sweep
-    from recipsim.studies.sweep.runner import WorkerLost
+    from recipsim.physics.compiled_runtime import importing_numba
+
+    with importing_numba():  # the engine's modules import numba
+        from recipsim.studies.sweep.engine import SweepInterrupted, run_sweep
+        from recipsim.studies.sweep.runner import WorkerLost
 
     resume = f"rerun `{_command_line(argv)}` to resume (finished points are not recomputed)"
     figures = None
