@@ -1,7 +1,7 @@
 """A sweep's summary table kept as columns: the DataFrame pandas would build from its
 rows, made only when asked for, and a command line whose own process never imports
 pandas (0.3 s before the first point: `recipsim sweep throughput_100 --jobs 2
---no-plots` 1.97 -> 1.51 s, medians of 6 in turn on the 2-core machine).
+--no-plots` 1.39 -> 1.14 s, medians of 7 in turn on the 2-core machine).
 """
 
 from __future__ import annotations
