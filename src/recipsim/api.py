@@ -14,6 +14,7 @@ is ever chosen.
 
 from __future__ import annotations
 
+import tempfile
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
@@ -24,12 +25,23 @@ import pandas as pd
 from recipsim.case.case import Case
 from recipsim.case.load import load_case
 from recipsim.case.overrides import parse_override, toml_literal
-from recipsim.results.run import CaseRun, simulate_case
+from recipsim.pipeline import simulate_case
+from recipsim.report.case_report import write_case_report
+from recipsim.report.loss_plot import plot_loss_breakdown
+from recipsim.report.mechanics_plots import film_bearings, plot_bearing_loads, plot_orbits
+from recipsim.report.plotting import plot_pressure, plot_pv, plot_torque, plot_valves
+from recipsim.report.startup_plot import plot_startup
+from recipsim.results.case_run import CaseRun
+from recipsim.results.startup import startup_table
+from recipsim.solve.periodic import PeriodicSolution
+from recipsim.studies.calibrate.report import write_calibration
+from recipsim.studies.calibrate.run import calibrate_case
+from recipsim.studies.compare import case_labels, comparison_table
+from recipsim.studies.sweep.engine import run_sweep
+from recipsim.studies.sweep.spec import DEFAULT_MAX_POINTS, SweepSpec
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
-
-    from recipsim.solve.periodic import PeriodicSolution
 
 __all__ = ["Case", "Result", "calibrate", "compare", "load_case", "simulate", "sweep"]
 
@@ -67,13 +79,11 @@ class Result:
     # ---- plots: each draws into ``ax`` (or a new figure) and returns the Axes --------
     def plot_pv(self, ax: Axes | None = None, log: bool = False) -> Axes:
         """Indicator diagram, cylinder pressure against volume (log-log with ``log``)."""
-        from recipsim.report.plotting import plot_pv
 
         return _first_axes(plot_pv(self.cycle, ax=ax, log=log, label=self.case.name), ax)
 
     def plot_pressure(self, ax: Axes | None = None) -> Axes:
         """Cylinder pressure against crank angle, with the suction and discharge lines."""
-        from recipsim.report.plotting import plot_pressure
 
         op = self.case.operating_point
         plenum = (op.suction_pressure, op.discharge_pressure)
@@ -81,27 +91,23 @@ class Result:
 
     def plot_torque(self, ax: Axes | None = None) -> Axes:
         """Driving torque with its gas and inertia parts against crank angle."""
-        from recipsim.report.plotting import plot_torque
 
         return _first_axes(plot_torque(self.cycle, ax=ax), ax)
 
     def plot_valves(self, ax: Axes | None = None) -> Axes:
         """Reed lifts and valve mass flows against crank angle (cylinder scenes)."""
-        from recipsim.report.plotting import plot_valves
 
         return _first_axes(plot_valves(self.cycle, ax=ax), ax)
 
     def plot_bearing_loads(self) -> Any:
         """Force magnitude of every bearing against crank angle; returns the figure's
         array of Axes (one per bearing)."""
-        from recipsim.report.mechanics_plots import plot_bearing_loads
 
         return plot_bearing_loads({self.case.name: self.cycle}).axes
 
     def plot_orbits(self) -> Any:
         """Journal orbits (flexible mechanics): the bearings on oil films inside their
         clearance circles, else the primary and secondary; returns the figure's Axes."""
-        from recipsim.report.mechanics_plots import film_bearings, plot_orbits
 
         bearings = film_bearings(self.cycle) or ("primary", "secondary")
         return plot_orbits({self.case.name: self.cycle}, bearings=bearings).axes
@@ -109,7 +115,6 @@ class Result:
     def plot_losses(self, ax: Axes | None = None) -> Axes:
         """Where the electrical power goes: the loss chain as a waterfall, from the
         electrical input to the isentropic power of the delivered gas."""
-        from recipsim.report.loss_plot import plot_loss_breakdown
 
         return _first_axes(plot_loss_breakdown(self.summary, ax=ax, title=self.case.name), ax)
 
@@ -120,14 +125,12 @@ class Result:
         the case does not start from rest (``solver.start = "periodic"``)."""
         if self._run.startup is None:
             return None
-        from recipsim.results.startup import startup_table
 
         return startup_table(self._run.startup)
 
     def plot_startup(self) -> Any:
         """Speed, motor torque, pressures and bearing loads against time from standstill
         (a run with ``solver.start = "rest"``); returns the figure's array of Axes."""
-        from recipsim.report.startup_plot import plot_startup
 
         table = self.startup
         if table is None:
@@ -139,7 +142,6 @@ class Result:
         """Write the report (``summary.csv``, ``cycle.csv``, figures, ``case.toml``,
         ``provenance.json``) into ``directory``, atomically; a directory that recipsim
         did not write is refused (:class:`~recipsim.errors.CaseError`)."""
-        from recipsim.report.case_report import write_case_report
 
         return write_case_report(self._run, Path(directory), list(self.case.overrides), plots)
 
@@ -188,7 +190,6 @@ def compare(a: Case | Result, b: Case | Result) -> pd.DataFrame:
         it, suffixed ``_a``/``_b`` when the names are equal); ``difference`` (B - A) and
         ``relative_difference [-]``.
     """
-    from recipsim.studies.compare import case_labels, comparison_table
 
     results = [r if isinstance(r, Result) else simulate(r) for r in (a, b)]
     labels = case_labels(results[0].case.name, results[1].case.name)
@@ -205,6 +206,7 @@ def sweep(
     name: str | None = None,
     plots: bool = False,
     max_points: int | None = None,
+    progress: bool = True,
 ) -> pd.DataFrame:
     """Run ``case`` over a grid of case values: the engine of ``recipsim sweep``.
 
@@ -229,6 +231,9 @@ def sweep(
         Draw the map plots.
     max_points : int, optional
         Refuse larger grids (default 100 000).
+    progress : bool
+        Show a progress bar (a widget in a notebook, a bar in a terminal, nothing when
+        the output is a file).
 
     Returns
     -------
@@ -240,10 +245,6 @@ def sweep(
     CaseError
         An unknown key or a grid over the limit, before anything runs.
     """
-    import tempfile
-
-    from recipsim.studies.sweep.engine import run_sweep
-    from recipsim.studies.sweep.spec import DEFAULT_MAX_POINTS, SweepSpec
 
     sweep_name = name or f"{case.name}_sweep"
     parsed = [parse_override(text) for text in case.overrides]
@@ -269,6 +270,7 @@ def sweep(
         "scheduler": scheduler,
         "plots": plots,
         "allow_external_paths": case.allow_external_paths,
+        "progress": progress,
     }
     if directory is not None:
         return run_sweep(spec, out=Path(directory), **options).table
@@ -318,8 +320,6 @@ def calibrate(
         An ill-posed fit: more parameters than measured values, a parameter without
         influence, or parameters whose effects cannot be told apart.
     """
-    from recipsim.studies.calibrate.report import write_calibration
-    from recipsim.studies.calibrate.run import calibrate_case
 
     result = calibrate_case(case, data, parameters, points, targets)
     if directory is not None:

@@ -1,34 +1,107 @@
 """One rule for recipsim's cache directories.
 
-Every cache (property tables, fluid constants, numba's compiled code, pint's parsed
-unit definitions) lives under :func:`cache_dir`: ``$RECIPSIM_CACHE`` if set, else the
-platform's user cache directory for ``recipsim`` from platformdirs (on Linux
-``$XDG_CACHE_HOME/recipsim``, by default ``~/.cache/recipsim``). Directories are created
-with mode 0o700: numba's cache is loaded with pickle, so a cache directory that others
-can write is a way to run their code in your process; recipsim warns once if it finds
-one (see ``docs/caches.md``).
+Every cache (property tables, numba's compiled code, pint's parsed unit definitions)
+lives under :func:`cache_dir`: ``$RECIPSIM_CACHE`` if set, else the platform's user cache
+directory for ``recipsim`` from platformdirs (on Linux ``$XDG_CACHE_HOME/recipsim``, by
+default ``~/.cache/recipsim``). Directories are created with mode 0o700: numba's cache is
+loaded with pickle, so a cache directory that others can write is a way to run their
+code in your process; recipsim warns once if it finds one (see ``docs/caches.md``).
+
+numba's cache of recipsim's own compiled functions is kept per version of the compiled
+sources (:func:`numba_cache_path`), by a cache locator that serves recipsim's files only
+(:func:`use_recipsim_numba_cache`): numba invalidates a cached function when its own
+file changes, not when a constant it reads from another module does (a parameter-layout
+index), so one directory per digest of all the compiled sources keeps a stale cache from
+reading the wrong slots. Nothing else is redirected: the process environment and
+numba's configuration stay as the user set them.
 """
 
 from __future__ import annotations
 
+import hashlib
 import os
 import stat
 import warnings
+from functools import lru_cache
 from pathlib import Path
+from typing import Any
 
 _warned: set[str] = set()
+
+#: The package's folder, and those holding compiled code or the constants it reads.
+_PACKAGE = Path(__file__).resolve().parent
+_COMPILED_SOURCES = ("physics", "model", "solve", "studies/bench")
+
+
+@lru_cache(maxsize=1)
+def compiled_sources_digest() -> str:
+    """A digest of every source file of the packages holding compiled code (16 hex)."""
+    digest = hashlib.blake2b(digest_size=8)
+    for entry in _COMPILED_SOURCES:
+        for file in sorted((_PACKAGE / entry).rglob("*.py")):
+            digest.update(file.relative_to(_PACKAGE).as_posix().encode())
+            digest.update(file.read_bytes())
+    return digest.hexdigest()
+
+
+def numba_cache_path() -> Path:
+    """Where numba's cache of recipsim's compiled functions is kept:
+    ``<NUMBA_CACHE_DIR or <cache>/numba>/recipsim-<digest of the compiled sources>``."""
+    base = os.environ.get("NUMBA_CACHE_DIR") or str(cache_dir() / "numba")
+    return Path(base) / f"recipsim-{compiled_sources_digest()}"
 
 
 def numba_cache_lacks(module: str, function: str | None = None) -> bool:
     """Whether numba's cache for this version of the compiled sources holds nothing yet of
     ``module`` (e.g. ``"integrator"``: the first run then compiles the solver), or of its
     ``function`` if given (``"integrate_coupled"``: each scene compiles on its own)."""
-    directory = os.environ.get("NUMBA_CACHE_DIR")
-    if not directory or os.environ.get("NUMBA_DISABLE_JIT") == "1":
+    if os.environ.get("NUMBA_DISABLE_JIT") == "1":
         return False
-    path = Path(directory)
+    path = numba_cache_path()
     pattern = f"{module}.{function}-*.nbi" if function else f"{module}.*.nbi"
     return not path.is_dir() or next(path.rglob(pattern), None) is None
+
+
+def use_recipsim_numba_cache() -> None:
+    """Have numba keep the cache of recipsim's compiled functions in
+    :func:`numba_cache_path` (created private); other functions keep numba's own rules.
+
+    Called once, as ``recipsim`` is imported, before any of its functions is compiled.
+    Where the directory cannot be created, numba's own locators take over.
+    """
+    from numba.core import caching
+
+    locators: list[Any] = caching.CacheImpl._locator_classes
+    if not any(cls is _RecipsimCacheLocator() for cls in locators):
+        locators.insert(0, _RecipsimCacheLocator())
+
+
+@lru_cache(maxsize=1)
+def _RecipsimCacheLocator() -> type:  # noqa: N802 (a class, made once)
+    """numba's cache locator for the files of this package (see the module docstring)."""
+    from numba.core import caching
+
+    class RecipsimCacheLocator(caching._SourceFileBackedLocatorMixin, caching._CacheLocator):
+        def __init__(self, py_func: Any, py_file: str) -> None:
+            self._py_file = py_file
+            self._lineno = py_func.__code__.co_firstlineno
+            folder = Path(py_file).resolve().parent.relative_to(_PACKAGE)
+            self._cache_path = str(numba_cache_path() / folder)
+
+        def get_cache_path(self) -> str:
+            return self._cache_path
+
+        def ensure_cache_path(self) -> None:
+            private_dir(Path(self._cache_path))
+            super().ensure_cache_path()
+
+        @classmethod
+        def from_function(cls, py_func: Any, py_file: str) -> Any:
+            if not Path(py_file).resolve().is_relative_to(_PACKAGE):
+                return None
+            return super().from_function(py_func, py_file)
+
+    return RecipsimCacheLocator
 
 
 def cache_dir() -> Path:

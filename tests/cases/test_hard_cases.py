@@ -147,7 +147,7 @@ def test_soft_reed_flutters_and_stiff_bearings_reach_the_rigid_limit(
     # efficiency within 1e-3 of the rigid crank's (pinned run of the same case); the
     # reference bearings move it by 6 % (the crank train's compliance adds clearance)
     from recipsim.case.load import load_case
-    from recipsim.results.run import simulate_case
+    from recipsim.pipeline import simulate_case
 
     rigid = simulate_case(
         load_case(HARD / "bearings_stiff_x1000.toml", ["options.mechanics=pinned"])
@@ -324,7 +324,7 @@ def test_cli_exit_status_follows_the_expectations(tmp_path: Path) -> None:
 
 def test_a_failing_case_is_a_row(monkeypatch: pytest.MonkeyPatch) -> None:
     # a solver failure and an internal error both become "failed" rows, never exceptions
-    import recipsim.results.run
+    import recipsim.pipeline
     from recipsim.errors import SolverError
     from recipsim.studies.check.judge import check_case
 
@@ -335,10 +335,10 @@ def test_a_failing_case_is_a_row(monkeypatch: pytest.MonkeyPatch) -> None:
         raise ZeroDivisionError("float division by zero")
 
     expect_failure = Expectation(expected="failed", message=r"crank angle \d+")
-    monkeypatch.setattr(recipsim.results.run, "simulate_case", solver_failure)
+    monkeypatch.setattr(recipsim.pipeline, "simulate_case", solver_failure)
     row = check_case(REFERENCE, expect_failure)
     assert (row.outcome, row.matches) == ("failed", True)
-    monkeypatch.setattr(recipsim.results.run, "simulate_case", bug)
+    monkeypatch.setattr(recipsim.pipeline, "simulate_case", bug)
     row = check_case(REFERENCE, Expectation())
     assert row.outcome == "failed" and not row.matches
     assert row.message.startswith("internal error ZeroDivisionError")

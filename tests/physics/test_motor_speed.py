@@ -23,7 +23,7 @@ from recipsim.api import load_case
 from recipsim.errors import CaseError
 from recipsim.model.loss_sources import constant_speed_mean_friction, revolution_shaft_power
 from recipsim.physics.motor_circuit import motor_operating_point_at_torque
-from recipsim.results.run import simulate_case
+from recipsim.pipeline import simulate_case
 from recipsim.solve.drive import build_model_for
 from recipsim.solve.motor_speed import solve_at_motor_speed
 

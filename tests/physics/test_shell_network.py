@@ -23,7 +23,7 @@ from recipsim.physics.thermo.shell_network import (
     node_residuals,
     solve_network,
 )
-from recipsim.results.run import simulate_case
+from recipsim.pipeline import simulate_case
 
 T_AMB = 305.35
 P_SUC, P_DIS = 62938.6, 762002.4  # R600a at -23.3 C / 54.4 C [Pa]

@@ -24,21 +24,26 @@ written by recipsim). Nothing is written unless both cases ran.
 from __future__ import annotations
 
 import argparse
-import contextlib
-import json
 import sys
 import time
 from dataclasses import dataclass
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
+import pandas as pd
+
+from recipsim.atomic import atomic_directory, check_replaceable
+from recipsim.case.case import Case
+from recipsim.case.load import load_case
+from recipsim.cli.compare_console import console_summary
 from recipsim.cli.options import add_common_options, exit_status
-
-if TYPE_CHECKING:
-    import pandas as pd
-
-    from recipsim.report.figure_process import FigureProcesses
-    from recipsim.results.run import CaseRun
+from recipsim.errors import SolverError
+from recipsim.pipeline import simulate_case
+from recipsim.report.case_report import json_text, report_dir, write_case_report
+from recipsim.report.compare_plots import save_overlay_figures
+from recipsim.report.figure_names import OVERLAY_NAMES
+from recipsim.results.case_run import CaseRun
+from recipsim.studies.compare import case_labels, case_records, comparison_table
 
 
 @dataclass
@@ -51,10 +56,11 @@ class Comparison:
         Case A and case B as simulated.
     labels : tuple of str
         Their column labels in ``comparison.csv``.
-    columns : dict
-        The comparison table's columns (:func:`recipsim.studies.compare.comparison_columns`).
-    records : list of dict
-        The text columns per case (:func:`recipsim.studies.compare.case_records`).
+    table : pandas.DataFrame
+        The comparison table (``comparison.csv``,
+        :func:`recipsim.studies.compare.comparison_table`).
+    cases : pandas.DataFrame
+        The text columns per case (``cases.csv``, :func:`recipsim.studies.compare.case_records`).
     out : Path
         The output directory.
     wall_time : float
@@ -63,24 +69,10 @@ class Comparison:
 
     runs: tuple[CaseRun, CaseRun]
     labels: tuple[str, str]
-    columns: dict[str, Any]
-    records: list[dict[str, Any]]
+    table: pd.DataFrame
+    cases: pd.DataFrame
     out: Path
     wall_time: float
-
-    @property
-    def table(self) -> pd.DataFrame:
-        """The comparison table (the contents of ``comparison.csv``), a DataFrame."""
-        import pandas as pd
-
-        return pd.DataFrame(self.columns)
-
-    @property
-    def cases(self) -> pd.DataFrame:
-        """The text columns per case (the contents of ``cases.csv``), a DataFrame."""
-        import pandas as pd
-
-        return pd.DataFrame.from_records(self.records)
 
 
 def add_compare_parser(sub: Any) -> argparse.ArgumentParser:
@@ -121,46 +113,28 @@ def run_compare_command(args: argparse.Namespace, argv: list[str] | None) -> int
     """``recipsim compare``: returns the exit status (0, 1 or 2)."""
 
     def action() -> int:
-        figures = None
-        if not args.no_plots:  # they import pandas and matplotlib while this one solves
-            from recipsim.report.compare_figures import COMPARE_PRELOAD
-            from recipsim.report.figure_process import start_figure_processes
-
-            figures = start_figure_processes(None, COMPARE_PRELOAD, at_least=1, busy_parent=True)
-        try:
-            comparison = run_comparison(
-                args.case_a,
-                args.case_b,
-                overrides=args.overrides,
-                overrides_a=args.overrides_a,
-                overrides_b=args.overrides_b,
-                parent=args.out,
-                plots=not args.no_plots,
-                argv=argv if argv is not None else sys.argv,
-                allow_external_paths=args.allow_external_paths,
-                figures=figures,
-            )
-        except BaseException:
-            if figures is not None:  # the children exit without drawing; the first error wins
-                with contextlib.suppress(BaseException):
-                    figures.wait()
-            raise
+        comparison = run_comparison(
+            args.case_a,
+            args.case_b,
+            overrides=args.overrides,
+            overrides_a=args.overrides_a,
+            overrides_b=args.overrides_b,
+            parent=args.out,
+            plots=not args.no_plots,
+            argv=argv if argv is not None else sys.argv,
+            allow_external_paths=args.allow_external_paths,
+        )
         if not args.quiet:
-            from recipsim.cli.compare_console import console_summary
-
             rows = [run.row for run in comparison.runs]
             out, wall = comparison.out, comparison.wall_time
-            print(console_summary(comparison.labels, comparison.columns, rows, out, wall))
+            print(console_summary(comparison.labels, comparison.table, rows, out, wall))
         return 0
 
     return exit_status(action)
 
 
-def _simulate(path: Path, case: Any, argv: list[str] | None) -> CaseRun:
+def _simulate(path: Path, case: Case, argv: list[str] | None) -> CaseRun:
     """Run one case; a solver failure names the case file."""
-    from recipsim.errors import SolverError
-    from recipsim.results.run import simulate_case
-
     try:
         return simulate_case(case, argv)
     except SolverError as exc:
@@ -178,7 +152,6 @@ def run_comparison(
     argv: list[str] | None = None,
     allow_external_paths: bool = False,
     parent: Path | None = None,
-    figures: FigureProcesses | None = None,
 ) -> Comparison:
     """Run two cases and write their comparison directory atomically.
 
@@ -201,11 +174,6 @@ def run_comparison(
         See :func:`recipsim.case.load.load_case`.
     parent : Path, optional
         Parent of the default output directory (``--out``); default ``reports/compare``.
-    figures : FigureProcesses, optional
-        Forked report processes (:func:`recipsim.report.figure_process.start_figure_processes`)
-        that write both reports' tables and draw every figure, shared by cost
-        (:mod:`recipsim.report.compare_figures`); the same files. None: here, one after
-        the other. The command line's choice, never a library's.
 
     Returns
     -------
@@ -219,12 +187,6 @@ def run_comparison(
     SolverError
         A case failed (the message names its file); nothing is written.
     """
-    from recipsim.physics.compiled_runtime import importing_numba
-
-    with importing_numba():  # the case's modules import numba
-        from recipsim.case.load import load_case
-        from recipsim.studies.compare import case_labels, case_records, comparison_columns
-
     start = time.perf_counter()
     paths = (Path(path_a), Path(path_b))
     sets = [
@@ -238,14 +200,15 @@ def run_comparison(
     labels = case_labels(cases[0].name, cases[1].name)
     target = _output_directory(out, parent, [c.name for c in cases], sets)
     runs = (_simulate(paths[0], cases[0], argv), _simulate(paths[1], cases[1], argv))
-    columns = comparison_columns(runs[0].row, runs[1].row, *labels)
+    table = comparison_table(runs[0].row, runs[1].row, *labels)
     extra = [
         {"file": str(p), "overrides": "; ".join(s), "report": f"{label}/"}
         for p, s, label in zip(paths, sets, labels, strict=True)
     ]
     records = case_records([r.row for r in runs], labels, extra)
-    _write(target, runs, labels, sets, (columns, records), plots, argv, start, figures)
-    return Comparison(runs, labels, columns, records, target, time.perf_counter() - start)
+    _write(target, runs, labels, sets, (table, records), plots, argv, start)
+    cases_table = pd.DataFrame.from_records(records)
+    return Comparison(runs, labels, table, cases_table, target, time.perf_counter() - start)
 
 
 #: Default ``--out`` of ``recipsim compare`` (the parent of ``<A>_vs_<B>``).
@@ -258,12 +221,8 @@ def _output_directory(
     """The comparison's directory, checked before anything runs: ``out``, or
     ``<parent>/<A>_vs_<B>`` (``+<digest>`` of the overrides)."""
     if out is not None:
-        from recipsim.atomic import check_replaceable
-
         check_replaceable(Path(out))
         return Path(out)
-    from recipsim.report.case_report import report_dir
-
     sides = [f"{side}.{text}" for side, s in zip("ab", sets, strict=True) for text in s]
     return report_dir(parent or DEFAULT_PARENT, f"{names[0]}_vs_{names[1]}", sides)
 
@@ -273,29 +232,18 @@ def _write(
     runs: tuple[CaseRun, CaseRun],
     labels: tuple[str, str],
     sets: list[list[str]],
-    tables: tuple[dict[str, Any], list[dict[str, Any]]],
+    tables: tuple[pd.DataFrame, list[dict[str, Any]]],
     plots: bool,
     argv: list[str] | None,
     start: float,
-    figures: FigureProcesses | None = None,
 ) -> None:
     """Build the output directory beside ``target`` and swap it in (``tables``: the
-    comparison's columns and the cases' records; ``figures``: see
-    :func:`run_comparison`)."""
-    from recipsim.atomic import atomic_directory
-    from recipsim.report.case_report import write_case_report
-    from recipsim.report.csv_tables import write_columns_csv, write_records_csv
-
-    columns, records = tables
-
+    comparison table and the cases' records)."""
+    table, records = tables
     with atomic_directory(target) as tmp:
-        reports: list[dict[str, Any]] | None = [] if figures is not None else None
         for run, label, s in zip(runs, labels, sets, strict=True):
-            write_case_report(run, tmp / label, s, plots, deferred=reports)
-        overlay: dict[str, Any] | None = None
+            write_case_report(run, tmp / label, s, plots)
         if plots:
-            from recipsim.report.figure_names import OVERLAY_NAMES
-
             plenum = {
                 label: (
                     run.case.operating_point.suction_pressure,
@@ -303,29 +251,13 @@ def _write(
                 )
                 for run, label in zip(runs, labels, strict=True)
             }
-            cycles = {label: run.table for run, label in zip(runs, labels, strict=True)}
-            overlay = {
-                "cycles": cycles,
-                "out_dir": tmp,
-                "plenum": plenum,
-                "names": OVERLAY_NAMES,
-            }
-        if figures is not None and reports is not None:
-            from recipsim.report.compare_figures import submit_compare_figures
-
-            submit_compare_figures(figures, reports, overlay)
-        elif overlay is not None:
-            from recipsim.report.compare_plots import save_overlay_figures
-
-            save_overlay_figures(**overlay)
-        # pandas' bytes (its to_csv of the Comparison's DataFrames), without importing it
-        write_columns_csv(tmp / "comparison.csv", columns)
-        write_records_csv(tmp / "cases.csv", records)
+            cycles = {label: run.cycle for run, label in zip(runs, labels, strict=True)}
+            save_overlay_figures(cycles, tmp, plenum, OVERLAY_NAMES)
+        table.to_csv(tmp / "comparison.csv", index=False)
+        pd.DataFrame.from_records(records).to_csv(tmp / "cases.csv", index=False)
         meta = _provenance(runs, labels, records, argv)
-        if figures is not None:
-            figures.wait()
         meta["wall_time_s"] = time.perf_counter() - start
-        (tmp / "provenance.json").write_text(json.dumps(meta, indent=2, default=str))
+        (tmp / "provenance.json").write_text(json_text(meta))
 
 
 def _provenance(

@@ -1,5 +1,4 @@
-"""What ``recipsim compare`` prints: a few key rows of the comparison, read from its
-columns (no pandas in the command's process)."""
+"""What ``recipsim compare`` prints: a few key rows of the comparison."""
 
 from __future__ import annotations
 
@@ -32,7 +31,7 @@ def console_summary(
     labels : tuple of str
         The two cases' columns in ``comparison.csv``.
     columns : mapping
-        The comparison's columns (:func:`recipsim.studies.compare.comparison_columns`).
+        The comparison table (:func:`recipsim.studies.compare.comparison_table`).
     summaries : sequence of mapping
         The two cases' summary rows.
     out : Path

@@ -3,15 +3,11 @@
 Exit status: 0 every point converged; 1 some point did not (the table is written and
 says which), a worker died or the Dask cluster failed; 2 invalid sweep file or
 option; 130 interrupted with Ctrl-C (finished points are kept: rerun to resume).
-
-This module imports nothing heavy at module level: ``recipsim.cli.main`` imports it for
-every command.
 """
 
 from __future__ import annotations
 
 import argparse
-import contextlib
 import shlex
 import sys
 import time
@@ -19,6 +15,9 @@ from pathlib import Path
 from typing import Any
 
 from recipsim.cli.options import add_common_options, exit_status, positive_float, positive_int
+from recipsim.studies.sweep.engine import SweepInterrupted, run_sweep
+from recipsim.studies.sweep.outputs import SweepOutcome
+from recipsim.studies.sweep.runner import WorkerLost
 
 _MAX_LISTED = 8
 
@@ -107,19 +106,7 @@ def run_sweep_command(args: argparse.Namespace, argv: list[str] | None = None) -
 
 
 def _run_sweep(args: argparse.Namespace, argv: list[str] | None, started: float) -> int:
-    from recipsim.physics.compiled_runtime import importing_numba
-
-    with importing_numba():  # the engine's modules import numba
-        from recipsim.studies.sweep.engine import SweepInterrupted, run_sweep
-        from recipsim.studies.sweep.runner import WorkerLost
-
     resume = f"rerun `{_command_line(argv)}` to resume (finished points are not recomputed)"
-    figures = None
-    if not args.no_plots:  # map plots drawn by forked processes that import them now
-        from recipsim.report.figure_process import start_figure_processes
-        from recipsim.studies.sweep.plots import MAP_PRELOAD
-
-        figures = start_figure_processes(preload=MAP_PRELOAD)
     try:
         outcome = run_sweep(
             args.sweep,
@@ -138,24 +125,18 @@ def _run_sweep(args: argparse.Namespace, argv: list[str] | None, started: float)
             max_points=args.max_points,
             scheduler_timeout=args.scheduler_timeout,
             allow_external_paths=args.allow_external_paths,
-            figures=figures,
         )
     except (SweepInterrupted, WorkerLost) as exc:
         print(f"recipsim: {exc}; {resume}", file=sys.stderr)
         return 130 if isinstance(exc, SweepInterrupted) else 1
-    finally:
-        if figures is not None:  # unused after a failure: the children exit
-            with contextlib.suppress(BaseException):
-                figures.wait()
     if not args.quiet:
         print(format_outcome(outcome))
     return 0 if outcome.n_failed == 0 else 1
 
 
-def format_outcome(outcome: Any) -> str:
-    """The closing lines: counts, timing and the points that did not converge (read from
-    the table's columns: no DataFrame is made)."""
-    columns = outcome.columns
+def format_outcome(outcome: SweepOutcome) -> str:
+    """The closing lines: counts, timing and the points that did not converge."""
+    table = outcome.table
     counts = outcome.counts
     bad = {k: v for k, v in sorted(counts.items()) if k != "ok"}
     detail = f" ({', '.join(f'{v} {k}' for k, v in bad.items())})" if bad else ""
@@ -173,10 +154,10 @@ def format_outcome(outcome: Any) -> str:
         f"reused; {outcome.wall_time:.1f} s{rate}{where}",
         f"  -> {outcome.directory / 'summary.csv'}",
     ]
-    status, messages, points = columns["status"], columns["message"], columns["point"]
+    status, messages, points = (table[c].tolist() for c in ("status", "message", "point"))
     failed = [i for i, s in enumerate(status) if s != "ok"]
     for i in failed[:_MAX_LISTED]:
-        values = ", ".join(f"{c}={_short(columns[c][i])}" for c in outcome.axes)
+        values = ", ".join(f"{c}={_short(table[c].iloc[i])}" for c in outcome.axes)
         message = _clipped(str(messages[i]))
         lines.append(f"  point {points[i]} [{status[i]}] {values}: {message}")
     if len(failed) > _MAX_LISTED:

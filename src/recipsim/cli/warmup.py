@@ -82,7 +82,7 @@ def warmup(cases: list[str], refrigerants: list[str], verbose: bool = True) -> i
     """
     from recipsim.case.load import load_case
     from recipsim.case.refrigerant import case_fluid, load_refrigerant
-    from recipsim.results.run import simulate_case
+    from recipsim.pipeline import simulate_case
     from recipsim.solve.scene_entries import compile_entry, entry_name
 
     def say(text: str) -> None:

@@ -33,7 +33,7 @@ _REPRODUCED = 1e-9
 def _fit_source_digest() -> str:
     """Digest of the modules whose code decides the fitted circuit (recipsim's version
     where a module's source cannot be read, e.g. an installation without sources)."""
-    from recipsim import __version__
+    from recipsim.version import __version__
 
     digest = hashlib.blake2b(digest_size=16)
     for module in (motor_nameplate, motor_circuit, bracketed_root):

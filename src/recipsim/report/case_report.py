@@ -8,39 +8,40 @@ one intact.
 from __future__ import annotations
 
 import hashlib
+import io
 import json
+import math
 from collections.abc import Collection, Mapping, Sequence
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
-from recipsim import timeline
+import pandas as pd
+
 from recipsim.atomic import atomic_directory, check_replaceable, checked_name, normalised
+from recipsim.case.overrides import parse_override
 from recipsim.errors import CaseError
 from recipsim.report.report_figures import (
-    Table,
     draw_report_figures,
     report_figure_names,
     write_tables,
 )
 from recipsim.report.report_figures import run_title as run_title  # re-exported
-
-if TYPE_CHECKING:
-    from recipsim.report.figure_process import FigureProcesses
-    from recipsim.results.run import CaseRun
+from recipsim.report.resolved_case import resolved_case
+from recipsim.report.startup_plot import plot_startup
+from recipsim.results.case_run import CaseRun
+from recipsim.results.startup import startup_table
 
 
 def write_report(
     out_dir: Path,
     summary_row: dict[str, Any],
-    cycle: Table,
+    cycle: pd.DataFrame,
     case_text: str,
     overrides: list[str],
     meta: dict[str, Any],
     plenum: tuple[float, float] | None = None,
     plots: bool | Collection[str] = True,
     files: Mapping[str, bytes] | None = None,
-    figures: FigureProcesses | None = None,
-    deferred: list[dict[str, Any]] | None = None,
 ) -> Path:
     """Write one case's report into ``out_dir`` atomically.
 
@@ -49,16 +50,7 @@ def write_report(
     ``case_text`` becomes ``case.toml`` (headed by the overrides when it does not name
     them itself); ``files`` (relative path to content) are written beside it.
     ``plots``: every figure (True), none (False) or those named
-    (:data:`recipsim.report.figure_names.FIGURE_NAMES`). ``cycle``: the cycle table, or
-    its columns as numpy arrays. ``figures``: forked report processes that write the
-    tables and draw the figures while this one writes the rest
-    (:func:`recipsim.report.figure_process.start_figure_processes`); None writes and
-    draws them here, one after the other. ``deferred``: neither; the keyword arguments of
-    :func:`recipsim.report.report_figures.write_report_share` that would write the tables
-    and draw the figures into ``out_dir`` (once it is in place) are appended to it, for
-    a caller that shares several reports between its report processes
-    (:mod:`recipsim.report.compare_figures`) and keeps ``out_dir`` inside a directory of
-    its own that it renames into place when they are done.
+    (:data:`recipsim.report.figure_names.FIGURE_NAMES`).
 
     Returns
     -------
@@ -67,24 +59,7 @@ def write_report(
     """
     out_dir = Path(out_dir)
     with atomic_directory(out_dir) as tmp:
-        names = report_figure_names(cycle, summary_row, plots)
-        if figures is not None:
-            figures.draw(tmp, cycle, summary_row, plenum, names, tables=True)
-            timeline.mark("report handed over")
-        elif deferred is not None:
-            deferred.append(
-                {
-                    "directory": out_dir,
-                    "cycle": cycle,
-                    "summary_row": dict(summary_row),
-                    "plenum": plenum,
-                    "names": tuple(names),
-                    "tables": True,
-                }
-            )
-        else:
-            write_tables(tmp, summary_row, cycle)
-            timeline.mark("tables written")
+        write_tables(tmp, summary_row, cycle)
         header = "".join(f"# --set {o}\n" for o in overrides if f"# --set {o}" not in case_text)
         (tmp / "case.toml").write_text(
             ("# overrides applied on top of this file:\n" + header if header else "") + case_text
@@ -92,15 +67,28 @@ def write_report(
         for name, content in (files or {}).items():
             (tmp / name).parent.mkdir(parents=True, exist_ok=True)
             (tmp / name).write_bytes(content)
-        (tmp / "provenance.json").write_text(json.dumps(meta, indent=2, default=str))
-        timeline.mark("case and provenance written")
-        if figures is not None:
-            figures.wait()
-            timeline.mark("report processes done")
-        elif names and deferred is None:
+        (tmp / "provenance.json").write_text(json_text(meta))
+        names = report_figure_names(cycle, summary_row, plots)
+        if names:
             draw_report_figures(tmp, cycle, summary_row, plenum, names)
-            timeline.mark("figures drawn")
     return out_dir
+
+
+def json_text(value: Any) -> str:
+    """``value`` as strict JSON text (indented): a number that is not finite (NaN,
+    infinity) becomes ``null``; anything JSON has no type for is written as its text."""
+    return json.dumps(_finite(value), indent=2, default=str, allow_nan=False)
+
+
+def _finite(value: Any) -> Any:
+    """``value`` with every non-finite float replaced by None, inside lists and dicts."""
+    if isinstance(value, float):
+        return value if math.isfinite(value) else None
+    if isinstance(value, Mapping):
+        return {key: _finite(item) for key, item in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [_finite(item) for item in value]
+    return value
 
 
 def write_case_report(
@@ -108,17 +96,12 @@ def write_case_report(
     out_dir: Path,
     overrides: list[str],
     plots: bool | Collection[str] = True,
-    figures: FigureProcesses | None = None,
-    deferred: list[dict[str, Any]] | None = None,
 ) -> Path:
     """Write the report of ``run`` atomically into ``out_dir`` (see reports/README.md).
 
     Its ``case.toml`` is the case fully resolved (:mod:`recipsim.report.resolved_case`),
-    with the refrigerant file and a tabulated pressure curve beside it. ``figures`` and
-    ``deferred``: see :func:`write_report`.
+    with the refrigerant file and a tabulated pressure curve beside it.
     """
-    from recipsim.report.resolved_case import resolved_case
-
     op = run.case.operating_point
     text, files = resolved_case(run.case)
     if run.startup is not None:  # the start-up from rest: startup.csv and startup.png
@@ -126,31 +109,23 @@ def write_case_report(
     return write_report(
         out_dir,
         run.row,
-        run.table if figures is not None or deferred is not None else run.cycle,
+        run.cycle,
         text,
         overrides,
         run.meta,
         plenum=(op.suction_pressure, op.discharge_pressure),
         plots=plots,
         files=files,
-        figures=figures,
-        deferred=deferred,
     )
 
 
 def startup_files(run: CaseRun, plots: bool | Collection[str] = True) -> dict[str, bytes]:
     """``startup.csv`` and (unless ``plots`` leaves it out) ``startup.png`` of a run
     from rest, as file contents (reports/README.md, "startup.csv")."""
-    import io
-
-    from recipsim.results.startup import startup_table
-
     assert run.startup is not None
     table = startup_table(run.startup)
     out = {"startup.csv": table.to_csv(index=False).encode()}
     if plots is True or (plots and "startup" in plots):
-        from recipsim.report.startup_plot import plot_startup
-
         buffer = io.BytesIO()
         plot_startup(table, title=f"{run.case.name}: start-up from rest").savefig(
             buffer, format="png", dpi=120
@@ -165,8 +140,6 @@ def overrides_digest(overrides: Sequence[str]) -> str:
     The same changes give the same digest whatever their order, spacing or repetition
     (the last value of a key wins, as when they are applied).
     """
-    from recipsim.case.overrides import parse_override
-
     values: dict[str, Any] = {}
     for text in overrides:
         path, value = parse_override(text)

@@ -261,7 +261,7 @@ def save_overlay_figures(
     Parameters
     ----------
     cycles : mapping of str to pandas.DataFrame
-        Cycle tables by case label (or their columns as numpy arrays).
+        Cycle tables by case label.
     out_dir : str or pathlib.Path
         Existing directory.
     plenum : mapping of str to (float, float), optional
@@ -274,10 +274,8 @@ def save_overlay_figures(
     list of pathlib.Path
         The files written.
     """
-    from recipsim.results.columns import as_table
-
     out = Path(out_dir)
-    tables = {label: as_table(cycle) for label, cycle in cycles.items()}
+    tables = dict(cycles)
     written = []
     for name, build in OVERLAY_FIGURES.items():
         if names is not None and name not in names:

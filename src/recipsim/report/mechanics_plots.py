@@ -1,8 +1,7 @@
 """Figures of the crank-train report tables: bearing loads, bearing orbits, drive torque.
 
-Every function takes report tables (pandas DataFrames, or
-:class:`recipsim.results.columns.Columns`, with the columns of a case's cycle table or the
-paper study's: ``crank_angle [deg]`` from TDC,
+Every function takes report tables (pandas DataFrames with the columns of a case's cycle
+table or the paper study's: ``crank_angle [deg]`` from TDC,
 ``bearing_force_<name> [N]`` or its ``_x``/``_y``/``_z`` components,
 ``bearing_displacement_<name>_x|_y [m]``, ``drive_torque [N m]``) keyed by a label
 ("pinned", "flexible", ...) and returns a :class:`matplotlib.figure.Figure`.
@@ -19,12 +18,12 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
+import pandas as pd
 from matplotlib.figure import Figure
 
 from recipsim.physics.mechanics.layout import BEARING_NAMES
 from recipsim.report.figure_kit import PNG_OPTIONS, angle_axis
 from recipsim.report.figure_names import TITLE_Y
-from recipsim.results.columns import CycleLike
 
 ANGLE_COLUMN = "crank_angle [deg]"
 TORQUE_COLUMN = "drive_torque [N m]"
@@ -43,12 +42,12 @@ ORBIT_COLOURS = {
 DPI = 110
 
 
-def force_magnitude(table: CycleLike, bearing: str) -> np.ndarray:
+def force_magnitude(table: pd.DataFrame, bearing: str) -> np.ndarray:
     """Force magnitude of one bearing over the table rows [N].
 
     Parameters
     ----------
-    table : CycleLike
+    table : pd.DataFrame
         Report table with ``bearing_force_<bearing> [N]``, or with its ``_x``, ``_y``
         (and optionally ``_z``) components [N].
     bearing : str
@@ -75,12 +74,12 @@ def force_magnitude(table: CycleLike, bearing: str) -> np.ndarray:
     return np.linalg.norm(comps, axis=1)
 
 
-def displacement(table: CycleLike, bearing: str) -> np.ndarray | None:
+def displacement(table: pd.DataFrame, bearing: str) -> np.ndarray | None:
     """Journal displacement of one bearing in its plane, (n, 2) [m], or None.
 
     Parameters
     ----------
-    table : CycleLike
+    table : pd.DataFrame
         Report table.
     bearing : str
         Bearing name.
@@ -100,7 +99,7 @@ def displacement(table: CycleLike, bearing: str) -> np.ndarray | None:
     return xy
 
 
-def film_clearance(table: CycleLike, bearing: str) -> float | None:
+def film_clearance(table: pd.DataFrame, bearing: str) -> float | None:
     """Radial clearance of a bearing on an oil film, from its cycle columns [m], or None.
 
     The report's ``film_thickness_<bearing> [m]`` is the clearance less the journal's
@@ -109,7 +108,7 @@ def film_clearance(table: CycleLike, bearing: str) -> float | None:
 
     Parameters
     ----------
-    table : CycleLike
+    table : pd.DataFrame
         Report table.
     bearing : str
         Bearing name.
@@ -127,12 +126,12 @@ def film_clearance(table: CycleLike, bearing: str) -> float | None:
     return float(np.median(film + np.hypot(xy[:, 0], xy[:, 1])))
 
 
-def film_bearings(table: CycleLike) -> tuple[str, ...]:
+def film_bearings(table: pd.DataFrame) -> tuple[str, ...]:
     """The bearings of a report table that run on an oil film, ``BEARING_NAMES`` order."""
     return tuple(b for b in BEARING_NAMES if f"film_thickness_{b} [m]" in table)
 
 
-def has_orbits(table: CycleLike, bearings: Sequence[str] = ("primary", "secondary")) -> bool:
+def has_orbits(table: pd.DataFrame, bearings: Sequence[str] = ("primary", "secondary")) -> bool:
     """Whether a table has a non-zero displacement for at least one of ``bearings``."""
     return any(displacement(table, b) is not None for b in bearings)
 
@@ -150,7 +149,7 @@ def _angle_axis(ax: Any) -> None:
 
 
 def plot_bearing_loads(
-    tables: Mapping[str, CycleLike],
+    tables: Mapping[str, pd.DataFrame],
     bearings: Sequence[str] = BEARING_NAMES,
     title: str = "",
 ) -> Figure:
@@ -158,7 +157,7 @@ def plot_bearing_loads(
 
     Parameters
     ----------
-    tables : mapping of str to CycleLike
+    tables : mapping of str to pd.DataFrame
         Report tables by label (e.g. ``{"pinned": ..., "flexible": ...}``); one line per
         table in every subplot, crank angle [deg] from TDC against force [N].
     bearings : sequence of str
@@ -198,7 +197,7 @@ def plot_bearing_loads(
 
 
 def plot_orbits(
-    tables: Mapping[str, CycleLike],
+    tables: Mapping[str, pd.DataFrame],
     bearings: Sequence[str] = ("primary", "secondary"),
     title: str = "",
 ) -> Figure:
@@ -214,7 +213,7 @@ def plot_orbits(
 
     Parameters
     ----------
-    tables : mapping of str to CycleLike
+    tables : mapping of str to pd.DataFrame
         Report tables by label.
     bearings : sequence of str
         Bearings drawn together in each panel.
@@ -267,7 +266,7 @@ def plot_orbits(
 
 
 def _clearance_circle(
-    ax: Any, table: CycleLike, bearing: str, clearance: float, um: np.ndarray
+    ax: Any, table: pd.DataFrame, bearing: str, clearance: float, um: np.ndarray
 ) -> float:
     """Draw a film bearing's clearance circle and mark its smallest film; returns the
     circle's radius [um]."""
@@ -291,12 +290,12 @@ def _clearance_circle(
     return radius
 
 
-def plot_drive_torque(tables: Mapping[str, CycleLike], title: str = "") -> Figure:
+def plot_drive_torque(tables: Mapping[str, pd.DataFrame], title: str = "") -> Figure:
     """Driving torque on the crank against crank angle, one line per table.
 
     Parameters
     ----------
-    tables : mapping of str to CycleLike
+    tables : mapping of str to pd.DataFrame
         Report tables by label with ``drive_torque [N m]``; the legend gives each mean
         [N m].
     title : str
@@ -350,7 +349,7 @@ def save_figure(fig: Figure, path: str | Path, dpi: int = DPI) -> Path:
 
 
 def save_mechanism_figures(
-    tables: Mapping[str, CycleLike], out_dir: str | Path, prefix: str = ""
+    tables: Mapping[str, pd.DataFrame], out_dir: str | Path, prefix: str = ""
 ) -> list[Path]:
     """Write the standard mechanism figures of labelled report tables as PNG files.
 
@@ -360,7 +359,7 @@ def save_mechanism_figures(
 
     Parameters
     ----------
-    tables : mapping of str to CycleLike
+    tables : mapping of str to pd.DataFrame
         Report tables by label.
     out_dir : str or pathlib.Path
         Directory, created if missing.

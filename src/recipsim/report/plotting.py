@@ -1,8 +1,8 @@
 """Figures a compressor engineer expects.
 
-Every function takes the cycle table of :func:`recipsim.results.tables.cycle_table` (a
-DataFrame, or its columns as :class:`recipsim.results.columns.Columns`: a report process
-draws without pandas) and an optional ``ax`` and returns the figure. Figures are built
+Every function takes the cycle table (``cycle.csv``'s DataFrame,
+:attr:`recipsim.results.case_run.CaseRun.cycle`) and an optional ``ax`` and returns the
+figure. Figures are built
 with the object-oriented API (:class:`matplotlib.figure.Figure`, no pyplot): a library
 never chooses a backend, so a notebook's ``plt.show()`` keeps working; ``savefig``
 renders without one.
@@ -13,11 +13,11 @@ from __future__ import annotations
 from collections.abc import Callable, Collection
 from typing import Any
 
+import pandas as pd
 from matplotlib.figure import Figure
 
 from recipsim.report.figure_kit import PNG_OPTIONS, angle_axis, clear_axes, fewer_ticks
 from recipsim.report.figure_names import FIGURE_NAMES, TITLE_Y, check_figure_names
-from recipsim.results.columns import CycleLike
 
 
 def _axes(ax: Any) -> tuple[Figure, Any]:
@@ -27,7 +27,7 @@ def _axes(ax: Any) -> tuple[Figure, Any]:
     return ax.figure, ax
 
 
-def plot_pv(cycle: CycleLike, ax: Any = None, log: bool = False, label: str = "") -> Figure:
+def plot_pv(cycle: pd.DataFrame, ax: Any = None, log: bool = False, label: str = "") -> Figure:
     """Indicator diagram, cylinder pressure against volume (log-log with ``log``)."""
     fig, ax = _axes(ax)
     v = cycle["cylinder_volume [m3]"].to_numpy() * 1e6
@@ -56,7 +56,7 @@ def plot_pv(cycle: CycleLike, ax: Any = None, log: bool = False, label: str = ""
 
 
 def plot_pressure(
-    cycle: CycleLike, ax: Any = None, label: str = "", plenum: tuple[float, float] | None = None
+    cycle: pd.DataFrame, ax: Any = None, label: str = "", plenum: tuple[float, float] | None = None
 ) -> Figure:
     """Cylinder pressure against crank angle (plenum pressures dashed)."""
     fig, ax = _axes(ax)
@@ -75,7 +75,7 @@ def plot_pressure(
     return fig
 
 
-def plot_valves(cycle: CycleLike, ax: Any = None) -> Figure:
+def plot_valves(cycle: pd.DataFrame, ax: Any = None) -> Figure:
     """Reed lifts (and mass flows on a second axis) against crank angle."""
     fig, ax = _axes(ax)
     theta = cycle["crank_angle [deg]"].to_numpy()
@@ -96,7 +96,7 @@ def plot_valves(cycle: CycleLike, ax: Any = None) -> Figure:
     return fig
 
 
-def plot_torque(cycle: CycleLike, ax: Any = None, label: str = "") -> Figure:
+def plot_torque(cycle: pd.DataFrame, ax: Any = None, label: str = "") -> Figure:
     """Driving, gas and inertia torques on the crankshaft against crank angle [N m].
 
     One sign convention in every report (``reports/README.md``, "Torques"): a torque is
@@ -161,7 +161,7 @@ def fixed_margins(fig: Figure, kind: str = "single") -> None:
 
 
 def save_cycle_figures(
-    cycle: CycleLike,
+    cycle: pd.DataFrame,
     directory: Any,
     plenum: tuple[float, float] | None = None,
     title: str = "",
@@ -215,7 +215,7 @@ Maker = Callable[..., Figure]
 
 
 def _figure_makers(
-    cycle: CycleLike, plenum: tuple[float, float] | None
+    cycle: pd.DataFrame, plenum: tuple[float, float] | None
 ) -> list[tuple[str, str | None, Maker]]:
     """(name, margins or None to keep the figure's layout, maker) of the figures that
     apply to ``cycle``. Margins ``"single"``: one panel, the maker takes an optional Axes

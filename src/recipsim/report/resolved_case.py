@@ -24,7 +24,6 @@ from dataclasses import asdict
 from pathlib import Path
 from typing import Any
 
-from recipsim import __version__
 from recipsim.case.case import Case
 from recipsim.case.case_schema import (
     GEOMETRY_SPEC,
@@ -43,6 +42,7 @@ from recipsim.case.motor import MOTOR_SPEC
 from recipsim.case.overrides import toml_literal
 from recipsim.case.schema import Field, Spec, read_table
 from recipsim.errors import CaseError
+from recipsim.version import __version__
 
 #: SI unit of each ``[mechanism.*]`` and ``[bearings.*]`` key written from the validated
 #: dataclasses (:mod:`recipsim.case.mechanism_schema`); the counterweight keys are copied

@@ -19,7 +19,7 @@ import numpy as np
 from recipsim.physics.mechanics import layout as lay
 from recipsim.physics.mechanics.pinned import N_PIN_OUT, pinned_reactions_array
 from recipsim.physics.mechanics.pinned import OUTPUTS as PIN_OUTPUTS
-from recipsim.results.columns import CycleLike
+from recipsim.results.sampled import CycleColumns, nan_max, nan_min
 
 #: Displacement components reported for every bearing (normal to the Z journal axis;
 #: the piston bearings, axis X, report X as 0).
@@ -159,28 +159,26 @@ def _time_mean(values: np.ndarray, speed: np.ndarray) -> float:
     return float(np.sum(values / speed) / np.sum(1.0 / speed))
 
 
-def film_summary(cycle: CycleLike) -> dict[str, Any]:
+def film_summary(cycle: CycleColumns) -> dict[str, Any]:
     """Per film bearing: smallest film, largest eccentricity ratio, film pressure and
     contact force, friction power; the piston film's friction power."""
     row: dict[str, Any] = {}
-    speed = cycle["crank_speed [rad/s]"].to_numpy()
+    speed = cycle["crank_speed [rad/s]"]
     for name in lay.BEARING_NAMES:
         if f"film_thickness_{name} [m]" not in cycle:
             continue
-        row[f"min_film_thickness_{name} [m]"] = float(cycle[f"film_thickness_{name} [m]"].min())
+        row[f"min_film_thickness_{name} [m]"] = float(nan_min(cycle[f"film_thickness_{name} [m]"]))
         row[f"max_eccentricity_ratio_{name} [-]"] = float(
-            cycle[f"eccentricity_ratio_{name} [-]"].max()
+            nan_max(cycle[f"eccentricity_ratio_{name} [-]"])
         )
         row[f"max_film_pressure_{name} [Pa]"] = float(
-            cycle[f"film_peak_pressure_{name} [Pa]"].max()
+            nan_max(cycle[f"film_peak_pressure_{name} [Pa]"])
         )
-        row[f"max_contact_force_{name} [N]"] = float(cycle[f"contact_force_{name} [N]"].max())
-        loss = cycle[f"bearing_power_loss_{name} [W]"].to_numpy()
+        row[f"max_contact_force_{name} [N]"] = float(nan_max(cycle[f"contact_force_{name} [N]"]))
+        loss = cycle[f"bearing_power_loss_{name} [W]"]
         row[f"friction_power_{name} [W]"] = _time_mean(loss, speed)
     if "piston_friction_power [W]" in cycle:
-        row["piston_friction_power [W]"] = _time_mean(
-            cycle["piston_friction_power [W]"].to_numpy(), speed
-        )
+        row["piston_friction_power [W]"] = _time_mean(cycle["piston_friction_power [W]"], speed)
     return row
 
 
@@ -216,7 +214,7 @@ _MAX_COLUMNS = tuple(f"bearing_max_{name} [N]" for name in lay.BEARING_NAMES)
 _ORBIT_COLUMNS = tuple(f"orbit_radius_max_{name} [m]" for name in lay.BEARING_NAMES)
 
 
-def mechanism_summary(cycle: CycleLike, pinned: bool = False) -> dict[str, Any]:
+def mechanism_summary(cycle: CycleColumns, pinned: bool = False) -> dict[str, Any]:
     """Per-bearing RMS and peak load, largest orbit radius; crank speed and its ripple.
 
     Statistics over the uniform crank-angle samples of the cycle table (an RMS over
@@ -225,14 +223,14 @@ def mechanism_summary(cycle: CycleLike, pinned: bool = False) -> dict[str, Any]:
     columns are 0): the orbit radii are 0 without reading them.
     """
     # one row per bearing: each row's reduction is the column's own (same summation)
-    f = np.stack([cycle[c].to_numpy() for c in FORCE_COLUMNS])
+    f = np.stack([cycle[c] for c in FORCE_COLUMNS])
     rms = np.sqrt(np.mean(f * f, axis=1)).tolist()
     peak = f.max(axis=1).tolist()
     if pinned:
         orbit = [0.0] * len(lay.BEARING_NAMES)
     else:
-        x = np.stack([cycle[moved[0]].to_numpy() for moved in _DISPLACEMENT_COLUMNS])
-        y = np.stack([cycle[moved[1]].to_numpy() for moved in _DISPLACEMENT_COLUMNS])
+        x = np.stack([cycle[moved[0]] for moved in _DISPLACEMENT_COLUMNS])
+        y = np.stack([cycle[moved[1]] for moved in _DISPLACEMENT_COLUMNS])
         r2 = x * x + y * y  # the X and Y displacements (_DISPLACEMENT_AXES)
         orbit = np.sqrt(np.max(r2, axis=1)).tolist()
     row: dict[str, Any] = {}
@@ -242,7 +240,7 @@ def mechanism_summary(cycle: CycleLike, pinned: bool = False) -> dict[str, Any]:
         row[rms_column] = rms_value
         row[max_column] = peak_value
     row.update(zip(_ORBIT_COLUMNS, orbit, strict=True))
-    speed = cycle["crank_speed [rad/s]"].to_numpy()
+    speed = cycle["crank_speed [rad/s]"]
     # time mean (revolutions per second): the harmonic mean over uniform crank angles
     mean = float(1.0 / np.mean(1.0 / speed))
     row["mean_crank_speed [rpm]"] = mean * 60.0 / (2.0 * math.pi)

@@ -11,9 +11,10 @@ pressure, where nothing is integrated (:func:`pinned_tabulated_columns` its colu
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 import numpy as np
+import pandas as pd
 
 from recipsim.case.load import Case
 from recipsim.model.build import case_mechanism_parameters, scenes
@@ -22,9 +23,6 @@ from recipsim.physics.mechanics.tabulated import tabulated_pressure
 from recipsim.physics.thermo import cylinder as cyl
 from recipsim.results.bearings import flexible_columns, pinned_columns
 from recipsim.solve.periodic import PeriodicSolution, sample_outputs
-
-if TYPE_CHECKING:
-    import pandas as pd
 
 
 def _column(index: int) -> str:
@@ -103,14 +101,12 @@ def _time_from_tdc(grid: np.ndarray, speed: np.ndarray) -> np.ndarray:
 
 def cycle_table(solution: PeriodicSolution) -> pd.DataFrame:
     """One row per uniform crank-angle sample of the converged revolution, from TDC."""
-    import pandas as pd  # here: a run's report process builds the table (see .run)
-
     return pd.DataFrame(cycle_columns(solution))
 
 
 def cycle_columns(solution: PeriodicSolution, full: bool = True) -> dict[str, np.ndarray]:
     """The columns of :func:`cycle_table`, in its order, as numpy arrays (what the
-    summary of a point whose table is not kept reads, see :mod:`.columns`).
+    summary reads).
 
     Parameters
     ----------
@@ -166,14 +162,12 @@ def cycle_columns(solution: PeriodicSolution, full: bool = True) -> dict[str, np
 def pinned_tabulated_cycle(case: Case) -> pd.DataFrame:
     """Cycle table of the pinned mechanism under the case's tabulated pressure (the
     DataFrame of :func:`pinned_tabulated_columns`)."""
-    import pandas as pd
-
     return pd.DataFrame(pinned_tabulated_columns(case))
 
 
 def pinned_tabulated_columns(case: Case) -> dict[str, np.ndarray]:
     """The columns of :func:`pinned_tabulated_cycle`, in its order, as numpy arrays (what
-    a run keeps: its report processes and its summary read them without pandas).
+    the summary reads).
 
     Nothing is integrated: inverse dynamics at every uniform crank angle.
     """

@@ -11,7 +11,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from recipsim.case.load import Case
-from recipsim.results.columns import CycleLike
+from recipsim.results.sampled import CycleColumns
 
 if TYPE_CHECKING:
     from recipsim.solve.periodic import PeriodicSolution
@@ -35,7 +35,7 @@ def _open_interval(angles: np.ndarray, flowing: np.ndarray) -> tuple[float, floa
 
 
 def valve_timing(
-    solution: PeriodicSolution | None, case: Case, cycle: CycleLike
+    solution: PeriodicSolution | None, case: Case, cycle: CycleColumns
 ) -> dict[str, float]:
     """Opening and closing crank angle of each valve (NaN without a gas state).
 
@@ -45,7 +45,7 @@ def valve_timing(
         As in :func:`recipsim.results.tables.summary`.
     case : Case
         Its ``options.valves`` picks the test: reed lift above 0, else a mass flow.
-    cycle : CycleLike
+    cycle : CycleColumns
         The cycle table.
 
     Returns
@@ -55,7 +55,7 @@ def valve_timing(
         then discharge.
     """
     model = solution.model if solution is not None else None
-    angles = cycle["crank_angle [deg]"].to_numpy()
+    angles = cycle["crank_angle [deg]"]
     row: dict[str, float] = {}
     for side in ("suction", "discharge"):
         if model is None or not model.has_gas:
@@ -63,9 +63,9 @@ def valve_timing(
             row[f"{side}_valve_closing_angle [deg]"] = math.nan
             continue
         if case.options.valves == "reed":
-            flowing = cycle[f"{side}_valve_lift [m]"].to_numpy() > 0.0
+            flowing = cycle[f"{side}_valve_lift [m]"] > 0.0
         else:
-            flow = np.abs(cycle[f"{side}_mass_flow [kg/s]"].to_numpy())
+            flow = np.abs(cycle[f"{side}_mass_flow [kg/s]"])
             flowing = flow > 1e-12 * max(flow.max(), 1e-300)
         opening, closing = _open_interval(angles, flowing)
         row[f"{side}_valve_opening_angle [deg]"] = opening
@@ -75,7 +75,7 @@ def valve_timing(
 
 def pressure_and_torque(
     case: Case,
-    cycle: CycleLike,
+    cycle: CycleColumns,
     drive_work: float,
     p_shaft: float,
     p_drive: float,
@@ -87,7 +87,7 @@ def pressure_and_torque(
     ----------
     case : Case
         Its plenum pressures are the references of the over- and underpressure.
-    cycle : CycleLike
+    cycle : CycleColumns
         The cycle table.
     drive_work : float
         Work of the drive per revolution [J].
@@ -102,8 +102,8 @@ def pressure_and_torque(
         Column name to value.
     """
     op = case.operating_point
-    p = cycle["cylinder_pressure [Pa]"].to_numpy()
-    torque = cycle["shaft_torque [N m]"].to_numpy()
+    p = cycle["cylinder_pressure [Pa]"]
+    torque = cycle["shaft_torque [N m]"]
     p_max, p_min = float(p.max()), float(p.min())
     return {
         "peak_cylinder_pressure [Pa]": p_max,

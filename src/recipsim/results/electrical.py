@@ -41,7 +41,7 @@ from recipsim.case.rating import SATURATED_LIQUID_BAND
 from recipsim.case.sections import OperatingPoint
 from recipsim.model.loss_sources import mean_friction_powers, motor_point
 from recipsim.physics.mean_friction import time_mean
-from recipsim.results.columns import CycleLike
+from recipsim.results.sampled import CycleColumns
 
 #: Loss columns of the motor and the operating-point attribute each one reads.
 MOTOR_LOSSES = {
@@ -71,28 +71,28 @@ def rating_enthalpies(fluid: Any, op: OperatingPoint) -> tuple[float, float]:
     return h_gas, float(fluid.liquid_enthalpy(p, op.liquid_temperature))
 
 
-def _film_friction(cycle: CycleLike) -> float:
+def _film_friction(cycle: CycleColumns) -> float:
     """Total friction of the film scenes' bearings and piston [W] (time means)."""
-    speed = cycle["crank_speed [rad/s]"].to_numpy()
-    names = [c for c in cycle.columns if c.startswith("bearing_power_loss_")]
+    speed = cycle["crank_speed [rad/s]"]
+    names = [c for c in cycle if c.startswith("bearing_power_loss_")]
     if "piston_friction_power [W]" in cycle:
         names.append("piston_friction_power [W]")
-    return sum(time_mean(cycle[c].to_numpy(), speed) for c in names)
+    return sum(time_mean(cycle[c], speed) for c in names)
 
 
-def mean_friction_columns(case: Case, cycle: CycleLike) -> dict[str, float]:
+def mean_friction_columns(case: Case, cycle: CycleColumns) -> dict[str, float]:
     """Petroff journals and the viscous skirt over the cycle's samples [W] (time means,
     :func:`recipsim.model.loss_sources.mean_friction_powers`)."""
     return mean_friction_powers(
         case,
-        np.radians(cycle["crank_angle [deg]"].to_numpy()),
-        cycle["crank_speed [rad/s]"].to_numpy(),
-        cycle["piston_displacement [m]"].to_numpy(),
-        cycle["piston_velocity [m/s]"].to_numpy(),
+        np.radians(cycle["crank_angle [deg]"]),
+        cycle["crank_speed [rad/s]"],
+        cycle["piston_displacement [m]"],
+        cycle["piston_velocity [m/s]"],
     )
 
 
-def friction_columns(case: Case, cycle: CycleLike) -> dict[str, float]:
+def friction_columns(case: Case, cycle: CycleColumns) -> dict[str, float]:
     """``friction_power [W]`` (and, for ``mean``, per bearing) of ``options.friction``."""
     option = case.options.friction
     if option == "mean":
@@ -149,7 +149,9 @@ def motor_columns(case: Case, shaft_power: float, mean_speed: float) -> dict[str
     return row
 
 
-def loss_columns(case: Case, cycle: CycleLike, drive_power: float, freq: float) -> dict[str, Any]:
+def loss_columns(
+    case: Case, cycle: CycleColumns, drive_power: float, freq: float
+) -> dict[str, Any]:
     """The case's options, friction and motor columns, and ``shaft_power [W]``.
 
     Parameters

@@ -39,7 +39,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from recipsim.model.plenum import isentropic_state
-from recipsim.results.columns import CycleLike
+from recipsim.results.sampled import CycleColumns
 
 if TYPE_CHECKING:  # the figure processes read LOSS_COLUMNS without importing the solver
     from recipsim.solve.periodic import PeriodicSolution
@@ -66,16 +66,16 @@ def _next(a: np.ndarray) -> np.ndarray:
     return np.concatenate((a[..., 1:], a[..., :1]), axis=-1)
 
 
-def _valve_areas(cycle: CycleLike, p_suction: float, p_discharge: float) -> tuple[float, float]:
+def _valve_areas(cycle: CycleColumns, p_suction: float, p_discharge: float) -> tuple[float, float]:
     """p-V areas of one revolution [J]: below ``p_suction`` while the suction valve
     flows, above ``p_discharge`` while the discharge valve flows (trapezoids)."""
-    p = cycle["cylinder_pressure [Pa]"].to_numpy()
-    v = cycle["cylinder_volume [m3]"].to_numpy()
+    p = cycle["cylinder_pressure [Pa]"]
+    v = cycle["cylinder_volume [m3]"]
     dv = _next(v) - v
     p_mid = 0.5 * (p + _next(p))
     # one row per valve: suction (p_s - p) dV with dV > 0; discharge (p - p_d)(-dV), the
     # same form; each row summed as the 1-D array would be
-    flows = np.stack([cycle[f"{side}_mass_flow [kg/s]"].to_numpy() for side in _SIDES])
+    flows = np.stack([cycle[f"{side}_mass_flow [kg/s]"] for side in _SIDES])
     passing = flows != 0.0
     flowing = passing | _next(passing)
     plenum = np.array([[p_suction], [p_discharge]])
@@ -84,7 +84,7 @@ def _valve_areas(cycle: CycleLike, p_suction: float, p_discharge: float) -> tupl
 
 
 def loss_breakdown(
-    row: dict[str, Any], cycle: CycleLike, solution: PeriodicSolution | None
+    row: dict[str, Any], cycle: CycleColumns, solution: PeriodicSolution | None
 ) -> dict[str, float]:
     """The breakdown columns (NaN where the scene has no gas model).
 

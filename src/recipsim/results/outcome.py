@@ -29,9 +29,9 @@ from contextlib import contextmanager
 from typing import TYPE_CHECKING, Any
 
 from recipsim.errors import SolverError
+from recipsim.results.sampled import CycleColumns, nan_max
 
 if TYPE_CHECKING:
-    from recipsim.results.columns import CycleLike
     from recipsim.solve.revolution import PeriodicSolution
 
 OK = "ok"
@@ -137,7 +137,7 @@ def discharge_valve_never_opens(solution: PeriodicSolution) -> bool:
     return delivered_mass(solution) <= NO_DELIVERY_FRACTION * swept
 
 
-def no_delivery_closures(solution: PeriodicSolution, cycle: CycleLike) -> dict[str, float]:
+def no_delivery_closures(solution: PeriodicSolution, cycle: CycleColumns) -> dict[str, float]:
     """Mass and energy closures of a revolution without delivery.
 
     Mass: net suction mass less leakage, relative to the largest of the gross suction
@@ -154,13 +154,13 @@ def no_delivery_closures(solution: PeriodicSolution, cycle: CycleLike) -> dict[s
     m_suc = y.suction_mass_in - y.suction_mass_out
     m_dis = y.discharge_mass_out - y.discharge_mass_in
     m_leak = y.leakage_mass_out - y.leakage_mass_in
-    m_ref = max(y.suction_mass_in, float(cycle["gas_mass [kg]"].max()))
+    m_ref = max(y.suction_mass_in, float(nan_max(cycle["gas_mass [kg]"])))
     h_out = (y.discharge_enthalpy_out - y.discharge_enthalpy_in) + (
         y.leakage_enthalpy_out - y.leakage_enthalpy_in
     )
     h_in = y.suction_enthalpy_in - y.suction_enthalpy_out
-    p = cycle["cylinder_pressure [Pa]"].to_numpy()
-    v = cycle["cylinder_volume [m3]"].to_numpy()
+    p = cycle["cylinder_pressure [Pa]"]
+    v = cycle["cylinder_volume [m3]"]
     gross_work = float(np.sum(np.abs(0.5 * (p + np.roll(p, -1)) * (np.roll(v, -1) - v))))
     energy = y.work_on_gas - (h_out - h_in - y.heat_to_gas)
     return {
@@ -217,7 +217,7 @@ def _state_names(model: Any) -> list[str]:
 
 
 def classify(
-    solution: PeriodicSolution | None, cycle: CycleLike, row: dict[str, Any]
+    solution: PeriodicSolution | None, cycle: CycleColumns, row: dict[str, Any]
 ) -> tuple[str, str]:
     """Status and message of a finished run; fixes the row of a ``no_delivery`` run.
 

@@ -10,18 +10,19 @@ from functools import lru_cache
 from pathlib import Path
 from typing import Any
 
-from recipsim import __version__
+import numba
+import numpy
+import pandas
+import scipy
+
 from recipsim.case.case import Case
 from recipsim.physics.thermo.coolprop_info import coolprop_version
 from recipsim.solve.periodic import PeriodicSolution
+from recipsim.version import __version__
 
 
 def case_provenance(case: Case, argv: list[str] | None = None) -> dict[str, Any]:
     """Versions, options and solver settings of a run of ``case``."""
-    import numba
-    import numpy
-    import scipy
-
     return {
         "recipsim": __version__,
         "git_commit": git_commit(),
@@ -31,7 +32,7 @@ def case_provenance(case: Case, argv: list[str] | None = None) -> dict[str, Any]
         "numpy": numpy.__version__,
         "scipy": scipy.__version__,
         "numba": numba.__version__,
-        "pandas": _pandas_version(),
+        "pandas": pandas.__version__,
         "property_backend": f"CoolProp {case.options.properties.upper()}",
         "fluid": case.refrigerant.coolprop_name,
         "options": case.options.__dict__,
@@ -62,21 +63,10 @@ def provenance(solution: PeriodicSolution, argv: list[str] | None = None) -> dic
     return meta
 
 
-def _pandas_version() -> str:
-    """pandas' version, without importing it (a run writes its tables in a report process
-    that does, :mod:`recipsim.report.figure_process`)."""
-    module = sys.modules.get("pandas")
-    if module is not None:
-        return str(module.__version__)
-    from importlib.metadata import version
-
-    return version("pandas")
-
-
 @lru_cache(maxsize=1)
 def git_commit() -> str:
     """Commit of recipsim's source checkout (``""`` outside one), asked of git once per
-    process: a sweep point would otherwise start a ``git`` process (about 5 ms)."""
+    process."""
     try:
         root = Path(__file__).resolve().parents[3]
         out = subprocess.run(

@@ -3,9 +3,7 @@ names this module re-exports).
 
 Every key carries its unit (``cooling_capacity [W]``); the meaning of each is declared
 in :mod:`.summary_docs` (``reports/README.md``'s tables are generated from it). The
-summary reads the cycle table through :class:`~recipsim.results.columns.CycleLike`: a
-DataFrame or, where the table is not kept (a sweep point), its columns as arrays
-(:func:`summary_row`), with the same values.
+summary reads the cycle table as numpy columns (:data:`~recipsim.results.sampled.CycleColumns`).
 
 Definitions (per converged revolution, f = shaft speed in revolutions per second):
 
@@ -31,12 +29,12 @@ import math
 from typing import Any
 
 import numpy as np
+import pandas as pd
 
 from recipsim.case.load import Case
 from recipsim.model.build import scenes
 from recipsim.model.plenum import isentropic_state
 from recipsim.results.bearings import film_summary, mechanism_summary
-from recipsim.results.columns import Columns, CycleLike
 from recipsim.results.cycle import (  # re-exported (__all__): the cycle table is in .cycle
     CYCLE_COLUMNS,
     GAS_COLUMNS,
@@ -53,6 +51,7 @@ from recipsim.results.outcome import (
     property_error,
     state_or_explain,
 )
+from recipsim.results.sampled import CycleColumns
 from recipsim.results.thermal import thermal_columns
 from recipsim.results.valve_metrics import valve_summary
 from recipsim.solve.periodic import PeriodicSolution
@@ -176,36 +175,39 @@ def _gas_metrics(
     }
 
 
-def _loop_work(cycle: CycleLike) -> float:
+def _loop_work(cycle: CycleColumns) -> float:
     """-closed integral of p dV over the cycle table [J] (trapezoid, periodic)."""
-    p = cycle["cylinder_pressure [Pa]"].to_numpy()
-    v = cycle["cylinder_volume [m3]"].to_numpy()
+    p = cycle["cylinder_pressure [Pa]"]
+    v = cycle["cylinder_volume [m3]"]
     dv = np.roll(v, -1) - v
     return float(-np.sum(0.5 * (p + np.roll(p, -1)) * dv))
 
 
-def summary_row(solution: PeriodicSolution) -> tuple[dict[str, Any], Columns]:
-    """:func:`summary` of ``solution`` read from the cycle table's columns that it needs
-    as arrays (:func:`cycle_columns` with ``full=False``), no DataFrame built (the same
-    values); returns the row and those columns."""
-    cycle = Columns(cycle_columns(solution, full=False))
+def summary_row(solution: PeriodicSolution) -> tuple[dict[str, Any], CycleColumns]:
+    """:func:`summary` of ``solution`` read from only the cycle table's columns that it
+    needs (:func:`cycle_columns` with ``full=False``: the same values); returns the row
+    and those columns."""
+    cycle = cycle_columns(solution, full=False)
     return summary(solution, cycle), cycle
 
 
 def summary(
-    solution: PeriodicSolution | None, cycle: CycleLike | None = None, case: Case | None = None
+    solution: PeriodicSolution | None,
+    cycle: CycleColumns | pd.DataFrame | None = None,
+    case: Case | None = None,
 ) -> dict[str, Any]:
     """Summary metrics of the converged revolution (units in the keys).
 
-    ``cycle`` is its cycle table (a DataFrame, or :class:`~recipsim.results.columns.Columns`;
-    built here from the columns it reads if left out). ``solution`` is None for the
-    pinned mechanism under a tabulated pressure (nothing integrated); ``cycle`` and
-    ``case`` are then required.
+    ``cycle`` is its cycle table, or the table's columns (built here from the columns it
+    reads if left out). ``solution`` is None for the pinned mechanism under a tabulated
+    pressure (nothing integrated); ``cycle`` and ``case`` are then required.
     """
+    if isinstance(cycle, pd.DataFrame):
+        cycle = {name: cycle[name].to_numpy() for name in cycle.columns}
     if solution is not None:
         case = solution.model.case
         if cycle is None:
-            cycle = Columns(cycle_columns(solution, full=False))
+            cycle = cycle_columns(solution, full=False)
     assert case is not None and cycle is not None
     row = _operating_columns(case)
     model = solution.model if solution is not None else None
@@ -241,7 +243,7 @@ def summary(
 
 
 def _drive_work(
-    solution: PeriodicSolution | None, cycle: CycleLike, freq: float
+    solution: PeriodicSolution | None, cycle: CycleColumns, freq: float
 ) -> tuple[float, float, float]:
     """Work of the drive and of the bearings over the revolution, and its frequency.
 
@@ -249,7 +251,7 @@ def _drive_work(
     ----------
     solution : PeriodicSolution or None
         As in :func:`summary` (None: the pinned mechanism under a tabulated pressure).
-    cycle : CycleLike
+    cycle : CycleColumns
         The cycle table (its shaft torque is read when ``solution`` is None).
     freq : float
         Revolutions per second from the mean crank speed [1/s].
@@ -271,7 +273,7 @@ def _drive_work(
         drive_work = scenes.named_state(model.scene, solution.final.y_end).shaft_work  # type: ignore[union-attr]
         bearing_loss = 0.0
     else:
-        torque = cycle["shaft_torque [N m]"].to_numpy()
+        torque = cycle["shaft_torque [N m]"]
         drive_work = float(np.mean(torque)) * 2.0 * math.pi
         bearing_loss = 0.0
     return drive_work, bearing_loss, freq
@@ -279,7 +281,7 @@ def _drive_work(
 
 def _gas_summary(
     solution: PeriodicSolution | None,
-    cycle: CycleLike,
+    cycle: CycleColumns,
     freq: float,
     p_shaft: float,
     p_electrical: float,
@@ -290,7 +292,7 @@ def _gas_summary(
     ----------
     solution : PeriodicSolution or None
         As in :func:`summary`.
-    cycle : CycleLike
+    cycle : CycleColumns
         The cycle table (its p-V loop gives the indicated power when ``solution`` is
         None).
     freq : float
@@ -318,15 +320,15 @@ def _gas_summary(
 MOTOR_SUMMARY = ("motor_input_power [W]", "motor_rotor_loss_power [W]", "motor_slip [-]")
 
 
-def _motor_metrics(case: Case, cycle: CycleLike, freq: float, p_shaft: float) -> dict[str, Any]:
+def _motor_metrics(case: Case, cycle: CycleColumns, freq: float, p_shaft: float) -> dict[str, Any]:
     """Air-gap power, rotor copper loss and slip of the induction motor drive (NaN for
     other drives). The air-gap power ``omega_s * mean(T)`` (time mean) is the motor's
     input less its stator losses, which are not modelled."""
     if case.options.drive != "induction_motor" or case.motor is None:
         return dict.fromkeys(MOTOR_SUMMARY, math.nan)
     sync = case.motor.synchronous_speed
-    torque = cycle["shaft_torque [N m]"].to_numpy()
-    speed = cycle["crank_speed [rad/s]"].to_numpy()
+    torque = cycle["shaft_torque [N m]"]
+    speed = cycle["crank_speed [rad/s]"]
     # time mean of T over one revolution from uniform crank-angle samples: dt = dtheta/omega
     mean_torque = float(np.mean(torque / speed)) * 2.0 * math.pi * freq
     p_in = sync * mean_torque

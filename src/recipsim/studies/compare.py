@@ -11,11 +11,7 @@ with NaN. Rows are ordered by group: operating point, gas, energy, mechanism, be
 The text columns of the summary rows (refrigerant, options) and the boolean
 ``converged [-]`` go to ``cases.csv``, one row per case (:func:`cases_table`).
 
-This module knows the summary's column names but nothing of how they are computed. The
-tables are built as columns and records (:func:`comparison_columns`,
-:func:`case_records`), which ``recipsim compare`` writes without importing pandas (0.3 s
-of its critical path); :func:`comparison_table` and :func:`cases_table` are their
-DataFrames.
+This module knows the summary's column names but nothing of how they are computed.
 """
 
 from __future__ import annotations
@@ -24,12 +20,10 @@ import math
 import numbers
 import re
 from collections.abc import Mapping, Sequence
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 import numpy as np
-
-if TYPE_CHECKING:
-    import pandas as pd
+import pandas as pd
 
 #: Group names in the order the rows appear.
 GROUPS: tuple[str, ...] = (
@@ -222,14 +216,13 @@ def _value(row: Mapping[str, Any], quantity: str) -> float:
     return float(value) if is_numeric(value) else math.nan
 
 
-def comparison_columns(
+def comparison_table(
     row_a: Mapping[str, Any], row_b: Mapping[str, Any], label_a: str, label_b: str
-) -> dict[str, Any]:
-    """The comparison of two summary rows (the contents of ``comparison.csv``), as
-    columns: ``quantity`` and ``group`` (lists of str), ``label_a``, ``label_b``,
-    ``difference`` (B - A, in the quantity's unit), ``relative_difference [-]`` (float
-    arrays); one row per numeric quantity of either row, in the order of
-    :func:`numeric_quantities`.
+) -> pd.DataFrame:
+    """The comparison of two summary rows (the contents of ``comparison.csv``): columns
+    ``quantity``, ``group``, ``label_a``, ``label_b``, ``difference`` (B - A, in the
+    quantity's unit) and ``relative_difference [-]``; one row per numeric quantity of
+    either row, in the order of :func:`numeric_quantities`.
 
     Parameters
     ----------
@@ -244,23 +237,16 @@ def comparison_columns(
     quantities = numeric_quantities([row_a, row_b])
     a = np.array([_value(row_a, q) for q in quantities], dtype=float)
     b = np.array([_value(row_b, q) for q in quantities], dtype=float)
-    return {
-        "quantity": quantities,
-        "group": [quantity_group(q) for q in quantities],
-        label_a: a,
-        label_b: b,
-        "difference": b - a,
-        "relative_difference [-]": relative_difference(a, b),
-    }
-
-
-def comparison_table(
-    row_a: Mapping[str, Any], row_b: Mapping[str, Any], label_a: str, label_b: str
-) -> pd.DataFrame:
-    """:func:`comparison_columns` as a DataFrame (the contents of ``comparison.csv``)."""
-    import pandas as pd
-
-    return pd.DataFrame(comparison_columns(row_a, row_b, label_a, label_b))
+    return pd.DataFrame(
+        {
+            "quantity": quantities,
+            "group": [quantity_group(q) for q in quantities],
+            label_a: a,
+            label_b: b,
+            "difference": b - a,
+            "relative_difference [-]": relative_difference(a, b),
+        }
+    )
 
 
 def case_records(
@@ -304,6 +290,4 @@ def cases_table(
 ) -> pd.DataFrame:
     """:func:`case_records` as a DataFrame (the contents of ``cases.csv``): one row per
     case, a column one case lacks empty for it."""
-    import pandas as pd
-
     return pd.DataFrame.from_records(case_records(rows, labels, extra))

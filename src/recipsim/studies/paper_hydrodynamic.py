@@ -121,7 +121,7 @@ def run_hydrodynamic(
     SolverError
         If an integration fails.
     """
-    from recipsim.results.run import simulate_case
+    from recipsim.pipeline import simulate_case
 
     runs: dict[str, HydrodynamicRun] = {}
     for config, curve in loads.items():

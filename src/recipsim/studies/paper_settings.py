@@ -9,11 +9,11 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from recipsim import __version__
 from recipsim.case.mechanism_spec import CrankGeometry, MechanismSpec
 from recipsim.physics.mechanics.layout import BEARING_NAMES
 from recipsim.physics.mechanics.tabulated import PressureCurve
 from recipsim.studies.paper_hydrodynamic import JOURNALS, SOLVER_METHOD
+from recipsim.version import __version__
 
 if TYPE_CHECKING:
     from recipsim.case.load import Case

@@ -307,7 +307,7 @@ def test_a_full_disk_is_one_line_exit_1_and_the_previous_report_survives(box, ca
     def full(*args, **kwargs):
         raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC), "cycle.csv")
 
-    monkeypatch.setattr(report_figures, "write_columns_csv", full)
+    monkeypatch.setattr(report_figures.pd.DataFrame, "to_csv", full)
     assert run(box, REFERENCE, *fast) == 1
     assert "No space left on device" in one_line_error(capsys)
     assert (report / "summary.csv").read_bytes() == before

@@ -93,7 +93,7 @@ def test_nameplate_case_loads_without_scipy_optimize():
     script = f"""
 import json, sys
 from recipsim.case.load import load_case
-from recipsim.results.run import simulate_case
+from recipsim.pipeline import simulate_case
 simulate_case(load_case({str(case)!r}))
 print(json.dumps("scipy.optimize" in sys.modules))
 """

@@ -19,7 +19,7 @@ for name in names:
     if not name.endswith("__main__"):
         importlib.import_module(name)
 from recipsim.case.load import load_case
-from recipsim.results.run import simulate_case
+from recipsim.pipeline import simulate_case
 from recipsim.report.plotting import plot_pv
 run = simulate_case(load_case({str(REFERENCE)!r}, ["solver.max_revolutions=2",
                                                     "solver.min_revolutions=1"]))

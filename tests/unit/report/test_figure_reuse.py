@@ -13,7 +13,7 @@ from helpers import REFERENCE
 @pytest.fixture(scope="module")
 def cycle():
     from recipsim.case.load import load_case
-    from recipsim.results.run import simulate_case
+    from recipsim.pipeline import simulate_case
 
     return simulate_case(load_case(REFERENCE), []).cycle
 

@@ -17,7 +17,7 @@ from recipsim.results.loss_breakdown import LOSS_COLUMNS
 @pytest.fixture(scope="module")
 def cycle():
     from recipsim.case.load import load_case
-    from recipsim.results.run import simulate_case
+    from recipsim.pipeline import simulate_case
 
     return simulate_case(load_case(REFERENCE), []).cycle
 

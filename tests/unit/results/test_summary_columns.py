@@ -1,19 +1,20 @@
-"""The summary read from the cycle table's columns as arrays (what a sweep point keeps,
-:func:`recipsim.results.tables.summary_row`) equals the summary read from the cycle
-table's DataFrame, value for value, and the DataFrame holds exactly those columns."""
+"""The summary read from only the columns it needs (what a sweep point keeps,
+:func:`recipsim.results.tables.summary_row`) equals the summary read from the whole
+cycle table, value for value, and the report's DataFrame holds exactly those columns."""
 
 from __future__ import annotations
 
 import math
 
 import numpy as np
+import pandas as pd
 import pytest
 
 from recipsim.case.load import load_case
-from recipsim.results.columns import Column
+from recipsim.pipeline import simulate_case, simulate_row
 from recipsim.results.outcome import classify
-from recipsim.results.run import simulate_case, simulate_row
-from recipsim.results.tables import cycle_columns, cycle_table, summary, summary_row
+from recipsim.results.sampled import nan_max, nan_min
+from recipsim.results.tables import cycle_columns, summary, summary_row
 
 _SHORT = {"solver.min_revolutions": 2, "solver.max_revolutions": 2}
 
@@ -36,15 +37,15 @@ def test_the_summary_from_columns_equals_the_one_from_the_table(name, overrides)
     case = load_case(name).with_(overrides)
     run = simulate_case(case)
     assert run.solution is not None
-    frame = cycle_table(run.solution)
+    frame = run.cycle
     columns = cycle_columns(run.solution)
     assert list(frame.columns) == list(columns)
     for key, values in columns.items():
         assert frame[key].dtype == values.dtype
         assert np.array_equal(frame[key].to_numpy(), values, equal_nan=True)
     row, cycle = summary_row(run.solution)
-    by_table = summary(run.solution, frame)
-    by_table["status"], by_table["status_message"] = classify(run.solution, frame, by_table)
+    by_table = summary(run.solution, columns)
+    by_table["status"], by_table["status_message"] = classify(run.solution, columns, by_table)
     row["status"], row["status_message"] = classify(run.solution, cycle, row)
     assert list(row) == list(by_table)
     differ = [k for k in row if k != "wall_time [s]" and not _same(row[k], by_table[k])]
@@ -76,8 +77,12 @@ def test_a_sweep_points_row_is_the_runs_summary_row(name, overrides) -> None:
     assert not differ, {k: (point[k], full[k]) for k in differ}
 
 
-def test_a_column_skips_nan_as_pandas_does() -> None:
-    assert Column(np.array([np.nan, 2.0, -1.0])).min() == -1.0
-    assert Column(np.array([np.nan, 2.0, -1.0])).max() == 2.0
-    assert math.isnan(Column(np.array([np.nan, np.nan])).max())
-    assert Column(np.array([3, 1], dtype=np.int64)).min() == 1
+@pytest.mark.parametrize(
+    "values",
+    [[np.nan, 2.0, -1.0], [np.nan, np.nan], [3, 1], [0.5], [-0.0, 0.0, np.inf]],
+)
+def test_extremes_skip_nan_as_pandas_does(values) -> None:
+    array = np.array(values)
+    for ours, theirs in ((nan_min, pd.Series(array).min()), (nan_max, pd.Series(array).max())):
+        got = ours(array)
+        assert (math.isnan(got) and math.isnan(theirs)) or got == theirs

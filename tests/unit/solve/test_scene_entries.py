@@ -19,7 +19,7 @@ from recipsim.solve import scene_entries, w_gate
 _CHILD = r"""
 import json
 from recipsim.case.load import load_case
-from recipsim.results.run import simulate_case
+from recipsim.pipeline import simulate_case
 from recipsim.solve import scene_entries
 from recipsim.model import scenes
 case = load_case("reference_r134a_lbp").with_(

@@ -4,10 +4,6 @@ from __future__ import annotations
 
 import json
 import math
-import os
-import subprocess
-import sys
-from pathlib import Path
 
 import numpy as np
 import pandas as pd
@@ -18,7 +14,7 @@ from recipsim.atomic import MARKER
 from recipsim.case.load import load_case
 from recipsim.cli.compare import run_comparison
 from recipsim.cli.main import main
-from recipsim.results.run import simulate_case
+from recipsim.pipeline import simulate_case
 from recipsim.studies.compare import (
     GROUPS,
     case_labels,
@@ -189,93 +185,6 @@ def test_output_directory_layout(tab_vs_coupled):
     assert set(meta["cases"]) == {label_a, label_b}
     assert meta["cases"][label_b]["options"]["mechanics"] == "flexible"
     assert meta["command"] == ["test"] and "recipsim" in meta and "CoolProp" in meta
-
-
-def test_the_tables_are_the_bytes_pandas_writes(tab_vs_coupled):
-    """comparison.csv and cases.csv, written without pandas, hold the bytes of pandas'
-    to_csv of the comparison's DataFrames (text, floats, NaN, booleans, a column one
-    case lacks)."""
-    out = tab_vs_coupled.out
-    written = (out / "comparison.csv").read_text(encoding="utf-8")
-    assert written == tab_vs_coupled.table.to_csv(index=False)
-    assert (out / "cases.csv").read_text(encoding="utf-8") == tab_vs_coupled.cases.to_csv(
-        index=False
-    )
-
-
-def test_the_command_line_compares_without_importing_pandas(tmp_path):
-    """``recipsim compare`` (its report processes forked, the console summary printed)
-    never imports pandas in its own process: 0.3 s before the solves, which its report
-    processes waited for; it imports numba without PyYAML, as ``recipsim run`` does."""
-    code = (
-        "import sys\n"
-        "from recipsim.cli.main import main\n"
-        f"status = main(['compare', {str(PAPER)!r}, {str(_coupled_twin(tmp_path))!r},\n"
-        f"             '--out', {str(tmp_path / 'out')!r}])\n"
-        "print(status, 'pandas' in sys.modules, 'yaml' in sys.modules)\n"
-    )
-    out = subprocess.run(
-        [sys.executable, "-c", code], capture_output=True, text=True, timeout=600, cwd=tmp_path
-    )
-    assert out.returncode == 0, out.stderr
-    assert "cooling_capacity [W]" in out.stdout  # the console summary
-    assert out.stdout.split()[-3:] == ["0", "False", "False"]  # numba imported without yaml
-    assert len(list((tmp_path / "out").glob("*/comparison.csv"))) == 1
-
-
-def test_report_processes_write_the_in_process_files(tab_vs_coupled, tmp_path):
-    """The command line's report processes (here two, sharing both reports' tables and
-    figures and the overlays by cost) write the files the in-process writer writes: every
-    figure byte for byte, every table the same but for the measured wall times."""
-    from recipsim.report.compare_figures import COMPARE_PRELOAD
-    from recipsim.report.figure_process import FigureProcesses
-
-    figures = FigureProcesses(2, COMPARE_PRELOAD)
-    forked = run_comparison(
-        PAPER, _coupled_twin(tmp_path), out=tmp_path / "out", argv=["test"], figures=figures
-    )
-    serial = tab_vs_coupled.out
-
-    def files(root):
-        return sorted(str(p.relative_to(root)) for p in root.rglob("*") if p.is_file())
-
-    assert files(forked.out) == files(serial)
-    pngs = [name for name in files(serial) if name.endswith(".png")]
-    # the overlays; the tabulated-pressure report (no valves, no loss chain); the coupled
-    assert len(pngs) == 5 + 6 + 8, pngs
-    for name in pngs:
-        assert (forked.out / name).read_bytes() == (serial / name).read_bytes(), name
-    for label in tab_vs_coupled.labels:
-        for table in ("summary.csv", "cycle.csv"):
-            a, b = (pd.read_csv(root / label / table) for root in (serial, forked.out))
-            timing = [c for c in a.columns if c == "wall_time [s]"]
-            pd.testing.assert_frame_equal(a.drop(columns=timing), b.drop(columns=timing))
-    a, b = (
-        pd.read_csv(root / "comparison.csv").set_index("quantity").drop(index="wall_time [s]")
-        for root in (serial, forked.out)
-    )
-    pd.testing.assert_frame_equal(a, b)
-
-
-def test_solver_failure_with_report_processes_writes_nothing(tmp_path, capsys):
-    """A failing case B with the report processes started (plots on): exit 1, no output,
-    and the processes are gone (they exit without a job)."""
-    hot = tmp_path / "hot.toml"
-    hot.write_text(f'extends = "{REFERENCE}"\n[solver]\nmax_step = "-1 deg"\n')
-    out = tmp_path / "cmp"
-    before = _children()
-    assert main(["compare", str(REFERENCE), str(hot), "--out", str(out)]) == 2
-    assert not out.exists()
-    assert _children() <= before  # every report process ended and was reaped
-
-
-def _children() -> set[int]:
-    """Process ids of this process's children, zombies included (Linux)."""
-    tasks = Path(f"/proc/{os.getpid()}/task")
-    return {int(pid) for task in tasks.iterdir() for pid in (task / "children").read_text().split()}
-
-
-# ------------------------------------------------------------------------- physics
 
 
 def test_self_comparison_has_zero_differences(tmp_path, capsys):

@@ -26,7 +26,7 @@ import recipsim.cli.main
 from recipsim.case.load import load_case
 from recipsim.solve.drive import build_model_for
 from recipsim.solve.periodic import solve_periodic
-import recipsim.results.run, recipsim.report.case_report  # simulate_case's imports
+import recipsim.pipeline  # simulate_case and its imports
 import recipsim.results.tables
 t_import, cpu_import = time.monotonic(), time.process_time()
 case = load_case(sys.argv[1], sys.argv[2:])

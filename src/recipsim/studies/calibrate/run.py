@@ -60,7 +60,7 @@ class Calibration:
 
 
 def _summary_row(case: Case) -> dict[str, Any]:
-    from recipsim.results.run import simulate_case
+    from recipsim.pipeline import simulate_case
 
     run = simulate_case(case)
     if not run.row.get("converged [-]", True):

@@ -19,7 +19,7 @@ from recipsim.studies.check.metrics import (
 )
 
 if TYPE_CHECKING:
-    from recipsim.results.run import CaseRun
+    from recipsim.results.case_run import CaseRun
 
 
 @dataclass
@@ -104,7 +104,7 @@ def check_case(
     expectation's fast overrides, then ``overrides`` (``--set``).
     """
     from recipsim.case.load import load_case
-    from recipsim.results.run import simulate_case
+    from recipsim.pipeline import simulate_case
 
     file = Path(file)
     row = CheckRow(case=file.stem, file=str(file), expected=expectation.expected, outcome="failed")

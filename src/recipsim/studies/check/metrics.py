@@ -31,7 +31,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 if TYPE_CHECKING:
-    from recipsim.results.run import CaseRun
+    from recipsim.results.case_run import CaseRun
 
 #: Cycle metrics that an expectation may bound from below.
 METRICS = ("suction_reed_openings", "discharge_reed_openings", "volumetric_efficiency")

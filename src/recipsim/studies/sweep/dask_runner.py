@@ -95,7 +95,7 @@ def probe_scheduler(address: str, timeout: float) -> None:
 
 def _check_worker_version(client: Any, address: str) -> None:
     """Refuse workers that cannot import recipsim or run another version of it."""
-    from recipsim import __version__
+    from recipsim.version import __version__
 
     try:
         remote = client.submit(worker_version, pure=False).result(timeout=120)

@@ -17,25 +17,26 @@ import uuid
 from collections.abc import Iterable
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import Any
+
+from tqdm.auto import tqdm
 
 from recipsim.atomic import mark_output
 from recipsim.errors import RecipsimError
 from recipsim.report.case_report import report_dir
+from recipsim.studies.sweep import runner
 from recipsim.studies.sweep.outputs import (
     Plots,
     SweepOutcome,
-    build_columns,
+    summary_table,
     write_outputs,
     write_provenance,
 )
 from recipsim.studies.sweep.plan import PlannedPoint, plan_sweep
+from recipsim.studies.sweep.plots import check_map_names
 from recipsim.studies.sweep.spec import SweepSpec, load_sweep
 from recipsim.studies.sweep.store import PointStore, SolveAndSave, point_record
 from recipsim.studies.sweep.worker import OK, SOLVED, PointTask
-
-if TYPE_CHECKING:
-    from recipsim.report.figure_process import FigureProcesses
 
 TIMING_COLUMNS = ("wall_time [s]",)
 """Summary columns that differ from run to run (everything else is deterministic)."""
@@ -80,7 +81,6 @@ def run_sweep(
     max_points: int | None = None,
     scheduler_timeout: float = 10.0,
     allow_external_paths: bool = False,
-    figures: FigureProcesses | None = None,
 ) -> SweepOutcome:
     """Run (or resume) a sweep; what it produced, as a :class:`SweepOutcome`.
 
@@ -107,7 +107,8 @@ def run_sweep(
         Recompute the points recorded with a status other than ``ok``; forget every
         finished point and compute everything again.
     progress : bool
-        Show a progress bar on standard error if it is a terminal.
+        Show a progress bar (``tqdm.auto``: on standard error in a terminal, a widget in
+        a notebook, nothing when standard error is a file).
     argv, started : list of str; float, optional
         Command line, for the provenance file; :func:`time.perf_counter` value at which
         the command started (the reported wall time includes its imports; default: now).
@@ -116,9 +117,6 @@ def run_sweep(
         100 000), checked before any point is built.
     allow_external_paths : bool
         Let the sweep's ``base`` and the cases name files outside their directory.
-    figures : FigureProcesses, optional
-        Forked processes that draw the map plots, shared between them (the command
-        line's :func:`recipsim.report.figure_process.start_figure_processes`); None: here.
 
     Raises
     ------
@@ -138,7 +136,7 @@ def run_sweep(
     work = _resume(spec, planned, store, retry_failed, reports, bool(plots), allow_external_paths)
     where = (scheduler, jobs, scheduler_timeout)
     ran = (_compute(work, store, planned, spec.name, where, progress), scheduler)
-    outcome = _outcome(spec, root, planned, work, (plots, parquet, figures), ran, start)
+    outcome = _outcome(spec, root, planned, work, (plots, parquet), ran, start)
     write_provenance(outcome, scheduler, argv)
     return outcome
 
@@ -166,8 +164,6 @@ def _checked_options(spec: SweepSpec, parquet: bool, plots: Plots, max_points: i
     if parquet:
         _check_parquet()
     if plots is not True and plots:  # names of map plots, checked before any point runs
-        from recipsim.studies.sweep.plots import check_map_names
-
         plots = check_map_names(plots)
     spec.check_size(max_points)
     return plots
@@ -178,26 +174,26 @@ def _outcome(
     root: Path,
     planned: list[PlannedPoint],
     work: _Work,
-    outputs: tuple[Plots, bool, FigureProcesses | None],
+    outputs: tuple[Plots, bool],
     ran: tuple[int, str | None],
     start: float,
 ) -> SweepOutcome:
     """Tabulate the points and write the sweep's files.
 
-    ``outputs``: the plots, parquet and the figure processes; ``ran``: the worker processes
+    ``outputs``: the plots and parquet; ``ran``: the worker processes
     used and the scheduler (used if any point was computed); the wall time is taken from
     ``start``.
     """
-    plots, parquet, figures = outputs
-    columns = build_columns(planned, work.records)
+    plots, parquet = outputs
+    table = summary_table(planned, work.records)
     axis_columns = {c for p in planned for c in p.columns}
-    axes = [c for c in columns if c in axis_columns]
-    files = write_outputs(spec, root, columns, axes, plots, parquet, figures)
+    axes = [c for c in table.columns if c in axis_columns]
+    files = write_outputs(spec, root, table, axes, plots, parquet)
     wall = time.perf_counter() - start
     return SweepOutcome(
         spec=spec,
         directory=root,
-        columns=columns,
+        table=table,
         axes=axes,
         computed=work.computed,
         reused=work.reused,
@@ -299,12 +295,15 @@ def _compute(
 
     def on_start() -> None:
         nonlocal bar
-        if progress and tasks and sys.stderr.isatty():
-            try:
-                from tqdm import tqdm
-            except ImportError:  # no progress bar, nothing else lost
-                return
-            bar = tqdm(total=len(tasks), desc=name, unit="pt", file=sys.stderr, dynamic_ncols=True)
+        if progress:  # a bar in a terminal or a notebook, nothing in a log file
+            bar = tqdm(
+                total=len(tasks),
+                desc=name,
+                unit="pt",
+                file=sys.stderr,
+                dynamic_ncols=True,
+                disable=None,
+            )
 
     def on_record(task: PointTask, record: dict[str, Any]) -> None:
         nonlocal not_ok
@@ -323,15 +322,14 @@ def _compute(
 
     try:
         if scheduler:
-            from recipsim.studies.sweep.dask_runner import run_dask
+            from recipsim.studies.sweep.dask_runner import run_dask  # needs dask
 
             run_dask(tasks, scheduler, on_result, on_start, scheduler_timeout)
         elif jobs > 1:  # local workers share this file system: each saves its points
-            _prepare_fork()
             save = SolveAndSave(str(store.root), run_id)
-            runner().run_pool(tasks, jobs, on_record, on_start, solve=save)
+            runner.run_pool(tasks, jobs, on_record, on_start, solve=save)
         else:
-            runner().run_inline(tasks, on_result, on_start)
+            runner.run_inline(tasks, on_result, on_start)
     except KeyboardInterrupt:
         done = len(work.records)
         raise SweepInterrupted(
@@ -354,17 +352,3 @@ def _keep(
     if reports and record["status"] in SOLVED:
         return (store.report_dir(pid) / "summary.csv").is_file()
     return True
-
-
-def runner() -> Any:
-    """The runner module, imported where a sweep computes points (not to plan one)."""
-    from recipsim.studies.sweep import runner
-
-    return runner
-
-
-def _prepare_fork() -> None:
-    """Import the solver before the workers are forked: they start warm."""
-    import recipsim.model.build  # noqa: F401
-    import recipsim.results.tables  # noqa: F401
-    import recipsim.solve.periodic  # noqa: F401

@@ -4,7 +4,6 @@
 
 from __future__ import annotations
 
-import json
 import platform
 import sys
 import time
@@ -12,19 +11,18 @@ from collections import Counter
 from collections.abc import Collection, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
-from recipsim import __version__
+import pandas as pd
+
 from recipsim.atomic import atomic_file, atomic_write
-from recipsim.report.csv_tables import record_column, write_columns_csv
+from recipsim.report.case_report import json_text
+from recipsim.results.provenance import git_commit
 from recipsim.studies.sweep.plan import PlannedPoint
+from recipsim.studies.sweep.plots import save_map_plots
 from recipsim.studies.sweep.spec import SweepSpec
 from recipsim.studies.sweep.worker import OK
-
-if TYPE_CHECKING:
-    import pandas as pd
-
-    from recipsim.report.figure_process import FigureProcesses
+from recipsim.version import __version__
 
 ID_COLUMNS = ("point", "status", "message", "point_id")
 
@@ -42,9 +40,9 @@ class SweepOutcome:
         The sweep file as read.
     directory : Path
         Output directory ``<out>/<name>`` (``<out>/<name>+<digest>`` with overrides).
-    columns : dict of str to array or list
-        The summary table's columns in order (:func:`build_columns`): what
-        ``summary.csv`` holds, without pandas.
+    table : pandas.DataFrame
+        The summary table (:func:`summary_table`), one row per point in sweep order:
+        what ``summary.csv`` holds.
     axes : list of str
         Axis columns of the table.
     computed : list of str
@@ -63,7 +61,7 @@ class SweepOutcome:
 
     spec: SweepSpec
     directory: Path
-    columns: dict[str, Any]
+    table: pd.DataFrame
     axes: list[str]
     computed: list[str]
     reused: list[str]
@@ -71,40 +69,29 @@ class SweepOutcome:
     files: list[Path] = field(default_factory=list)
     jobs: int = 1
     scheduler: str | None = None
-    _table: pd.DataFrame | None = field(default=None, init=False, repr=False, compare=False)
-
-    @property
-    def table(self) -> pd.DataFrame:
-        """The summary table (one row per point, in sweep order), made from
-        :attr:`columns` when first asked for (the sweep itself needs no DataFrame: the
-        command line's process does not import pandas for it)."""
-        if self._table is None:
-            import pandas as pd
-
-            self._table = pd.DataFrame(self.columns)
-        return self._table
 
     @property
     def n_points(self) -> int:
         """Rows of the table."""
-        return len(self.columns["point"])
+        return len(self.table)
 
     @property
     def solve_seconds(self) -> float:
         """The points' solve times (``wall_time [s]``) added up, 0 for a point without
         one [s]."""
-        times = self.columns.get("wall_time [s]", ())
-        return float(sum(t for t in times if t is not None and t == t))
+        if "wall_time [s]" not in self.table:
+            return 0.0
+        return float(pd.to_numeric(self.table["wall_time [s]"], errors="coerce").sum())
 
     @property
     def counts(self) -> dict[str, int]:
         """Number of points per status."""
-        return dict(Counter(self.columns["status"]))
+        return dict(Counter(self.table["status"]))
 
     @property
     def n_ok(self) -> int:
         """Points that converged."""
-        return sum(status == OK for status in self.columns["status"])
+        return int((self.table["status"] == OK).sum())
 
     @property
     def n_failed(self) -> int:
@@ -112,17 +99,15 @@ class SweepOutcome:
         return self.n_points - self.n_ok
 
 
-def build_columns(
+def summary_table(
     planned: Sequence[PlannedPoint], records: dict[str, dict[str, Any]]
-) -> dict[str, Any]:
-    """The summary table's columns: one value per point, in sweep order.
+) -> pd.DataFrame:
+    """The summary table: one row per point, in sweep order.
 
     Columns: ``point``, the axis columns, ``status``, ``message``, the summary columns
     of :func:`recipsim.results.tables.summary` (those not already given by an axis, in
     the order the ``ok`` points' records name them, then the others') and ``point_id``.
-    Each is held as ``pandas.DataFrame(rows)`` would hold it
-    (:func:`recipsim.report.csv_tables.record_column`): numbers as an int64 or float64
-    array (NaN where a point has no value), the rest as a list.
+    A point without a value of a column has None there (NaN in a numeric column).
     """
     axes: list[str] = list(dict.fromkeys(c for p in planned for c in p.columns))
     summary_columns: list[str] = []
@@ -134,26 +119,24 @@ def build_columns(
             if column not in seen:
                 seen.add(column)
                 summary_columns.append(column)
-    values: dict[str, Sequence[Any]] = {"point": [p.index for p in planned]}
-    for column in axes:
-        values[column] = [p.columns.get(column) for p in planned]
-    values["status"] = [record["status"] for record in in_order]
-    values["message"] = [record["message"] for record in in_order]
-    # a row of summary values per point, then transposed (C loops, not one per value)
-    rows = [list(map(record["summary"].get, summary_columns)) for record in in_order]
-    values.update(zip(summary_columns, zip(*rows, strict=True), strict=True))
-    values["point_id"] = [p.point_id for p in planned]
-    return {name: record_column(cells) for name, cells in values.items()}
+    order = ["point", *axes, "status", "message", *summary_columns, "point_id"]
+    rows = []
+    for point, record in zip(planned, in_order, strict=True):
+        row = dict(record["summary"])
+        row |= {"point": point.index, "status": record["status"], "message": record["message"]}
+        row |= {column: point.columns.get(column) for column in axes}
+        row["point_id"] = point.point_id
+        rows.append([row.get(column) for column in order])
+    return pd.DataFrame.from_records(rows, columns=order)
 
 
 def write_outputs(
     spec: SweepSpec,
     root: Path,
-    columns: dict[str, Any],
+    table: pd.DataFrame,
     axes: list[str],
     plots: Plots,
     parquet: bool,
-    figures: FigureProcesses | None = None,
 ) -> list[Path]:
     """Write the sweep's tables, its sweep file and its map plots into ``root``.
 
@@ -163,49 +146,32 @@ def write_outputs(
         The sweep (its text is copied to ``sweep.toml``).
     root : Path
         The sweep's output directory.
-    columns : dict of str to array or list
-        The summary table's columns (:func:`build_columns`), written to ``summary.csv``.
+    table : pandas.DataFrame
+        The summary table (:func:`summary_table`), written to ``summary.csv``.
     axes : list of str
         Axis columns of the table (the map plots' axes).
     plots : bool or collection of str
         Draw all map plots, none, or those named.
     parquet : bool
         Also write ``summary.parquet``.
-    figures : FigureProcesses, optional
-        Processes that draw the map plots while the tables are written; None draws them
-        here after the tables.
 
     Returns
     -------
     list of Path
         The tables, then the map plots drawn (in :data:`~.plots.MAP_NAMES` order).
     """
-    if plots and figures is not None:
-        from recipsim.studies.sweep.plots import submit_map_plots
-
-        submit_map_plots(figures, columns, axes, root, None if plots is True else plots)
     files = []
     csv = root / "summary.csv"
-    # the bytes of ``DataFrame(columns).to_csv(p, index=False)``, without pandas
-    atomic_write(csv, lambda p: write_columns_csv(p, columns))
+    atomic_write(csv, lambda p: table.to_csv(p, index=False))
     files.append(csv)
     if parquet:
-        import pandas as pd
-
         pq = root / "summary.parquet"
-        atomic_write(pq, lambda p: pd.DataFrame(columns).to_parquet(p, index=False))
+        atomic_write(pq, lambda p: table.to_parquet(p, index=False))
         files.append(pq)
     with atomic_file(root / "sweep.toml") as handle:
         handle.write(spec.text)
-    if plots and figures is not None:
-        from recipsim.studies.sweep.plots import MAP_NAMES
-
-        drawn = {path.name: path for written in figures.wait() for path in written}
-        files.extend(drawn[f"map_{n}.png"] for n in MAP_NAMES if f"map_{n}.png" in drawn)
-    elif plots:
-        from recipsim.studies.sweep.plots import save_map_plots
-
-        files.extend(save_map_plots(columns, axes, root, None if plots is True else plots))
+    if plots:
+        files.extend(save_map_plots(table, axes, root, None if plots is True else plots))
     return files
 
 
@@ -221,8 +187,6 @@ def write_provenance(outcome: SweepOutcome, scheduler: str | None, argv: list[st
     argv : list of str, optional
         Command line (default: :data:`sys.argv`).
     """
-    from recipsim.results.provenance import git_commit
-
     versions = {}
     for module in ("CoolProp", "numpy", "scipy", "numba", "pandas", "dask", "distributed"):
         mod = sys.modules.get(module)
@@ -247,4 +211,4 @@ def write_provenance(outcome: SweepOutcome, scheduler: str | None, argv: list[st
         "command": argv or sys.argv,
     }
     with atomic_file(outcome.directory / "provenance.json") as handle:
-        json.dump(meta, handle, indent=2, default=str)
+        handle.write(json_text(meta))

@@ -26,7 +26,6 @@ from functools import lru_cache
 from pathlib import Path
 from typing import Any
 
-from recipsim import __version__
 from recipsim.case.files import MAX_TOML_BYTES, read_input_text, read_toml
 from recipsim.case.load import (
     GEOMETRY_SPEC,
@@ -48,6 +47,7 @@ from recipsim.case.schema import Choice, Field, Flag, Text
 from recipsim.case.units import to_si
 from recipsim.errors import CaseError
 from recipsim.studies.sweep.spec import SweepSpec
+from recipsim.version import __version__
 
 # Messages of :mod:`recipsim.case.schema` and :mod:`recipsim.case.mechanism` that mean "this
 # key does not exist or is not where a table is expected": an error of the sweep file.

@@ -12,17 +12,19 @@ from __future__ import annotations
 
 import math
 import re
-from collections.abc import Collection, Iterable, Mapping, Sequence
+from collections.abc import Collection, Iterable, Sequence
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import Any
+
+import pandas as pd
+from matplotlib.figure import Figure
+from pandas.api.types import is_numeric_dtype
 
 from recipsim.atomic import atomic_write
 from recipsim.errors import CaseError
+from recipsim.report.figure_kit import clear_axes
 from recipsim.report.figure_names import TITLE_Y
-
-if TYPE_CHECKING:  # matplotlib and pandas are imported where a plot is drawn
-    import pandas as pd
-    from matplotlib.figure import Figure
+from recipsim.report.plotting import PNG_OPTIONS, single_axes
 
 MAP_QUANTITIES: tuple[tuple[str, str, str], ...] = (
     ("cooling_capacity [W]", "cooling capacity [W]", "map_cooling_capacity.png"),
@@ -44,8 +46,6 @@ def _split(column: str) -> tuple[str, str]:
 
 
 def _numeric(table: pd.DataFrame, column: str) -> bool:
-    from pandas.api.types import is_numeric_dtype
-
     return bool(is_numeric_dtype(table[column]))
 
 
@@ -273,7 +273,7 @@ def check_map_names(names: Iterable[str], where: str = "--plots") -> tuple[str, 
 
 
 def save_map_plots(
-    table: pd.DataFrame | Mapping[str, Any],
+    table: pd.DataFrame,
     axes: Sequence[str],
     out_dir: Path,
     only: Collection[str] | None = None,
@@ -282,9 +282,8 @@ def save_map_plots(
 
     Parameters
     ----------
-    table : DataFrame or mapping
-        The sweep's summary table (all points; only ``ok`` ones are drawn), or its
-        columns (:func:`recipsim.studies.sweep.outputs.build_columns`).
+    table : pandas.DataFrame
+        The sweep's summary table (all points; only ``ok`` ones are drawn).
     axes : sequence of str
         Its axis columns.
     out_dir : Path
@@ -297,14 +296,7 @@ def save_map_plots(
     list of Path
         The files written (none when no point is ``ok`` or nothing numeric varies).
     """
-    import pandas as pd
-
-    from recipsim.report.figure_kit import clear_axes
-    from recipsim.report.plotting import PNG_OPTIONS, single_axes
-
     wanted = set(MAP_NAMES if only is None else check_map_names(only))
-    if not isinstance(table, pd.DataFrame):
-        table = pd.DataFrame(table)
     ok = table[table["status"] == "ok"] if "status" in table else table
     if ok.empty:
         return []
@@ -338,44 +330,3 @@ def save_map_plots(
         atomic_write(path, save)
         written.append(path)
     return written
-
-
-#: Measured CPU cost of each map plot of the 100-point map [s] (warm, 2-core machine;
-#: each drawn alone, median of 5), used only to share the plots between figure processes.
-MAP_COST = {name: 0.125 for name in MAP_NAMES} | {"bearing_loads": 0.34}
-
-#: What a figure process of the map plots imports while the sweep runs (the sweep's own
-#: process needs neither pandas nor matplotlib).
-MAP_PRELOAD = (
-    "pandas",
-    "matplotlib.figure",
-    "recipsim.report.plotting",
-    "recipsim.studies.sweep.plots",
-)
-
-
-def submit_map_plots(
-    figures: Any,
-    table: pd.DataFrame | Mapping[str, Any],
-    axes: Sequence[str],
-    out_dir: Path,
-    only: Collection[str] | None = None,
-) -> None:
-    """Have forked figure processes (:class:`recipsim.report.figure_process.FigureProcesses`)
-    draw the map plots of :func:`save_map_plots`, shared between them by cost; returns at
-    once, ``figures.wait()`` waits for them and returns each process's list of files.
-
-    ``table`` is sent to each process: the columns of
-    :func:`~recipsim.studies.sweep.outputs.build_columns` (their DataFrame is made there).
-    Where the figure processes fan out, the plots are shared between the cores idle now
-    (the sweep's workers are done), up to one process per plot: on a 16-core machine the
-    six plots of a 1000-point map took 2.5 s after the last point on the two figure
-    processes, about as long as the other 1000 points' work of 16 workers.
-    """
-    names = MAP_NAMES if only is None else check_map_names(only)
-
-    def job(share: list[str]) -> dict[str, Any]:
-        return {"table": table, "axes": list(axes), "out_dir": Path(out_dir), "only": share}
-
-    cost = {name: MAP_COST[name] for name in names}
-    figures.submit_shared("recipsim.studies.sweep.plots", "save_map_plots", cost, job, len(cost))

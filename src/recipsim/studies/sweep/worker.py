@@ -28,12 +28,15 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from functools import lru_cache
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
-if TYPE_CHECKING:
-    from recipsim.case.load import Case
-
-from recipsim.results.outcome import (  # light: the status names, no numerics
+from recipsim.case.case import Case
+from recipsim.case.envelope import OutsideEnvelopeError
+from recipsim.case.load import load_case
+from recipsim.errors import CaseError, RecipsimError
+from recipsim.pipeline import simulate_case, simulate_row
+from recipsim.report.case_report import write_case_report
+from recipsim.results.outcome import (
     FAILED,
     NO_DELIVERY,
     NOT_CONVERGED,
@@ -41,6 +44,8 @@ from recipsim.results.outcome import (  # light: the status names, no numerics
     OUTSIDE_ENVELOPE,
     SUBHARMONIC,
 )
+from recipsim.studies.point_warnings import kept_warnings
+from recipsim.version import __version__
 
 INVALID = "invalid"
 ERROR = "error"
@@ -107,8 +112,6 @@ def run_point(task: PointTask) -> dict[str, Any]:
         ``summary``, the summary row of :func:`recipsim.results.tables.summary` (units
         in the keys; empty when the point could not be solved).
     """
-    from recipsim.studies.point_warnings import kept_warnings
-
     with kept_warnings() as warned:
         result = _solved_point(task)
     if warned:  # after the status's own message, if any
@@ -118,11 +121,6 @@ def run_point(task: PointTask) -> dict[str, Any]:
 
 def _solved_point(task: PointTask) -> dict[str, Any]:
     """:func:`run_point`'s result before the point's warnings are added to its message."""
-    from recipsim.case.envelope import OutsideEnvelopeError
-    from recipsim.errors import CaseError, RecipsimError
-    from recipsim.report.case_report import write_case_report
-    from recipsim.results.run import simulate_case, simulate_row
-
     try:
         argv = ["recipsim", "sweep", f"point {task.point_id}"]
         case = point_case(task.case, task.overrides, task.allow_external_paths)
@@ -171,8 +169,6 @@ def point_case(path: str, overrides: tuple[str, ...], allow_external_paths: bool
     CaseError
         As :func:`recipsim.case.load.load_case`.
     """
-    from recipsim.case.load import load_case
-
     base = _base_case(path, allow_external_paths, _stamp(path))
     if base is not None and _stamp(base[0].refrigerant.path) != base[1]:
         _base_case.cache_clear()  # the refrigerant file changed: read everything again
@@ -198,9 +194,6 @@ def _base_case(
 ) -> tuple[Case, tuple[int, int]] | None:
     """The base case without overrides and the stamp of its refrigerant file, or None if
     the case is invalid by itself."""
-    from recipsim.case.load import load_case
-    from recipsim.errors import CaseError
-
     del stamp  # part of the cache key only
     try:
         case = load_case(path, allow_external_paths=allow_external_paths)
@@ -212,16 +205,11 @@ def _base_case(
 def prepare_worker(case: str, allow_external_paths: bool) -> None:
     """Load the solver's modules, the base case and its property table in this process
     (a Dask worker as it starts, see :mod:`recipsim.studies.sweep.dask_plugin`)."""
-    import recipsim.results.run  # noqa: F401
-    import recipsim.solve.periodic  # noqa: F401
-
     _base_case(case, allow_external_paths, _stamp(case))
 
 
 def worker_version() -> str:
     """recipsim version of a (remote) worker, checked before a Dask sweep starts."""
-    from recipsim import __version__
-
     return __version__
 
 

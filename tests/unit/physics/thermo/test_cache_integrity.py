@@ -138,27 +138,59 @@ def test_malformed_fluid_constants_are_recomputed(cache, content):
 
 
 def test_every_cache_follows_xdg_cache_home_with_private_directories(tmp_path):
-    """In a fresh interpreter without RECIPSIM_CACHE: fluid constants, pint's definitions
-    and numba's cache all land under $XDG_CACHE_HOME/recipsim, created 0o700."""
+    """In a fresh interpreter without RECIPSIM_CACHE: numba's cache of recipsim's compiled
+    functions lands under $XDG_CACHE_HOME/recipsim, created 0o700, and importing recipsim
+    leaves the environment as it was (nothing else's numba cache is redirected)."""
     env = {k: v for k, v in os.environ.items() if k not in ("RECIPSIM_CACHE", "NUMBA_CACHE_DIR")}
     env["XDG_CACHE_HOME"] = str(tmp_path / "xdg")
     code = (
-        "import os, recipsim\n"
-        "from recipsim.physics.thermo.coolprop_info import fluid_constants\n"
-        "from recipsim.case.units import to_si\n"
-        "fluid_constants('R134a'); to_si('3 mm', 'm', 'f', 'k')\n"
-        "print(os.environ['NUMBA_CACHE_DIR'])\n"
+        "import os\n"
+        "before = dict(os.environ)\n"
+        "import recipsim\n"
+        "from recipsim.physics.kinematics import piston_displacement\n"
+        "piston_displacement(0.1, 0.01, 0.04)\n"
+        "from recipsim.cache_dirs import numba_cache_path\n"
+        "print(dict(os.environ) == before, numba_cache_path())\n"
     )
     out = subprocess.run(
         [sys.executable, "-c", code], env=env, capture_output=True, text=True, timeout=120
     )
     assert out.returncode == 0, out.stderr
+    unchanged, numba_dir = out.stdout.split()
+    assert unchanged == "True"
     root = tmp_path / "xdg" / "recipsim"
-    assert Path(out.stdout.strip()).parent == root / "numba"
-    assert list((root / "fluid_constants").rglob("R134a.json"))
-    assert (root / "pint").is_dir()
-    for directory in (root, root / "fluid_constants", root / "pint", root / "numba"):
+    assert Path(numba_dir).parent == root / "numba"
+    assert list(Path(numba_dir).rglob("kinematics.piston_displacement-*.nbi"))
+    for directory in (root, root / "numba", Path(numba_dir)):
         assert stat.S_IMODE(directory.stat().st_mode) == 0o700, directory
+
+
+def test_a_users_numba_cache_dir_is_respected_and_not_redirected(tmp_path):
+    """With NUMBA_CACHE_DIR set, recipsim's compiled code goes below it, and a user's own
+    cached function is cached where numba's rules put it, as if recipsim were not there."""
+    env = {k: v for k, v in os.environ.items() if k != "RECIPSIM_CACHE"}
+    env["NUMBA_CACHE_DIR"] = str(tmp_path / "mine")
+    (tmp_path / "user_code.py").write_text(
+        "from numba import njit\n@njit(cache=True)\ndef twice(x):\n    return 2 * x\n"
+    )
+    code = (
+        "import recipsim, user_code\n"
+        "from recipsim.physics.kinematics import piston_displacement\n"
+        "piston_displacement(0.1, 0.01, 0.04); user_code.twice(2.0)\n"
+    )
+    out = subprocess.run(
+        [sys.executable, "-c", code],
+        env=env,
+        capture_output=True,
+        text=True,
+        timeout=120,
+        cwd=tmp_path,
+    )
+    assert out.returncode == 0, out.stderr
+    ours = list((tmp_path / "mine").glob("recipsim-*/physics/kinematics.*.nbi"))
+    theirs = [p for p in (tmp_path / "mine").rglob("user_code.twice-*.nbi")]
+    assert ours and theirs
+    assert not any("recipsim-" in str(p) for p in theirs)
 
 
 def test_a_cache_directory_others_can_write_is_reported(tmp_path):
@@ -174,27 +206,28 @@ def test_a_cache_directory_others_can_write_is_reported(tmp_path):
 
 def test_the_first_run_is_announced_once_per_cache(tmp_path, monkeypatch):
     """``numba_cache_lacks("integrator")`` is true until the solver's code is cached."""
-    from recipsim.cache_dirs import numba_cache_lacks
+    from recipsim.cache_dirs import numba_cache_lacks, numba_cache_path
 
     monkeypatch.setenv("NUMBA_CACHE_DIR", str(tmp_path / "numba"))
     monkeypatch.delenv("NUMBA_DISABLE_JIT", raising=False)
     assert numba_cache_lacks("integrator")
-    (tmp_path / "numba" / "solve_x").mkdir(parents=True)
-    (tmp_path / "numba" / "solve_x" / "property_table._patch-279.py311.nbi").write_text("")
+    solve = numba_cache_path() / "solve"
+    solve.mkdir(parents=True)
+    (solve / "property_table._patch-279.py311.nbi").write_text("")
     assert numba_cache_lacks("integrator")  # other modules' code is not the solver's
-    (tmp_path / "numba" / "solve_x" / "integrator.integrate_coupled-92.py311.nbi").write_text("")
+    (solve / "integrator.integrate_coupled-92.py311.nbi").write_text("")
     assert not numba_cache_lacks("integrator")
 
 
 def test_each_scene_announces_its_own_first_compilation(tmp_path, monkeypatch):
     """The solver compiles per scene: the cylinder scene's cache does not hold the
     coupled scene's integrator."""
-    from recipsim.cache_dirs import numba_cache_lacks
+    from recipsim.cache_dirs import numba_cache_lacks, numba_cache_path
 
     monkeypatch.setenv("NUMBA_CACHE_DIR", str(tmp_path / "numba"))
     monkeypatch.delenv("NUMBA_DISABLE_JIT", raising=False)
-    (tmp_path / "numba" / "solve_x").mkdir(parents=True)
-    cached = tmp_path / "numba" / "solve_x" / "integrator.integrate_cylinder-368.py311.nbi"
+    (numba_cache_path() / "solve").mkdir(parents=True)
+    cached = numba_cache_path() / "solve" / "integrator.integrate_cylinder-368.py311.nbi"
     cached.write_text("")
     assert not numba_cache_lacks("integrator", "integrate_cylinder")
     assert numba_cache_lacks("integrator", "integrate_coupled")

@@ -69,7 +69,7 @@ def test_a_warm_r744_run_does_not_import_coolprop():
     case = REFERENCE.parent / "r744_transcritical.toml"
     script = f"""
 import json, sys
-from recipsim.results.run import simulate_case
+from recipsim.pipeline import simulate_case
 from recipsim.case.load import load_case
 run = simulate_case(load_case({str(case)!r}))
 print(json.dumps(["CoolProp" in sys.modules, run.row["cooling_capacity [W]"]]))

@@ -183,7 +183,7 @@ def test_run_with_table_properties_does_not_import_coolprop(tmp_path):
     """
     script = f"""
 import json, sys
-from recipsim.results.run import simulate_case
+from recipsim.pipeline import simulate_case
 from recipsim.case.load import load_case
 run = simulate_case(load_case({str(REFERENCE)!r}))
 print(json.dumps({{"coolprop": "CoolProp" in sys.modules,
@@ -199,7 +199,7 @@ print(json.dumps({{"coolprop": "CoolProp" in sys.modules,
     table_run = json.loads(out.stdout.strip().splitlines()[-1])
     assert table_run["coolprop"] is False
     from recipsim.case.load import load_case
-    from recipsim.results.run import simulate_case
+    from recipsim.pipeline import simulate_case
 
     case = load_case(REFERENCE, ["options.properties=heos"])
     heos_run = simulate_case(case).row
@@ -319,7 +319,7 @@ def test_rating_points_of_shipped_cases_do_not_import_coolprop():
     cases = REFERENCE.parent
     script = f"""
 import json, sys
-from recipsim.results.run import simulate_case
+from recipsim.pipeline import simulate_case
 from recipsim.case.load import load_case
 for name in ("r290_lbp", "tles5.7kk3_r600a"):
     simulate_case(load_case({str(cases)!r} + "/" + name + ".toml"))

@@ -7,7 +7,6 @@ error messages, at every point.
 
 from __future__ import annotations
 
-import json
 import os
 from pathlib import Path
 
@@ -125,44 +124,3 @@ def test_point_case_base_invalid_alone(tmp_path: Path) -> None:
     assert point_case(str(base), point, True) == load_case(
         base, list(point), allow_external_paths=True
     )
-
-
-def test_known_conversions_come_back_from_disk_exactly(tmp_path: Path) -> None:
-    """A conversion written to the cache file reads back bit for bit (JSON keeps the
-    shortest repr of a float), messages included; a malformed file is an empty cache."""
-    from recipsim.case.units import _KnownConversions, _pint_convert
-
-    path = tmp_path / "pint" / "conversions-test.json"
-    cache = _KnownConversions(path)
-    for value, unit in (("-23.3 degC", "K"), ("3500 rpm", "rad/s"), ("3 kg", "m")):
-        cache.add(f"{unit}\n{value}", _pint_convert(value, unit))
-    cache.save()
-    again = _KnownConversions(path)
-    assert again.values == cache.values
-    assert again.values["K\n-23.3 degC"] == 273.15 - 23.3
-    assert isinstance(again.values["m\n3 kg"], str)
-    path.write_text("[1, 2")
-    assert _KnownConversions(path).values == {}
-
-
-def test_a_warm_process_loads_a_case_without_pint(tmp_path: Path) -> None:
-    """Second process on the same cache: the case loads equal, and pint is not imported."""
-    import subprocess
-    import sys
-
-    code = (
-        "import sys, json; from recipsim.case.load import load_case; "
-        f"c = load_case({str(REFERENCE)!r}); "
-        "print(json.dumps([c.operating_point.shaft_speed, c.geometry.bore, "
-        "'pint' in sys.modules]))"
-    )
-    env = dict(os.environ, RECIPSIM_CACHE=str(tmp_path))
-    runs = [
-        subprocess.run(
-            [sys.executable, "-c", code], env=env, capture_output=True, text=True, check=True
-        ).stdout
-        for _ in range(2)
-    ]
-    first, second = (json.loads(r.strip().splitlines()[-1]) for r in runs)
-    assert first[:2] == second[:2]
-    assert first[2] is True and second[2] is False

@@ -101,8 +101,7 @@ operating_point.evaporating_temperature = ["-30 degC", "70 degC"]
     assert again.computed == [] and len(again.reused) == 4
     parquet = pd.read_parquet(root / "summary.parquet")
     pd.testing.assert_frame_equal(parquet, again.table)
-    # summary.csv (written without pandas) holds the bytes pandas would write, for every
-    # status's row: invalid points' empty cells, a message column with missing values
+    # summary.csv is the table: invalid points' empty cells, a message column with gaps
     assert (root / "summary.csv").read_text(encoding="utf-8") == again.table.to_csv(index=False)
     retry = run_sweep(sweep, out=out, jobs=1, plots=False, retry_failed=True)
     assert sorted(retry.computed) == sorted(table.loc[[0, 1, 3], "point_id"])
@@ -111,10 +110,10 @@ operating_point.evaporating_temperature = ["-30 degC", "70 degC"]
 
 def _failing_solver(monkeypatch, how: dict[float, str]) -> None:
     """Make the solver fail for chosen evaporating temperatures [K] (inherited by forks)."""
-    import recipsim.solve.periodic as periodic
+    import recipsim.pipeline as pipeline
     from recipsim.errors import SolverError
 
-    real = periodic.solve_periodic
+    real = pipeline.solve_periodic
 
     def solve(model):
         t_evap = round(model.case.operating_point.evaporating_temperature, 6)
@@ -130,7 +129,7 @@ def _failing_solver(monkeypatch, how: dict[float, str]) -> None:
             os.kill(os.getpid(), signal.SIGINT)
         return real(model)
 
-    monkeypatch.setattr(periodic, "solve_periodic", solve)
+    monkeypatch.setattr(pipeline, "solve_periodic", solve)
 
 
 def test_point_warnings_go_to_the_message_column_not_the_log(tmp_path, capsys, caplog):
