@@ -27,6 +27,7 @@ __all__ = [
     "SolverError",
     "__version__",
     "calibrate",
+    "cases",
     "compare",
     "load_case",
     "simulate",
@@ -41,6 +42,7 @@ _API = {
     "sweep": "recipsim.api",
     "compare": "recipsim.api",
     "calibrate": "recipsim.api",
+    "cases": "recipsim.api",
     "CaseError": "recipsim.errors",
     "SolverError": "recipsim.errors",
 }

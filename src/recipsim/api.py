@@ -31,7 +31,7 @@ if TYPE_CHECKING:
 
     from recipsim.solve.periodic import PeriodicSolution
 
-__all__ = ["Case", "Result", "calibrate", "compare", "load_case", "simulate", "sweep"]
+__all__ = ["Case", "Result", "calibrate", "cases", "compare", "load_case", "simulate", "sweep"]
 
 
 @dataclass(frozen=True)
@@ -330,3 +330,27 @@ def calibrate(
 def toml_key(dotted: str) -> str:
     """A dotted case key as a TOML key (each part quoted)."""
     return ".".join(toml_literal(part) for part in dotted.split("."))
+
+
+def cases(kind: str | None = None) -> pd.DataFrame:
+    """The shipped cases, sweeps and hard cases, as ``recipsim cases`` lists them.
+
+    Parameters
+    ----------
+    kind : {"case", "sweep", "hard case"}, optional
+        Only the files of this kind; default all.
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per file: ``name`` (what :func:`load_case` and :func:`sweep` take),
+        ``kind``, ``description`` (one line) and ``path``.
+
+    Raises
+    ------
+    ValueError
+        An unknown ``kind``.
+    """
+    from recipsim.case.shipped import KIND_FOLDERS, shipped_cases_table
+
+    return shipped_cases_table((kind,) if kind else tuple(KIND_FOLDERS))

@@ -30,6 +30,7 @@ from recipsim import __version__, start_up_collector, timeline
 from recipsim.cli.bench import add_bench_parser
 from recipsim.cli.bench_system import add_bench_system_parser
 from recipsim.cli.calibrate import add_calibrate_parser
+from recipsim.cli.cases import add_cases_parser
 from recipsim.cli.check import add_check_parser
 from recipsim.cli.compare import add_compare_parser
 from recipsim.cli.options import add_common_options, exit_status
@@ -49,6 +50,7 @@ _SUBCOMMANDS = (
     add_check_parser,
     add_calibrate_parser,
     add_warmup_parser,
+    add_cases_parser,
 )
 
 
