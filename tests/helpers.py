@@ -8,7 +8,9 @@ from pathlib import Path
 import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
-CASES = ROOT / "src" / "recipsim" / "data" / "cases"
+CASES = ROOT / "cases"
+#: The shipped refrigerant files.
+REFRIGERANTS = ROOT / "refrigerants"
 REFERENCE = CASES / "reference_r134a_lbp.toml"
 ALL_CASES = sorted(CASES.glob("*.toml"))
 

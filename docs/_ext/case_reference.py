@@ -203,7 +203,7 @@ def tables() -> list[tuple[str, str, list[list[str]]]]:
         (
             "Check expectations: [defaults], [cases.<name>]",
             "In ``expectations.toml`` beside the cases of ``recipsim check`` (the hard cases': "
-            "``data/cases/hard/expectations.toml``); a ``[cases.<name>]`` table names a case "
+            "``cases/hard/expectations.toml``); a ``[cases.<name>]`` table names a case "
             "file beside it and keeps what it leaves out from ``[defaults]``.",
             declared_rows("expectations", EXPECTATION_SPEC),
         ),

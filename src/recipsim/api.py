@@ -25,6 +25,7 @@ import pandas as pd
 from recipsim.case.case import Case
 from recipsim.case.load import load_case
 from recipsim.case.overrides import parse_override, toml_literal
+from recipsim.case.shipped import KIND_FOLDERS, shipped_cases_table
 from recipsim.pipeline import simulate_case
 from recipsim.report.case_report import write_case_report
 from recipsim.report.loss_plot import plot_loss_breakdown
@@ -43,7 +44,7 @@ from recipsim.studies.sweep.spec import DEFAULT_MAX_POINTS, SweepSpec
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
 
-__all__ = ["Case", "Result", "calibrate", "compare", "load_case", "simulate", "sweep"]
+__all__ = ["Case", "Result", "calibrate", "cases", "compare", "load_case", "simulate", "sweep"]
 
 
 @dataclass(frozen=True)
@@ -330,3 +331,25 @@ def calibrate(
 def toml_key(dotted: str) -> str:
     """A dotted case key as a TOML key (each part quoted)."""
     return ".".join(toml_literal(part) for part in dotted.split("."))
+
+
+def cases(kind: str | None = None) -> pd.DataFrame:
+    """The shipped cases, sweeps and hard cases, as ``recipsim cases`` lists them.
+
+    Parameters
+    ----------
+    kind : {"case", "sweep", "hard case"}, optional
+        Only the files of this kind; default all.
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per file: ``name`` (what :func:`load_case` and :func:`sweep` take),
+        ``kind``, ``description`` (one line) and ``path``.
+
+    Raises
+    ------
+    ValueError
+        An unknown ``kind``.
+    """
+    return shipped_cases_table((kind,) if kind else tuple(KIND_FOLDERS))

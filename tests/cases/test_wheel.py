@@ -1,18 +1,36 @@
 """The wheel carries everything a user needs: built from the checkout, installed in a fresh
 virtual environment (its dependencies from the test environment), it runs the default
-case by name from a directory outside the checkout."""
+case by name from a directory outside the checkout and lists the shipped cases, which
+it carries as ``recipsim.shipped_cases`` (the top-level ``cases/``)."""
 
 from __future__ import annotations
 
+import io
 import subprocess
 import sys
+import tomllib
 import venv
 from pathlib import Path
 
 import pandas as pd
 import pytest
 
-from helpers import ROOT
+from helpers import CASES, ROOT
+
+
+def test_every_package_of_the_source_tree_is_listed_for_the_wheel():
+    """pyproject.toml lists the packages (the shipped data folders are mapped onto
+    subpackages): a package added under src/ must be added there too."""
+    from setuptools import find_namespace_packages
+
+    with open(ROOT / "pyproject.toml", "rb") as fh:
+        tool = tomllib.load(fh)["tool"]["setuptools"]
+    listed = set(tool["packages"])
+    assert set(find_namespace_packages(str(ROOT / "src"))) <= listed
+    mapped = {"recipsim.shipped_cases": "cases", "recipsim.shipped_refrigerants": "refrigerants"}
+    for package, folder in mapped.items():
+        assert package in listed and tool["package-dir"][package] == folder
+        assert (ROOT / folder / "__init__.py").is_file()
 
 
 @pytest.mark.slow
@@ -53,3 +71,9 @@ def test_wheel_runs_the_default_case_by_name_outside_the_checkout(tmp_path):
     summary = pd.read_csv(elsewhere / "reports" / "reference_r134a_lbp" / "summary.csv")
     assert bool(summary["converged [-]"].iloc[0])
     assert summary["refrigerant"].iloc[0] == "R134a"
+    listed = run("-c", "import recipsim; print(recipsim.cases().to_json(orient='records'))")
+    assert listed.returncode == 0, listed.stderr[-2000:]
+    table = pd.read_json(io.StringIO(listed.stdout))
+    shipped = {p.stem for p in CASES.rglob("*.toml")} - {"expectations"}
+    assert set(table["name"]) == shipped
+    assert all(Path(path).is_relative_to(env_dir) for path in table["path"])

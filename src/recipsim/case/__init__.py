@@ -7,5 +7,6 @@ keys: unit, default, range), :mod:`.refrigerant` (refrigerant files), :mod:`.mec
 file through :mod:`.extends` and :mod:`.overrides` and validates it with :mod:`.case`
 (``Case``), :mod:`.build` (one builder per table, keys declared in
 :mod:`.case_schema`), :mod:`.operating_point`, :mod:`.consistency` (checks across
-sections) and :mod:`.sections` (the sections' dataclasses).
+sections), :mod:`.sections` (the sections' dataclasses) and :mod:`.shipped` (the list of
+shipped cases, ``recipsim cases``).
 """

@@ -1,5 +1,6 @@
-"""``extends``: a case file built on another one (a file beside it or a shipped case),
-and the shipped case a bare name stands for.
+"""``extends``: a case file built on another one (a file beside it, or a case by name:
+the working directory's ``cases/`` or a shipped case), and the case a bare name stands
+for.
 """
 
 from __future__ import annotations
@@ -8,14 +9,20 @@ import copy
 from pathlib import Path
 from typing import Any
 
-from recipsim.case.files import MAX_EXTENDS_DEPTH, read_toml, resolve_reference, shipped_path
+from recipsim.case.files import MAX_EXTENDS_DEPTH, find_case_file, read_toml, resolve_reference
 from recipsim.errors import CaseError
 
 
 def shipped_case(path: str | Path) -> Path:
-    """``path`` itself, or the shipped case it names (a bare name that is not a file)."""
-    found = shipped_path(path)
-    return found if found.is_file() or not found.is_dir() else Path(path)
+    """``path`` itself, or the case a bare name means: ``./cases/<name>.toml`` of the
+    working directory, else the shipped case (:func:`recipsim.case.files.find_case_file`).
+
+    Raises
+    ------
+    CaseError
+        A bare name that is neither a file nor a case name, with the closest names.
+    """
+    return find_case_file(path)
 
 
 def _deep_merge(base: dict[str, Any], child: dict[str, Any]) -> dict[str, Any]:

@@ -72,7 +72,8 @@ def load_case(
     Parameters
     ----------
     path : str or Path
-        The TOML case file, or the name of a shipped case (``"reference_r134a_lbp"``).
+        The TOML case file, or the name of a case (``"reference_r134a_lbp"``): the
+        working directory's ``cases/<name>.toml``, else the shipped case of that name.
     overrides : mapping or list of str, optional
         Dotted case keys to values (``{"operating_point.shaft_speed": "3000 rpm"}``), or
         ``KEY=VALUE`` strings as on the command line (``--set``); validated exactly like

@@ -1,7 +1,8 @@
 """Refrigerant files, and the fluid that answers a case's set-up questions.
 
-A refrigerant file (``refrigerants/<name>.toml``) names the CoolProp fluid, optional
-tighter limits and the rating points of the standards (ASHRAE LBP, EN 12900, ...).
+A refrigerant file (``refrigerants/<name>.toml``, found in :func:`refrigerant_dirs`)
+names the CoolProp fluid, optional tighter limits and the rating points of the standards
+(ASHRAE LBP, EN 12900, ...).
 :class:`~recipsim.physics.thermo.fluid.Fluid` wraps one reused low-level
 ``AbstractState``; it is used when a case is loaded and when results are post-processed,
 never inside the right-hand side, which goes through
@@ -21,7 +22,7 @@ from typing import TYPE_CHECKING, Any, TypeAlias
 
 from recipsim.atomic import checked_name
 from recipsim.case.envelope_table import read_envelope
-from recipsim.case.files import package_data, read_toml
+from recipsim.case.files import read_toml, shipped_dir
 from recipsim.case.schema import Field, Spec, Text, check_keys, read_table
 from recipsim.errors import CaseError
 from recipsim.physics.thermo.coolprop_info import fluid_constants
@@ -95,10 +96,16 @@ class RefrigerantSpec:
 def refrigerant_dirs(extra: list[Path] | None = None) -> list[Path]:
     """Directories searched for refrigerant files, in order.
 
-    ``$RECIPSIM_REFRIGERANTS``, then ``extra`` (the case's folder and its parent),
-    the working directory's ``refrigerants/`` and the refrigerants shipped in the package
-    (``recipsim/data/refrigerants``).
+    ``$RECIPSIM_REFRIGERANTS``; then a ``refrigerants/`` folder in each of ``extra``
+    (the case's folder and its parent); the working directory's ``refrigerants/``;
+    last the shipped refrigerant files (the top-level ``refrigerants/`` of the source
+    tree, installed as ``recipsim.shipped_refrigerants``:
+    :func:`recipsim.case.files.shipped_dir`), always last: a file of the working
+    directory shadows the shipped file of the same name, also for a shipped case (in a
+    source tree the shipped ``refrigerants/`` lies beside ``cases/``, so it is one of
+    ``extra`` there too; it is moved to the end).
     """
+    shipped = shipped_dir("refrigerants")
     dirs: list[Path] = []
     env = os.environ.get("RECIPSIM_REFRIGERANTS")
     if env:
@@ -106,12 +113,11 @@ def refrigerant_dirs(extra: list[Path] | None = None) -> list[Path]:
     for d in extra or []:
         dirs.append(d / "refrigerants")
     dirs.append(Path.cwd() / "refrigerants")
-    dirs.append(package_data("refrigerants"))
     seen: list[Path] = []
     for d in dirs:
-        if d not in seen:
+        if d not in seen and d.resolve() != shipped:
             seen.append(d)
-    return seen
+    return seen + [shipped]
 
 
 def available_refrigerants(search: list[Path] | None = None) -> list[str]:

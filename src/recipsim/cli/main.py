@@ -25,6 +25,7 @@ from typing import Any
 
 from recipsim.cli.bench import add_bench_parser
 from recipsim.cli.calibrate import add_calibrate_parser
+from recipsim.cli.cases import add_cases_parser
 from recipsim.cli.check import add_check_parser
 from recipsim.cli.compare import add_compare_parser
 from recipsim.cli.options import add_common_options, exit_status
@@ -45,6 +46,7 @@ _SUBCOMMANDS = (
     add_check_parser,
     add_calibrate_parser,
     add_warmup_parser,
+    add_cases_parser,
 )
 
 

@@ -66,7 +66,7 @@ def warmup(cases: list[str], refrigerants: list[str], verbose: bool = True) -> i
     cases : list of str
         Case files or shipped case names; each is solved for one revolution.
     refrigerants : list of str
-        Refrigerant names (files of ``data/refrigerants`` or beside the cases).
+        Refrigerant names (files of ``refrigerants/`` or beside the cases).
     verbose : bool
         Print a line per step with its wall time [s].
 

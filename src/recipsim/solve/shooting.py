@@ -59,7 +59,7 @@ end state of a revolution jumps by about 1e-4 of the vibration amplitude when th
 start state moves by 1e-9 (the step sequence changes): that is the cycle tolerance,
 so undamped runs need a tighter ``solver.rtol``: 1e-7 under the tabulated curve,
 1e-8 on the coupled scene (measured: at 1e-7 Newton stalls there; 68 revolutions at
-1e-8, ``src/recipsim/data/cases/hard/bearings_undamped.toml``). With the
+1e-8, ``cases/hard/bearings_undamped.toml``). With the
 ``torque_profile`` drive and light or no damping there is no periodic state to find:
 the crank speed drifts every revolution by the energy the angle-only torque does not
 balance, and the response of the undamped high-frequency modes is so sensitive to

@@ -5,7 +5,7 @@ from pathlib import Path
 
 import pytest
 
-from helpers import ALL_CASES, REFERENCE
+from helpers import ALL_CASES, REFERENCE, REFRIGERANTS
 from recipsim.case.load import load_case
 from recipsim.case.overrides import parse_override
 from recipsim.cli.main import main
@@ -84,7 +84,7 @@ def test_missing_required_key(tmp_path: Path):
     text = REFERENCE.read_text().replace('bore = "22.0 mm"\n', "")
     bad = tmp_path / "bad.toml"
     bad.write_text(text)
-    (tmp_path / "refrigerants").symlink_to(REFERENCE.parents[1] / "refrigerants")
+    (tmp_path / "refrigerants").symlink_to(REFRIGERANTS)
     with pytest.raises(CaseError) as err:
         load_case(bad)
     assert err.value.key == "geometry.bore"

@@ -6,7 +6,7 @@ import re
 import pandas as pd
 import pytest
 
-from helpers import REFERENCE, ROOT
+from helpers import REFERENCE, REFRIGERANTS, ROOT
 from recipsim.atomic import swap_in
 from recipsim.cli.main import main
 from recipsim.physics.mechanics.layout import BEARING_NAMES
@@ -151,7 +151,7 @@ def test_solver_failure_names_crank_angle_and_state(capsys, tmp_path):
     """A state outside the refrigerant's range mid-cycle stops with angle and state."""
     (tmp_path / "refrigerants").mkdir()
     # R134a with the model's range capped at 100 C, and the reference's rating point
-    lbp = (REFERENCE.parents[1] / "refrigerants" / "R134a.toml").read_text()
+    lbp = (REFRIGERANTS / "R134a.toml").read_text()
     lbp = lbp[lbp.index("[rating_points.ashrae_lbp]") : lbp.index("[rating_points.en12900_lbp]")]
     (tmp_path / "refrigerants" / "R134a_cold.toml").write_text(
         'name = "R134a_cold"\ncoolprop_name = "R134a"\n[limits]\nmax_temperature = "100 degC"\n'

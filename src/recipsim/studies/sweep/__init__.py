@@ -1,6 +1,6 @@
 """Operating maps: a base case swept over a grid of case values, run in parallel.
 
-A sweep file (``src/recipsim/data/cases/sweeps/*.toml``, see ``docs/sweeps.md``) names a base case,
+A sweep file (``cases/sweeps/*.toml``, see ``docs/sweeps.md``) names a base case,
 fixed overrides, axes (a dotted case key and a list of values each, combined as a
 grid) and optional explicit points. ``recipsim sweep`` runs every point in worker
 processes (or on a Dask cluster), writes each finished point to disk as it finishes,

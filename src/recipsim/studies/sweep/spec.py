@@ -37,7 +37,7 @@ from pathlib import Path
 from typing import Any
 
 from recipsim.atomic import checked_name, name_from_stem
-from recipsim.case.files import read_toml, resolve_reference, shipped_path
+from recipsim.case.files import find_case_file, read_toml, resolve_reference
 from recipsim.case.schema import Field, FileSpec, Text, check_keys, read_table
 from recipsim.errors import CaseError
 
@@ -241,10 +241,12 @@ def load_sweep(path: str | Path, allow_external_paths: bool = False) -> SweepSpe
     Parameters
     ----------
     path : str or Path
-        The sweep file (TOML).
+        The sweep file (TOML), or the name of a sweep: ``./cases/sweeps/<name>.toml``
+        of the working directory, else a shipped sweep
+        (:func:`recipsim.case.files.find_case_file`).
     allow_external_paths : bool
         Let ``base`` name a file outside the sweep file's directory (absolute or
-        ``..``); shipped cases by name are always allowed.
+        ``..``); cases by name (``./cases`` or shipped) are always allowed.
 
     Returns
     -------
@@ -255,7 +257,7 @@ def load_sweep(path: str | Path, allow_external_paths: bool = False) -> SweepSpe
     CaseError
         Naming the sweep file, the key and what is allowed.
     """
-    path = shipped_path(path, "sweeps")
+    path = find_case_file(path, "sweeps", "sweep")
     file = str(path)
     raw, text = read_toml(path, "sweep")
     check_keys(raw, SWEEP_KEYS, file, "")

@@ -12,7 +12,7 @@ from pathlib import Path
 
 import pytest
 
-from helpers import REFERENCE
+from helpers import REFERENCE, REFRIGERANTS
 from recipsim.case.load import load_case
 from recipsim.case.units import _convert, to_si
 from recipsim.errors import CaseError
@@ -92,13 +92,11 @@ def test_point_case_reads_an_edited_base_again(tmp_path: Path) -> None:
 def test_point_case_reads_an_edited_refrigerant_file_again(tmp_path: Path) -> None:
     """The base case is read again when its refrigerant file changes (the sections a
     point does not override are the base's: its refrigerant too)."""
-    from recipsim.case.files import package_data
-
     base = tmp_path / "base.toml"
     base.write_text(REFERENCE.read_text())
     fluid = tmp_path / "refrigerants" / "R134a.toml"
     fluid.parent.mkdir()
-    text = (package_data("refrigerants") / "R134a.toml").read_text()
+    text = (REFRIGERANTS / "R134a.toml").read_text()
     fluid.write_text(text)
     point = ('operating_point.shaft_speed="3000 rpm"',)
     first = point_case(str(base), point, True)
