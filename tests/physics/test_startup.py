@@ -18,8 +18,9 @@ from helpers import CASES, REFERENCE, ROOT
 from recipsim.case.load import load_case
 from recipsim.errors import CaseError
 from recipsim.physics.mechanics.layout import BEARING_NAMES
+from recipsim.pipeline import simulate_case
 from recipsim.report.case_report import write_case_report
-from recipsim.results.case_run import CaseRun, simulate_case
+from recipsim.results.case_run import CaseRun
 from recipsim.solve.startup_boundary import ramp_fraction
 
 HARD_STARTUP = CASES / "hard" / "startup_induction_motor.toml"
