@@ -59,7 +59,6 @@ from recipsim.case.sections import (
     Valves,
     ValveSpec,
 )
-from recipsim.physics.compiled_runtime import start_compiled_runtime
 
 
 def load_case(
@@ -92,7 +91,6 @@ def load_case(
     CaseError
         With the file, the key and what is allowed.
     """
-    start_compiled_runtime()  # before the first compiled call (the property table's)
     file, texts, raw, text = _overridden_raw(path, overrides, allow_external_paths)
     case = case_from_dict(raw, file, text, allow_external_paths=allow_external_paths)
     return replace(case, overrides=tuple(texts), allow_external_paths=allow_external_paths)
