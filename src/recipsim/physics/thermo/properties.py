@@ -48,7 +48,6 @@ from recipsim.physics.thermo.property_slots import (
     STATUS_DOMAIN,
     STATUS_OK,
 )
-from recipsim.physics.thermo.property_table_cache import fluid_constants
 
 if TYPE_CHECKING:
     import CoolProp.CoolProp as CP
@@ -260,22 +259,24 @@ def _coolprop_callback(
     (called at the first state), and a getter of its ``AbstractState`` (``None`` until
     loaded). ``interrupted[0]`` is set by a Ctrl-C caught inside the callback.
     """
-    constants = fluid_constants(coolprop_name)
-    r_gas, t_crit = constants.gas_constant, constants.t_crit
-    # CoolProp is loaded at the first call: with a property
-    # table in the buffer's tail the compiled code may never need it
+    # CoolProp is loaded at the first call (with the fluid's gas constant and critical
+    # temperature): with a property table in the buffer's tail the compiled code may
+    # never need it
     state: Any = None
     sat: Any = None
     dmasst = i_p = i_t = i_d = twophase = 0
+    r_gas = t_crit = 0.0
 
     def load_coolprop() -> None:
-        nonlocal state, sat, dmasst, i_p, i_t, i_d, twophase
+        nonlocal state, sat, dmasst, i_p, i_t, i_d, twophase, r_gas, t_crit
         import CoolProp.CoolProp as CP
 
         state = CP.AbstractState(backend, coolprop_name)
         sat = CP.AbstractState(backend, coolprop_name)
         dmasst, twophase = CP.DmassT_INPUTS, CP.iphase_twophase
         i_p, i_t, i_d = CP.iP, CP.iT, CP.iDmass
+        r_gas = state.gas_constant() / state.molar_mass()  # [J/(kg K)]
+        t_crit = state.T_critical()  # [K]
 
     def callback(temperature: float, density: float) -> int:
         try:
