@@ -32,8 +32,7 @@ from typing import Any
 from recipsim.case.schema import Choice, Field, Spec
 from recipsim.errors import CaseError
 from recipsim.physics.motor_circuit import MotorCircuit
-from recipsim.physics.motor_nameplate import MotorNameplate
-from recipsim.physics.motor_nameplate_cache import nameplate_circuit
+from recipsim.physics.motor_nameplate import MotorNameplate, motor_circuit_from_nameplate
 
 _ONE = "dimensionless"
 _CIRCUIT_VALUES = (
@@ -95,10 +94,10 @@ CIRCUIT_SPEC: Spec = {
 
 @lru_cache(maxsize=32)
 def _fitted_circuit(plate: MotorNameplate) -> MotorCircuit:
-    """The nameplate's circuit, fitted once per installation and nameplate (kept on
-    disk, :mod:`recipsim.physics.motor_nameplate_cache`) and read once per process (a
-    map refits nothing)."""
-    return nameplate_circuit(plate)
+    """The nameplate's circuit
+    (:func:`~recipsim.physics.motor_nameplate.motor_circuit_from_nameplate`), fitted once
+    per nameplate in a process: the points of a sweep that share a motor share its fit."""
+    return motor_circuit_from_nameplate(plate)
 
 
 def _or(value: float | None, default: float) -> float:

@@ -8,8 +8,8 @@ names the CoolProp fluid, optional tighter limits and the rating points of the s
 never inside the right-hand side, which goes through
 :mod:`recipsim.physics.thermo.properties`. With ``properties = "table"``
 :func:`case_fluid` answers the same questions from the property table
-(:class:`recipsim.physics.thermo.table_states.TableFluid`) and CoolProp, whose import costs
-about 2 s, is imported only when the table has no answer.
+(:class:`recipsim.physics.thermo.table_states.TableFluid`), and CoolProp is imported only
+when the table has no answer.
 """
 
 from __future__ import annotations
@@ -25,8 +25,8 @@ from recipsim.case.envelope_table import read_envelope
 from recipsim.case.files import read_toml, shipped_dir
 from recipsim.case.schema import Field, Spec, Text, check_keys, read_table
 from recipsim.errors import CaseError
-from recipsim.physics.thermo.coolprop_info import fluid_constants
 from recipsim.physics.thermo.fluid import Fluid
+from recipsim.physics.thermo.property_table_cache import fluid_constants
 
 if TYPE_CHECKING:
     from recipsim.physics.thermo.table_states import TableFluid

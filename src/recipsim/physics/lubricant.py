@@ -33,15 +33,12 @@ against the published 6.3 (3 %), the size of the law's own uncertainty.
 
 from __future__ import annotations
 
-import functools
 import math
 from dataclasses import dataclass
-from typing import Any
 
 import numpy as np
 from numba import njit
-
-from recipsim.physics.bracketed_root import bracketed_root
+from scipy.optimize import brentq
 
 #: Law codes for :func:`oil_viscosity`.
 LAW_VOGEL = 0
@@ -191,7 +188,7 @@ def fit_vogel(
             f"no Vogel curve passes through {temperatures}, {viscosities}: ln(mu) must be "
             "convex in T (the viscosity must fall more slowly as the temperature rises)"
         )
-    c = bracketed_root(mismatch, far, near, xtol=1e-12 * t[0], rtol=1e-15, maxiter=500)
+    c = brentq(mismatch, far, near, xtol=1e-12 * t[0], rtol=1e-15, maxiter=500)
     b = (y[0] - y[1]) / (1.0 / (t[0] - c) - 1.0 / (t[1] - c))
     a = math.exp(y[0] - b / (t[0] - c))
     return Oil(
@@ -260,26 +257,21 @@ def celsius(t: float) -> float:
 MINERAL_OIL_DENSITY = 860.0
 
 
-@functools.cache
+#: The light mineral spindle oil, a Vogel curve through three points (Stachowiak &
+#: Batchelor, Table 2.3).
+SPINDLE_OIL = fit_vogel(
+    "spindle oil (light mineral)",
+    (celsius(30.0), celsius(60.0), celsius(100.0)),
+    (18.6e-3, 6.3e-3, 2.4e-3),
+    MINERAL_OIL_DENSITY,
+    source="Stachowiak & Batchelor, Engineering Tribology, Table 2.3 (spindle oil); "
+    "density assumed",
+)
+
+
 def spindle_oil() -> Oil:
-    """The light mineral spindle oil, a Vogel curve through three points (Stachowiak &
-    Batchelor, Table 2.3); also ``SPINDLE_OIL``. Fitted on first use: the fit imports
-    scipy.optimize (0.25 s), which a case that does not name this oil never needs."""
-    return fit_vogel(
-        "spindle oil (light mineral)",
-        (celsius(30.0), celsius(60.0), celsius(100.0)),
-        (18.6e-3, 6.3e-3, 2.4e-3),
-        MINERAL_OIL_DENSITY,
-        source="Stachowiak & Batchelor, Engineering Tribology, Table 2.3 (spindle oil); "
-        "density assumed",
-    )
-
-
-def __getattr__(name: str) -> Any:
-    """``SPINDLE_OIL``: :func:`spindle_oil`, fitted when first asked for (PEP 562)."""
-    if name == "SPINDLE_OIL":
-        return spindle_oil()
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    """The light mineral spindle oil, :data:`SPINDLE_OIL`."""
+    return SPINDLE_OIL
 
 
 #: The spindle oil's Walther slope through its 30 C and 100 C points.

@@ -16,6 +16,7 @@ from dataclasses import dataclass, replace
 from functools import lru_cache
 
 import numpy as np
+from scipy.optimize import least_squares
 
 from recipsim.physics.motor_circuit import (
     MotorCircuit,
@@ -216,8 +217,6 @@ def motor_circuit_from_nameplate(plate: MotorNameplate) -> MotorCircuit:
     r_in = z_in * plate.power_factor
     # the impedances stay within 1e-6..1e6 of the input impedance (log bounds)
     bounds = (math.log(z_in) - 14.0, math.log(z_in) + 14.0)
-    from scipy.optimize import least_squares  # lazy: 0.25 s of imports
-
     best, misfit = np.zeros(4), math.inf
     for stator, leakage in ((0.25, 0.1), (0.05, 0.2), (0.5, 0.05), (0.1, 0.4)):
         start = np.log([stator * r_in, 3.0 * slip * r_in, leakage * z_in, 3.0 * r_in])

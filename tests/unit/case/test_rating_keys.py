@@ -10,7 +10,7 @@ import pytest
 from helpers import CASES, REFERENCE
 from recipsim.case.load import load_case
 from recipsim.errors import CaseError
-from recipsim.physics.motor_circuit import MotorCircuit
+from recipsim.physics.motor_circuit import MotorCircuit, motor_breakdown, motor_operating_point
 
 R600A = CASES / "r600a_lbp.toml"
 
@@ -110,6 +110,30 @@ def test_motor_circuit_from_nameplate_and_refusals():
         load_case(REFERENCE, {"options.motor": "equivalent_circuit", "motor.main_resistance": 2.0})
     with pytest.raises(CaseError, match=r"motor\.rated_power.*exactly one"):
         load_case(REFERENCE, {"options.motor": "equivalent_circuit", "motor.rated_power": 100.0})
+
+
+def test_a_nameplate_is_fitted_once_per_process_and_reproduced():
+    """The catalogue case's motor, given by nameplate: the fitted circuit reproduces the
+    rated shaft power, efficiency, power factor and breakdown torque; cases that share
+    the nameplate (the points of a sweep) share one fit, another nameplate has its own."""
+    from recipsim.case import motor_losses
+
+    catalogue = CASES / "tles5.7kk3_r600a.toml"
+    motor_losses._fitted_circuit.cache_clear()
+    first = load_case(catalogue).motor_circuit
+    again = load_case(catalogue, {"operating_point.standard": "ASHRAE_LBP"}).motor_circuit
+    assert first is not None and again is first
+    assert motor_losses._fitted_circuit.cache_info().misses == 1
+    speed = 2900.0 * math.pi / 30.0  # the case's rated speed [rad/s]
+    rated_torque = 0.247  # [N m]
+    point = motor_operating_point(first, speed)
+    assert point.shaft_power == pytest.approx(rated_torque * speed, rel=1e-8)
+    assert point.efficiency == pytest.approx(0.7314, rel=1e-8)
+    assert point.power_factor == pytest.approx(0.60, rel=1e-8)
+    assert motor_breakdown(first)[1] == pytest.approx(0.54, rel=1e-8)
+    other = load_case(catalogue, {"motor.rated_power_factor": 0.62}).motor_circuit
+    assert other != first
+    assert motor_losses._fitted_circuit.cache_info().misses == 2
 
 
 def test_motor_circuit_from_its_values(tmp_path):

@@ -1,21 +1,18 @@
-"""What recipsim needs to know about CoolProp without importing it.
+"""What recipsim needs to know about CoolProp: its version and a fluid's constants.
 
-``import CoolProp`` loads the whole fluid library (about 2 s). A run with
-``properties = "table"`` gets its states from a cached table, so it should not pay
-that: the CoolProp version (part of every cache key) comes from the package metadata,
-and a fluid's constants (temperature and pressure limits, critical point, gas
-constant) from a small cache filled by CoolProp the first time a fluid is used.
+The CoolProp version (part of every cache key) comes from the package metadata, without
+importing CoolProp. A fluid's constants (temperature and pressure limits of the equation
+of state, critical point, gas constant) come from CoolProp's HEOS backend
+(:func:`coolprop_fluid_constants`); each cached property table stores them with its
+data, and :func:`recipsim.physics.thermo.property_table_cache.fluid_constants` reads them
+from there when a table of the fluid is cached.
 """
 
 from __future__ import annotations
 
-from dataclasses import asdict, dataclass
-from functools import cache, lru_cache
+from dataclasses import dataclass
+from functools import lru_cache
 from importlib import metadata
-from pathlib import Path
-
-from recipsim.cache_dirs import cache_dir
-from recipsim.physics.json_cache import read_record, write_record
 
 
 @lru_cache(maxsize=1)
@@ -60,7 +57,14 @@ class FluidConstants:
     gas_constant: float
 
 
-def _from_coolprop(coolprop_name: str) -> FluidConstants:
+def coolprop_fluid_constants(coolprop_name: str) -> FluidConstants:
+    """The constants of a fluid from CoolProp's HEOS backend (imports CoolProp).
+
+    Raises
+    ------
+    ValueError
+        If CoolProp does not know the fluid.
+    """
     import CoolProp.CoolProp as CP
 
     state = CP.AbstractState("HEOS", coolprop_name)  # ValueError for an unknown fluid
@@ -76,35 +80,3 @@ def _from_coolprop(coolprop_name: str) -> FluidConstants:
         molar_mass=molar_mass,
         gas_constant=state.gas_constant() / molar_mass,
     )
-
-
-@cache
-def fluid_constants(coolprop_name: str) -> FluidConstants:
-    """The constants of a CoolProp fluid, from the cache or from CoolProp.
-
-    The cache file (``fluid_constants/<CoolProp version>/<name>.json``) is written
-    atomically the first time a fluid is asked for; an unreadable, malformed or tampered
-    one (another fluid, missing or extra keys, values that are not finite numbers) is
-    recomputed and replaced.
-
-    Raises
-    ------
-    ValueError
-        If CoolProp does not know the fluid.
-    """
-    safe = "".join(c if c.isalnum() else "_" for c in coolprop_name)
-    path = cache_dir() / "fluid_constants" / coolprop_version() / f"{safe}.json"
-    cached = _read_constants(path, coolprop_name)
-    if cached is not None:
-        return cached
-    constants = _from_coolprop(coolprop_name)
-    write_record(path, asdict(constants))
-    return constants
-
-
-def _read_constants(path: Path, coolprop_name: str) -> FluidConstants | None:
-    """The cached constants, or None if the file is missing, malformed or not this fluid's."""
-    data = read_record(path, FluidConstants.__dataclass_fields__, ("coolprop_name",))
-    if data is None or data["coolprop_name"] != coolprop_name:
-        return None
-    return FluidConstants(**data)

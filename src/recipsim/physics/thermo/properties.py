@@ -3,7 +3,7 @@
 The compiled integrator calls a *first-class function* ``props(T, rho) -> status``
 that fills a shared buffer (layout below) with the properties of the cylinder gas.
 For ``properties = "heos"`` that function is a C callback into one reused CoolProp
-``AbstractState`` (``DmassT`` inputs, about 1.7 us a call from compiled code); it is
+``AbstractState`` (``DmassT`` inputs); it is
 passed to the compiled code as an argument, so the compiled integrator stays in
 numba's on-disk cache.
 
@@ -32,7 +32,6 @@ import numpy as np
 from numba import types
 from numba.extending import typeof_impl
 
-from recipsim.physics.thermo.coolprop_info import fluid_constants
 from recipsim.physics.thermo.property_slots import (
     N_PROPS,
     PROP_CONDUCTIVITY,
@@ -193,7 +192,7 @@ class HeosProperties(types.WrapperAddressProtocol):
 def _typeof_properties(val: HeosProperties, c: Any) -> types.FunctionType:
     """numba's type of a property callback: :data:`PROPS_TYPE`, made once. numba's own
     rule for a function-address object builds a new ``FunctionType`` from its signature
-    at every compiled call it is passed to (about 8 us, a few calls per revolution)."""
+    at every compiled call it is passed to (a few calls per revolution)."""
     return PROPS_TYPE
 
 
@@ -260,22 +259,24 @@ def _coolprop_callback(
     (called at the first state), and a getter of its ``AbstractState`` (``None`` until
     loaded). ``interrupted[0]`` is set by a Ctrl-C caught inside the callback.
     """
-    constants = fluid_constants(coolprop_name)
-    r_gas, t_crit = constants.gas_constant, constants.t_crit
-    # CoolProp (about 2 s to import) is loaded at the first call: with a property
-    # table in the buffer's tail the compiled code may never need it
+    # CoolProp is loaded at the first call (with the fluid's gas constant and critical
+    # temperature): with a property table in the buffer's tail the compiled code may
+    # never need it
     state: Any = None
     sat: Any = None
     dmasst = i_p = i_t = i_d = twophase = 0
+    r_gas = t_crit = 0.0
 
     def load_coolprop() -> None:
-        nonlocal state, sat, dmasst, i_p, i_t, i_d, twophase
+        nonlocal state, sat, dmasst, i_p, i_t, i_d, twophase, r_gas, t_crit
         import CoolProp.CoolProp as CP
 
         state = CP.AbstractState(backend, coolprop_name)
         sat = CP.AbstractState(backend, coolprop_name)
         dmasst, twophase = CP.DmassT_INPUTS, CP.iphase_twophase
         i_p, i_t, i_d = CP.iP, CP.iT, CP.iDmass
+        r_gas = state.gas_constant() / state.molar_mass()  # [J/(kg K)]
+        t_crit = state.T_critical()  # [K]
 
     def callback(temperature: float, density: float) -> int:
         try:

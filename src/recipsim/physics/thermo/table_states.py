@@ -4,8 +4,8 @@ without CoolProp.
 With ``properties = "table"`` the integration reads a cached table
 (:mod:`.property_table`); this module answers the few point-state questions around it
 (suction and plenum states, the isentropic discharge, saturation, the liquid line,
-the discharge temperature) from the same table, so that a run need not import CoolProp
-(about 2 s). :class:`TableFluid` has the interface of :class:`recipsim.physics.thermo.fluid.Fluid`
+the discharge temperature) from the same table, so that a run need not import CoolProp.
+:class:`TableFluid` has the interface of :class:`recipsim.physics.thermo.fluid.Fluid`
 and hands every question the table cannot answer (liquid and two-phase states other
 than the ones below, near-critical or out-of-table states, pseudo-pure mixtures'
 saturation) to a HEOS :class:`~recipsim.physics.thermo.fluid.Fluid` created on first need.
@@ -16,7 +16,7 @@ How each answer is obtained:
   of :func:`.property_table.table_props`.
 * entropy: integrated from an anchor state whose HEOS entropy the table stores, along
   the anchor isotherm and then the state's isochore (:mod:`.table_entropy`: sums
-  computed once per table, about 1 us a state).
+  computed once per table).
 * ``(p, T)``, ``(p, h)``, ``(p, s)``, ``(rho, s)``: Newton on ``(T, ln rho)`` with the
   table's derivatives, to a relative residual of 1e-12, compiled
   (:mod:`.table_solves`): one compiled call a state.
@@ -34,13 +34,11 @@ How each answer is obtained:
   shipped rating points 0.0004-0.11 J/kg (ASHRAE LBP) and 0.5 J/kg (R32, AHRI). The
   second-order expansion this replaced (estimate ``t2^2 / t1``, 3-7 times its true
   error) sent R290's ASHRAE point, R32's AHRI point and R134a above 55 C of condensing
-  to HEOS, and with them a 2 s import of CoolProp into the run or the sweep worker.
+  to HEOS.
 * saturated liquid at a pressure (EN 12900's liquid): the saturation table at the
   table's saturation temperature.
 * the dense supercritical states of a transcritical gas-cooler exit (R744 at 90 bar and
-  35 C, 660 kg/m3) are outside the table: HEOS, whose liquid-line answers are kept on
-  disk (:mod:`.heos_answers`), so that the next run of the case does not import
-  CoolProp for them.
+  35 C, 660 kg/m3) are outside the table: HEOS.
 
 Accuracy: the table's (1e-5); :mod:`tests.test_table_states` measures every answer
 against HEOS.
@@ -49,12 +47,10 @@ against HEOS.
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
 from typing import TYPE_CHECKING
 
 import numpy as np
 
-from recipsim.physics.thermo.heos_answers import HeosAnswers
 from recipsim.physics.thermo.properties import (
     PROP_CONDUCTIVITY,
     PROP_QUALITY,
@@ -152,16 +148,14 @@ class TableFluid:
         self.critical_temperature = critical_temperature
         self.critical_pressure = critical_pressure
         # one buffer, its transport flag set for the calls that ask for transport
-        # properties only (:meth:`transport`): a second 11 MB copy of the table cost a
-        # run 2-25 ms of allocation and page faults
+        # properties only (:meth:`transport`) rather than a second copy of the table
         self._buf = table.property_buffer(transport=False)
         #: the entropy sums of the table (:func:`.table_entropy.table_entropy_sums`: read
-        #: with a cached table, else computed, 5-15 ms)
+        #: with a cached table, else computed)
         self._entropy_tables = table_entropy_sums(table, self._buf)
         #: a state filled by the compiled solves (:data:`.table_solves.STATE`)
         self._out = np.full(N_STATE, math.nan)
         self._heos: Fluid | None = None
-        self._answers: HeosAnswers | None = None
         # pseudo-pure mixtures have no QT saturation data (NaN rows): their saturation
         # questions go to HEOS
         t_mid = 0.5 * (table.header(H_TS0) + table.header(H_TSAT_MAX))
@@ -217,7 +211,7 @@ class TableFluid:
 
     def enthalpy_pt(self, pressure: float, temperature: float) -> tuple[float, float, float]:
         """Vapour enthalpy [J/kg], c_p [J/(kg K)] and density [kg/m3] at (p [Pa], T [K]),
-        from the table without the entropy (about 1 us); HEOS where it has no data."""
+        from the table without the entropy; HEOS where it has no data."""
         h, cp, density = table_vapour_pt(pressure, temperature, self.gas_constant, self._buf)
         if not math.isfinite(density):
             return self.heos().enthalpy_pt(pressure, temperature)
@@ -344,11 +338,7 @@ class TableFluid:
                 raise TableMiss  # the expansion is not accurate enough here
             return u_l + p_sat * v_l + d1 * dp + t2 + t3
         except TableMiss:
-            return self._remembered(
-                "liquid_enthalpy",
-                (pressure, temperature),
-                lambda: self.heos().liquid_enthalpy(pressure, temperature),
-            )
+            return self.heos().liquid_enthalpy(pressure, temperature)
 
     def saturated_liquid_enthalpy(self, pressure: float) -> float:
         """Specific enthalpy [J/kg] of saturated liquid (bubble point) at ``pressure`` [Pa]:
@@ -361,21 +351,4 @@ class TableFluid:
             )
             return u_l + p_sat * v_l + d1 * (pressure - p_sat)
         except TableMiss:
-            return self._remembered(
-                "saturated_liquid_enthalpy",
-                (pressure,),
-                lambda: self.heos().saturated_liquid_enthalpy(pressure),
-            )
-
-    def _remembered(
-        self, question: str, inputs: tuple[float, ...], ask: Callable[[], float]
-    ) -> float:
-        """HEOS's answer, kept on disk for the next run (:mod:`.heos_answers`); a kept
-        answer counts as an HEOS call."""
-        if self._answers is None:
-            self._answers = HeosAnswers(self.name)
-        calls = self.heos_calls
-        value = self._answers.answer(question, inputs, ask)
-        if self.heos_calls == calls:  # kept: ask() (and so heos()) was not called
-            self.heos_calls += 1
-        return value
+            return self.heos().saturated_liquid_enthalpy(pressure)

@@ -19,9 +19,10 @@ import numpy as np
 import pytest
 
 from recipsim.cache_dirs import check_private, private_dir
-from recipsim.physics.thermo.coolprop_info import fluid_constants
+from recipsim.physics.thermo.coolprop_info import FluidConstants, coolprop_fluid_constants
+from recipsim.physics.thermo.fluid import Fluid
 from recipsim.physics.thermo.property_table import TableResolution
-from recipsim.physics.thermo.property_table_cache import load_property_table
+from recipsim.physics.thermo.property_table_cache import fluid_constants, load_property_table
 
 COARSE = TableResolution(dt=4.0, dx=0.16, dt_sat=1.0)
 R600A = ("Isobutane", 220.0, 400.0)
@@ -110,31 +111,60 @@ def test_a_table_without_checksum_or_with_the_wrong_shape_is_rebuilt(cache):
         assert not load_property_table(*R600A, COARSE).from_cache
 
 
-@pytest.mark.parametrize(
-    "content",
-    [
-        "garbage{",
-        "[1, 2, 3]",
-        '{"coolprop_name": "R134a"}',
-        "WRONG_TYPES",
-        "NAN",
-        "OTHER_FLUID",
-    ],
-)
-def test_malformed_fluid_constants_are_recomputed(cache, content):
-    good = fluid_constants("R134a")
-    path = next((cache / "fluid_constants").rglob("R134a.json"))
-    data = json.loads(path.read_text())
-    if content == "WRONG_TYPES":
-        content = json.dumps({**data, "t_crit": "374 K"})
-    elif content == "NAN":
-        content = json.dumps({**data, "p_crit": float("nan")})
-    elif content == "OTHER_FLUID":
-        content = json.dumps({**data, "coolprop_name": "R32"})
-    path.write_text(content)
+def test_fluid_constants_are_read_from_a_cached_table_of_the_fluid(cache, monkeypatch):
+    """A table's file holds its fluid's constants (CoolProp's: limits, critical point, gas
+    constant), read back without asking CoolProp; a table built with another CoolProp
+    version is passed over, and CoolProp asked."""
+    from recipsim.physics.thermo import property_table_cache
+
+    load_property_table(*R600A, COARSE)
+    expected = coolprop_fluid_constants("Isobutane")
+    heos = Fluid("Isobutane")
+    assert expected.t_crit == heos.critical_temperature
+    assert expected.gas_constant == heos.gas_constant
+    asked: list[str] = []
+
+    def counted(name: str) -> FluidConstants:
+        asked.append(name)
+        return coolprop_fluid_constants(name)
+
+    monkeypatch.setattr(property_table_cache, "coolprop_fluid_constants", counted)
     fluid_constants.cache_clear()
-    assert fluid_constants("R134a") == good
-    assert json.loads(path.read_text()) == data  # replaced by a good file
+    assert fluid_constants("Isobutane") == expected
+    assert asked == []
+    monkeypatch.setattr(property_table_cache, "coolprop_version", lambda: "0.0")
+    fluid_constants.cache_clear()
+    assert fluid_constants("Isobutane") == expected
+    assert asked == ["Isobutane"]
+    with pytest.raises(ValueError):
+        fluid_constants("NoSuchFluid")
+
+
+@pytest.mark.parametrize(
+    ("damage", "why"),
+    [
+        (lambda k: json.dumps({**k, "t_crit": 1.001 * k["t_crit"]}), "checksum does not match"),
+        (lambda k: json.dumps({**k, "gas_constant": "143 J/(kg K)"}), "checksum does not match"),
+        (lambda k: json.dumps({n: v for n, v in k.items() if n != "p_crit"}), "constants are"),
+        (lambda k: "not json{", "unreadable"),
+    ],
+    ids=["altered", "text", "missing", "malformed"],
+)
+def test_damaged_fluid_constants_in_a_table_file_are_not_used(cache, damage, why):
+    """Constants edited in a table's file are passed over (CoolProp's used instead), and
+    the table is rebuilt with a warning when it is loaded."""
+    path = load_property_table(*R600A, COARSE).path
+    with np.load(path, allow_pickle=False) as npz:
+        stored = json.loads(str(npz["constants"]))
+    _rewrite(path, constants=damage(stored))
+    fluid_constants.cache_clear()
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # passed over without a warning
+        assert fluid_constants("Isobutane") == coolprop_fluid_constants("Isobutane")
+    with pytest.warns(UserWarning, match=why):
+        assert not load_property_table(*R600A, COARSE).from_cache
+    fluid_constants.cache_clear()
+    assert fluid_constants("Isobutane") == FluidConstants(**stored)  # the rebuilt file's
 
 
 def test_every_cache_follows_xdg_cache_home_with_private_directories(tmp_path):

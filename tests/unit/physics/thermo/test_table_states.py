@@ -22,10 +22,9 @@ import pytest
 
 from helpers import REFERENCE
 from recipsim.case.refrigerant import load_refrigerant
-from recipsim.physics.thermo.coolprop_info import coolprop_version, fluid_constants
 from recipsim.physics.thermo.fluid import Fluid
 from recipsim.physics.thermo.property_table import H_TMAX
-from recipsim.physics.thermo.property_table_cache import load_property_table
+from recipsim.physics.thermo.property_table_cache import fluid_constants, load_property_table
 from recipsim.physics.thermo.table_states import TableFluid
 
 C = 273.15
@@ -176,10 +175,11 @@ def test_supercritical_and_liquid_questions_go_to_heos():
 
 
 def test_run_with_table_properties_does_not_import_coolprop(tmp_path):
-    """The point of the table path: `recipsim run` without CoolProp's 2 s import.
+    """The point of the table path: `recipsim run` without importing CoolProp.
 
     Runs the shipped default case (table properties) in a fresh interpreter with a warm
-    cache and checks that CoolProp was never imported and the results match a HEOS run.
+    cache (the fluid's constants read from its table's file) and checks that CoolProp was
+    never imported and the results match a HEOS run.
     """
     script = f"""
 import json, sys
@@ -191,7 +191,8 @@ print(json.dumps({{"coolprop": "CoolProp" in sys.modules,
                   "power": run.row["indicated_power [W]"],
                   "t_dis": run.row["discharge_temperature [K]"]}}))
 """
-    # first run fills the caches (table, fluid constants, numba); the second is timed
+    # the first run fills the caches (table with the fluid's constants, numba); the second
+    # is checked
     for _ in range(2):
         out = subprocess.run(
             [sys.executable, "-c", script], capture_output=True, text=True, check=True
@@ -206,27 +207,6 @@ print(json.dumps({{"coolprop": "CoolProp" in sys.modules,
     assert _rel(table_run["capacity"], heos_run["cooling_capacity [W]"]) < 1e-5
     assert _rel(table_run["power"], heos_run["indicated_power [W]"]) < 1e-6
     assert abs(table_run["t_dis"] - heos_run["discharge_temperature [K]"]) < 1e-4
-
-
-def test_fluid_constants_are_cached_by_coolprop_version(tmp_path, monkeypatch):
-    monkeypatch.setenv("RECIPSIM_CACHE", str(tmp_path))
-    fluid_constants.cache_clear()
-    try:
-        k = fluid_constants("R134a")
-        files = list((tmp_path / "fluid_constants" / coolprop_version()).glob("*.json"))
-        assert [f.name for f in files] == ["R134a.json"]
-        assert json.loads(files[0].read_text())["t_crit"] == k.t_crit
-        heos = Fluid("R134a")
-        assert k.t_crit == heos.critical_temperature
-        assert k.gas_constant == heos.gas_constant
-        # a corrupt file is recomputed
-        files[0].write_text("{not json")
-        fluid_constants.cache_clear()
-        assert fluid_constants("R134a") == k
-        with pytest.raises(ValueError):
-            fluid_constants("NoSuchFluid")
-    finally:
-        fluid_constants.cache_clear()
 
 
 def _vapour_states(table: TableFluid, heos: Fluid):
@@ -314,8 +294,7 @@ def test_pseudo_pure_saturation_goes_to_heos():
 def test_rating_points_of_shipped_cases_do_not_import_coolprop():
     """R290 at the ASHRAE point (the liquid line at 22 K of subcooling) and the
     catalogue's R600a compressor rated with saturated liquid (EN 12900): both runs are
-    answered by the table, so neither imports CoolProp (2 s a process; in a sweep, 2 s
-    a worker)."""
+    answered by the table, so neither imports CoolProp (nor does a sweep's worker)."""
     cases = REFERENCE.parent
     script = f"""
 import json, sys
