@@ -2,9 +2,9 @@
 
 Output directories are also *guarded*: recipsim only ever replaces a directory that it
 wrote itself (it carries :data:`MARKER`), or an empty one, and only at a path inside the
-directory the user pointed to (:func:`output_dir`). A name that would lead elsewhere
-(``""``, ``"."``, ``".."``, ``"a/b"``, an absolute path) is refused before anything is
-written (:func:`checked_name`).
+directory the user pointed to. A name that would lead elsewhere (``""``, ``"."``,
+``".."``, ``"a/b"``, an absolute path) is refused before anything is written
+(:func:`checked_name`).
 """
 
 from __future__ import annotations
@@ -58,32 +58,6 @@ def name_from_stem(stem: str) -> str:
     """A safe default name from a file name's stem (other characters become ``_``)."""
     name = re.sub(r"[^A-Za-z0-9._-]", "_", stem).lstrip(".")[:MAX_NAME_LENGTH]
     return name or "case"
-
-
-def output_dir(parent: Path, name: str, file: str = "--out") -> Path:
-    """The output directory ``parent/name``, checked to be replaceable by recipsim.
-
-    Parameters
-    ----------
-    parent : Path
-        The directory the user pointed to (``--out``); created if missing.
-    name : str
-        A name checked by :func:`checked_name`.
-    file : str
-        Where ``parent`` came from, for messages.
-
-    Raises
-    ------
-    CaseError
-        ``parent`` exists and is not a directory, or ``parent/name`` exists and is not
-        an empty directory or one written by recipsim.
-    """
-    parent = normalised(parent)
-    if parent.exists() and not parent.is_dir():
-        raise CaseError(str(parent), file, "exists and is not a directory")
-    target = parent / checked_name(name, file)
-    check_replaceable(target)
-    return target
 
 
 def normalised(path: Path | str) -> Path:

@@ -324,7 +324,7 @@ def test_cli_exit_status_follows_the_expectations(tmp_path: Path) -> None:
 
 def test_a_failing_case_is_a_row(monkeypatch: pytest.MonkeyPatch) -> None:
     # a solver failure and an internal error both become "failed" rows, never exceptions
-    import recipsim.pipeline
+    import recipsim.studies.check.judge as judge
     from recipsim.errors import SolverError
     from recipsim.studies.check.judge import check_case
 
@@ -335,10 +335,10 @@ def test_a_failing_case_is_a_row(monkeypatch: pytest.MonkeyPatch) -> None:
         raise ZeroDivisionError("float division by zero")
 
     expect_failure = Expectation(expected="failed", message=r"crank angle \d+")
-    monkeypatch.setattr(recipsim.pipeline, "simulate_case", solver_failure)
+    monkeypatch.setattr(judge, "simulate_case", solver_failure)
     row = check_case(REFERENCE, expect_failure)
     assert (row.outcome, row.matches) == ("failed", True)
-    monkeypatch.setattr(recipsim.pipeline, "simulate_case", bug)
+    monkeypatch.setattr(judge, "simulate_case", bug)
     row = check_case(REFERENCE, Expectation())
     assert row.outcome == "failed" and not row.matches
     assert row.message.startswith("internal error ZeroDivisionError")

@@ -112,31 +112,6 @@ def _overridden_raw(
     return file, texts, apply_overrides(raw, texts, file), text
 
 
-def load_case_settings(
-    path: str | Path,
-    overrides: Mapping[str, Any] | Sequence[str] | None = None,
-    *,
-    allow_external_paths: bool = False,
-) -> tuple[Options, SolverSettings]:
-    """The ``[options]`` and ``[solver]`` tables of a case, read, overridden and
-    validated as :func:`load_case` does, without the rest of the case: no refrigerant
-    properties, no property table (what a process needs to know which compiled solver a
-    case runs, :mod:`recipsim.results.compile_ahead`). The options are those of the case
-    file; :func:`load_case` may complete them from the mechanism (the friction model).
-
-    Raises
-    ------
-    CaseError
-        With the file, the key and what is allowed.
-    """
-    from recipsim.case.builders import solver_settings
-    from recipsim.case.schema import read_table
-
-    file, _, raw, _ = _overridden_raw(path, overrides, allow_external_paths)
-    options = Options(**read_table(raw.get("options"), OPTION_SPEC, file, "options"))
-    return options, solver_settings(raw.get("solver"), file)
-
-
 __all__ = [
     "GEOMETRY_SPEC",
     "HEADER_SPEC",
@@ -161,7 +136,6 @@ __all__ = [
     "apply_overrides",
     "case_from_dict",
     "load_case",
-    "load_case_settings",
     "override",
     "override_texts",
     "parse_override",

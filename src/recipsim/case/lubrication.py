@@ -29,6 +29,12 @@ from recipsim.case.schema import Described, DescribedSpec
 from recipsim.case.table_reader import TableReader
 from recipsim.case.units import to_si
 from recipsim.errors import CaseError
+from recipsim.physics.lubricant import DEFAULT_OIL, fit_vogel, fit_walther, spindle_oil
+from recipsim.physics.mechanics.journal import (
+    DEFAULT_CONTACT_FILM,
+    DEFAULT_CONTACT_STIFFNESS,
+    DEFAULT_FRICTION_COEFFICIENT,
+)
 
 #: Default film temperature [K] (60 C).
 DEFAULT_FILM_TEMPERATURE = 333.15
@@ -162,8 +168,6 @@ _OIL_NAMES = ("iso_vg10", "spindle_oil")
 def _named_oil(name: str) -> Any:
     """The shipped oil called ``name`` (one of ``_OIL_NAMES``); the spindle oil's Vogel
     fit runs only when it is asked for."""
-    from recipsim.physics.lubricant import DEFAULT_OIL, spindle_oil
-
     return DEFAULT_OIL if name == "iso_vg10" else spindle_oil()
 
 
@@ -185,7 +189,6 @@ def parse_oil(data: Any, file: str) -> OilSpec:
         if extra:
             raise CaseError(file, t.key(sorted(extra)[0]), "needs oil.law (vogel or walther)")
         return OilSpec(_named_oil(name), temperature)
-    from recipsim.physics.lubricant import fit_vogel, fit_walther
 
     law = t.choice("law", ("vogel", "walther"))
     label = str(t.data.get("name", "oil of the case"))
@@ -220,12 +223,6 @@ def parse_film(
 
     ``diameter`` and ``length`` given here (the piston film) are not read from the table.
     """
-    from recipsim.physics.mechanics.journal import (
-        DEFAULT_CONTACT_FILM,
-        DEFAULT_CONTACT_STIFFNESS,
-        DEFAULT_FRICTION_COEFFICIENT,
-    )
-
     spec = FILM_SPEC
     if diameter is None:
         diameter = t.described(spec, "diameter")

@@ -26,7 +26,8 @@ from recipsim.case.files import read_toml, shipped_dir
 from recipsim.case.schema import Field, Spec, Text, check_keys, read_table
 from recipsim.errors import CaseError
 from recipsim.physics.thermo.fluid import Fluid
-from recipsim.physics.thermo.property_table_cache import fluid_constants
+from recipsim.physics.thermo.property_table_cache import fluid_constants, load_property_table
+from recipsim.physics.thermo.table_states import TableFluid
 
 if TYPE_CHECKING:
     from recipsim.physics.thermo.table_states import TableFluid
@@ -217,8 +218,6 @@ def _read_refrigerant_file(path: Path) -> RefrigerantSpec:
 
 @cache
 def _table_fluid(coolprop_name: str, t_min: float, t_max: float) -> TableFluid:
-    from recipsim.physics.thermo.property_table_cache import load_property_table
-    from recipsim.physics.thermo.table_states import TableFluid
 
     table = load_property_table(coolprop_name, t_min, t_max)
     constants = fluid_constants(coolprop_name)

@@ -7,7 +7,7 @@ writes ``work_precision.csv``, ``work_precision.png`` and ``bench.json`` to
 the cheapest rung within 1e-3 and its speed-up over the pure-Python baseline.
 
 Exit status: 0 done (whatever the rungs' statuses); 1 the reference failed or did not
-converge; 2 invalid case or option. Nothing heavy is imported at module level.
+converge; 2 invalid case or option.
 """
 
 from __future__ import annotations
@@ -19,7 +19,30 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
+from recipsim.case.load import load_case
 from recipsim.cli.options import add_common_options, exit_status, positive_int
+from recipsim.errors import SolverError
+from recipsim.report.case_report import report_dir
+from recipsim.studies.bench.baseline import run_baseline
+from recipsim.studies.bench.errors import error_columns
+from recipsim.studies.bench.ladder import (
+    Rung,
+    build_ladder,
+    reference_overrides,
+    select_rungs,
+    self_check_overrides,
+)
+from recipsim.studies.bench.measure import OK, run_rung
+from recipsim.studies.bench.report import (
+    CPU,
+    WALL,
+    console_table,
+    outcome_row,
+    speedup,
+    table,
+    write_bench,
+)
+from recipsim.studies.bench.system import machine_info
 
 DEFAULT_OUT = Path("reports/bench")
 #: Baseline rungs repeat at most this often (each takes seconds to minutes).
@@ -86,8 +109,6 @@ def add_bench_parser(sub: Any) -> argparse.ArgumentParser:
 def default_out(case_name: str, overrides: list[str], parent: Path = DEFAULT_OUT) -> Path:
     """``<parent>/<case>`` or, with overrides, ``<parent>/<case>+<digest>``, checked to be
     replaceable (:func:`recipsim.report.case_report.report_dir`)."""
-    from recipsim.report.case_report import report_dir
-
     return report_dir(parent, case_name, overrides)
 
 
@@ -97,10 +118,6 @@ def run_bench_command(args: argparse.Namespace, argv: list[str] | None) -> int:
 
 
 def _bench(args: argparse.Namespace, argv: list[str] | None) -> int:
-    from recipsim.case.load import load_case
-    from recipsim.studies.bench.ladder import build_ladder, select_rungs
-    from recipsim.studies.bench.report import CPU, WALL, console_table, speedup, table, write_bench
-    from recipsim.studies.bench.system import machine_info
 
     say = (lambda *a: None) if args.quiet else (lambda *a: print(*a, flush=True))
     base = load_case(args.case, args.overrides)
@@ -116,11 +133,6 @@ def _bench(args: argparse.Namespace, argv: list[str] | None) -> int:
     by = CPU if args.rank_by == "cpu" else WALL
     result = speedup(frame, by=by)
     meta["result"] = result
-    if not args.quick:
-        from recipsim.studies.bench.startup import measure_startup
-
-        meta["startup"] = measure_startup(args.case, list(args.overrides))
-        say(_startup_line(meta["startup"]))
     meta["machine_end"] = machine_info()
     meta["elapsed [s]"] = time.time() - started
     title = f"recipsim bench {base.name} {' '.join(args.overrides)}".strip()
@@ -135,8 +147,6 @@ def _bench(args: argparse.Namespace, argv: list[str] | None) -> int:
 
 def _meta(args: argparse.Namespace, argv: list[str] | None, case_name: str) -> dict[str, Any]:
     """What ``bench.json`` records of the command and the machine before the rungs run."""
-    from recipsim.studies.bench.system import machine_info
-
     return {
         "case": str(args.case),
         "case_name": case_name,
@@ -164,10 +174,6 @@ def _reference(
     say: Callable[..., None],
 ) -> Any:
     """The tight-tolerance reference every rung is compared with, recorded in ``meta``."""
-    from recipsim.errors import SolverError
-    from recipsim.studies.bench.ladder import Rung, reference_overrides
-    from recipsim.studies.bench.measure import OK, run_rung
-
     say(f"reference: {' '.join(reference_overrides())}")
     ref = run_rung(
         args.case,
@@ -201,10 +207,6 @@ def _self_check(
     say: Callable[..., None],
 ) -> None:
     """The reference against a tighter one still: how far its own error goes."""
-    from recipsim.studies.bench.errors import error_columns
-    from recipsim.studies.bench.ladder import Rung, self_check_overrides
-    from recipsim.studies.bench.measure import run_rung
-
     check = run_rung(
         args.case,
         args.overrides,
@@ -238,10 +240,6 @@ def _run_ladder(
     say: Callable[..., None],
 ) -> list[dict[str, Any]]:
     """One row per rung: its timings and its errors against the reference."""
-    from recipsim.studies.bench.baseline import run_baseline
-    from recipsim.studies.bench.measure import run_rung
-    from recipsim.studies.bench.report import outcome_row
-
     min_time = 0.0 if args.quick else MIN_TIME
     rows = []
     for rung in ladder:
@@ -273,18 +271,6 @@ def _run_ladder(
             + (f"  ({outcome.message[:100]})" if outcome.message else "")
         )
     return rows
-
-
-def _startup_line(startup: dict[str, Any]) -> str:
-    """The start-up measured by :func:`.startup.measure_startup`, in one line."""
-    return (
-        f"start-up of `recipsim run` (median of {startup['repeats']} fresh interpreters): "
-        f"{startup['startup [s]']:.2f} s wall, {startup['startup_cpu [s]']:.2f} s CPU "
-        f"(imports {startup['imports [s]']:.2f} s, case and model "
-        f"{startup['case_and_model [s]']:.2f} s, "
-        f"numba cache {startup['numba_cache_load [s]']:.2f} s; "
-        f"CoolProp {'imported' if startup['coolprop_imported'] else 'not imported'})"
-    )
 
 
 def _verdict(result: dict[str, Any]) -> str:

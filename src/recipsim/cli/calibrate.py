@@ -15,7 +15,13 @@ import math
 from pathlib import Path
 from typing import Any
 
+from recipsim.case.load import load_case
 from recipsim.cli.options import add_common_options, exit_status
+from recipsim.errors import CaseError
+from recipsim.report.case_report import report_dir
+from recipsim.studies.calibrate.fit import CalibrationError
+from recipsim.studies.calibrate.report import write_calibration
+from recipsim.studies.calibrate.run import calibrate_case
 
 
 def _rows(text: str) -> list[int]:
@@ -74,12 +80,6 @@ def add_calibrate_parser(sub: Any) -> None:
 
 
 def _calibrate(args: argparse.Namespace) -> int:
-    from recipsim.case.load import load_case
-    from recipsim.errors import CaseError
-    from recipsim.report.case_report import report_dir
-    from recipsim.studies.calibrate.fit import CalibrationError
-    from recipsim.studies.calibrate.report import write_calibration
-    from recipsim.studies.calibrate.run import calibrate_case
 
     case = load_case(args.case, args.overrides, allow_external_paths=args.allow_external_paths)
     try:

@@ -13,6 +13,7 @@ from __future__ import annotations
 import argparse
 from typing import Any
 
+from recipsim.case.shipped import KIND_FOLDERS, shipped_cases
 from recipsim.cli.options import exit_status
 
 #: ``--kind`` choices: the kinds of :data:`recipsim.case.shipped.KIND_FOLDERS` they list.
@@ -50,8 +51,6 @@ def run_cases_command(args: argparse.Namespace, argv: list[str] | None = None) -
 def print_cases(kind: str | None = None) -> int:
     """Print the table of shipped files (those of ``kind``, a key of
     :data:`KIND_CHOICES`, or all); returns 0."""
-    from recipsim.case.shipped import KIND_FOLDERS, shipped_cases
-
     kinds = (KIND_CHOICES[kind],) if kind else tuple(KIND_FOLDERS)
     rows = [("name", "kind", "description")]
     rows += [(c.name, c.kind, c.description) for c in shipped_cases(kinds)]

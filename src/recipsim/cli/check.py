@@ -15,8 +15,12 @@ import sys
 from pathlib import Path
 from typing import Any
 
+from recipsim.atomic import MAX_NAME_LENGTH, atomic_directory, name_from_stem
 from recipsim.case.files import shipped_path
 from recipsim.cli.options import add_common_options, exit_status, positive_int
+from recipsim.report.case_report import report_dir
+from recipsim.studies.check.run import run_check
+from recipsim.studies.check.table import format_table, write_check_csv
 
 
 def add_check_parser(sub: Any) -> argparse.ArgumentParser:
@@ -78,16 +82,10 @@ def run_check_command(args: argparse.Namespace, argv: list[str] | None = None) -
 
 def check_name(paths: list[Path]) -> str:
     """Name of a check's output directory: the checked folders' or files' names."""
-    from recipsim.atomic import MAX_NAME_LENGTH, name_from_stem
-
     return name_from_stem("_".join(Path(p).stem for p in paths))[:MAX_NAME_LENGTH]
 
 
 def _check(args: argparse.Namespace) -> int:
-    from recipsim.atomic import atomic_directory
-    from recipsim.report.case_report import report_dir
-    from recipsim.studies.check.run import run_check
-    from recipsim.studies.check.table import format_table, write_check_csv
 
     target = report_dir(args.out, check_name(args.paths), args.overrides)  # before running
 

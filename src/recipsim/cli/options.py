@@ -8,6 +8,8 @@ import sys
 from collections.abc import Callable
 from pathlib import Path
 
+from recipsim.errors import CaseError, RecipsimError
+
 
 def add_common_options(
     parser: argparse.ArgumentParser,
@@ -59,8 +61,6 @@ def exit_status(action: Callable[[], int], label: str = "") -> int:
     for failures of the environment (:class:`OSError`: disk full, read-only, no
     permission). ``label`` (e.g. the case file) prefixes the message of a failure.
     """
-    from recipsim.errors import CaseError, RecipsimError
-
     prefix = f"recipsim: {label}{': ' if label else ''}"
     try:
         return action()
@@ -89,18 +89,6 @@ def positive_int(text: str) -> int:
     if value < 1:
         raise argparse.ArgumentTypeError(f"must be at least 1, got {value}")
     return value
-
-
-def worker_counts(text: str) -> list[int]:
-    """argparse type: worker counts, ``"J"`` for 1..J or ``"1,2,4,8,16"`` for those counts
-    (``recipsim bench-system --jobs``)."""
-    parts = [part.strip() for part in text.split(",")]
-    if not all(part.isdigit() and int(part) >= 1 for part in parts):
-        raise argparse.ArgumentTypeError(
-            f"expected J or a comma-separated list of whole numbers >= 1, got {text!r}"
-        )
-    counts = [int(part) for part in parts]
-    return list(range(1, counts[0] + 1)) if len(counts) == 1 else sorted(set(counts))
 
 
 def positive_float(text: str) -> float:

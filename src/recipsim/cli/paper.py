@@ -32,7 +32,15 @@ from typing import Any
 
 import numpy as np
 
+from recipsim.case.load import load_case
 from recipsim.cli.options import add_common_options, exit_status
+from recipsim.model.build import build_model
+from recipsim.physics.mechanics.tabulated import PressureCurve
+from recipsim.report.case_report import report_dir
+from recipsim.results.tables import cycle_table
+from recipsim.solve.periodic import solve_periodic
+from recipsim.studies.paper import run_paper_study
+from recipsim.studies.paper_report import conclusion_three
 
 
 def add_paper_parser(sub: Any) -> None:
@@ -84,13 +92,6 @@ def add_paper_parser(sub: Any) -> None:
 
 def run_paper_command(args: argparse.Namespace) -> int:
     """Run the study for ``args.case``; returns the exit status."""
-    from recipsim.case.load import load_case
-    from recipsim.model.build import build_model
-    from recipsim.physics.mechanics.tabulated import PressureCurve
-    from recipsim.results.tables import cycle_table
-    from recipsim.solve.periodic import solve_periodic
-    from recipsim.studies.paper import run_paper_study
-
     external = args.allow_external_paths
     case = load_case(args.case, args.overrides, allow_external_paths=external)
     op = case.operating_point
@@ -109,7 +110,6 @@ def run_paper_command(args: argparse.Namespace) -> int:
             cycle["cylinder_pressure [Pa]"].to_numpy(),
         )
         source = "the cylinder pressure of the case on the rigid crank"
-    from recipsim.report.case_report import report_dir
 
     out = report_dir(args.out, case.name, args.overrides)  # checked before the study runs
     drive = case.options.drive if case.options.mechanics == "flexible" else "torque_profile"
@@ -132,8 +132,6 @@ def run_paper_command(args: argparse.Namespace) -> int:
     print("RMS bearing loads [N] (the layout of the paper's Table 1):")
     print(study.table1[rms].round(1).to_string(index=False))
     if study.hydrodynamic:
-        from recipsim.studies.paper_report import conclusion_three
-
         print(conclusion_three(study.table1))
     print(f"-> {out}")
     return 0

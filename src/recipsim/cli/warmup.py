@@ -19,7 +19,11 @@ import sys
 import time
 from typing import Any
 
+from recipsim.case.load import load_case
+from recipsim.case.refrigerant import case_fluid, load_refrigerant
 from recipsim.cli.options import exit_status
+from recipsim.pipeline import simulate_case
+from recipsim.solve.scene_entries import compile_entry, entry_name
 
 #: One revolution is enough to call, and so compile, every kernel of a scene.
 _ONE_REVOLUTION = {"solver.min_revolutions": 1, "solver.max_revolutions": 1}
@@ -80,10 +84,6 @@ def warmup(cases: list[str], refrigerants: list[str], verbose: bool = True) -> i
     CaseError
         An unknown case or refrigerant.
     """
-    from recipsim.case.load import load_case
-    from recipsim.case.refrigerant import case_fluid, load_refrigerant
-    from recipsim.pipeline import simulate_case
-    from recipsim.solve.scene_entries import compile_entry, entry_name
 
     def say(text: str) -> None:
         if verbose:

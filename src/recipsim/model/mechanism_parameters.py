@@ -9,6 +9,7 @@ import numpy as np
 
 from recipsim.case.mechanism_spec import CrankGeometry, MechanismSpec
 from recipsim.physics.mechanics import layout as lay
+from recipsim.physics.mechanics.journal_table import finite_journal_table
 from recipsim.physics.motor import MotorSpec
 
 #: Axis of each bearing (the linear law acts normal to it): rotor, eccentric and pin
@@ -188,8 +189,6 @@ def _finite_tables(spec: MechanismSpec) -> list[np.ndarray | None]:
 def _finite_table(length_over_diameter: float) -> np.ndarray:
     """The finite_journal table of one L/D, read (or built) once per process: the
     parameter array and the bearing-table array of every model built need it."""
-    from recipsim.physics.mechanics.journal_table import finite_journal_table
-
     table = finite_journal_table(length_over_diameter)
     table.flags.writeable = False
     return table

@@ -200,7 +200,7 @@ class Layout:
         index constants (``end.suction_mass_in`` for ``y[Q_MSUC_IN]``). The compiled
         code keeps the arrays: a named tuple of the coupled scene's 165 parameters
         makes a kernel that reads them 1.8 times slower and a call from Python 25 times
-        slower (``python -m recipsim.studies.bench.bundles``; docs/speed.md).
+        slower (``benchmarks/parameter_bundles.py`` in the source repository; docs/speed.md).
 
         Parameters
         ----------

@@ -18,6 +18,7 @@ import pandas as pd
 from matplotlib.figure import Figure
 from matplotlib.ticker import NullFormatter, ScalarFormatter
 
+from recipsim.physics.mechanics.layout import BEARING_NAMES
 from recipsim.report.figure_names import OVERLAY_NAMES
 from recipsim.report.mechanics_plots import (
     ANGLE_COLUMN,
@@ -184,8 +185,6 @@ def plot_bearing_overlay(cycles: Mapping[str, pd.DataFrame]) -> Figure | None:
     -------
     matplotlib.figure.Figure or None
     """
-    from recipsim.physics.mechanics.layout import BEARING_NAMES
-
     bearings = common_bearings(cycles, BEARING_NAMES)
     if not cycles or not bearings:
         return None

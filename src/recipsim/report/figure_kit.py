@@ -1,13 +1,6 @@
-"""What makes the report's figures and map plots cheap to draw: fewer tick objects, and
-one Axes drawn on in turn by figures of the same layout, many lines drawn as a few
-collections.
-
-Drawing a figure is mostly its axes: every tick is three lines and two texts, created
-anew for every new Axes, and every tick label is laid out and rendered glyph by glyph.
-Explicit locators keep the ticks an engineer reads (about five a side instead of up to
-ten; the crank angle every 90 deg), and :func:`clear_axes` lets figures of one layout
-share an Axes, its tick objects and its canvas's text cache instead of building them
-for each figure.
+"""Shared look of the report's figures and map plots: the ticks an engineer reads (about
+five a side, the crank angle every 90 deg), PNG options, and many lines of a map drawn
+as a few collections.
 """
 
 from __future__ import annotations
@@ -16,8 +9,7 @@ from typing import Any
 
 import numpy as np
 
-#: PNG compression of the report's figures: zlib level 1 writes a figure in a third of
-#: the default level's time (6) for files about 20 % larger.
+#: PNG compression of the report's figures (zlib level 1: fast, files slightly larger).
 PNG_OPTIONS = {"compress_level": 1}
 
 #: Most intervals between the major ticks of a linear axis.
@@ -46,44 +38,12 @@ def angle_axis(ax: Any) -> None:
     ax.set_xticks(ANGLE_TICKS)
 
 
-def clear_axes(ax: Any) -> None:
-    """Make ``ax`` as it was when created, keeping its tick objects, for the next figure
-    of the same layout: its data artists, legend, title, axis labels, scales (and so
-    locators and formatters), limits, grid and colour cycle are reset.
-
-    Cheaper than ``Axes.clear``, which rebuilds the axes and their ticks. The plotting
-    functions drawn in turn on one Axes must set what they use (title position and
-    size, ticks) themselves; the tests compare such figures with fresh ones pixel by
-    pixel.
-    """
-    from matplotlib import rcParams
-    from matplotlib.transforms import Bbox
-
-    for artist in (*ax.lines, *ax.patches, *ax.texts, *ax.collections, *ax.images):
-        artist.remove()
-    if ax.get_legend() is not None:
-        ax.get_legend().remove()
-    ax.set_xscale("linear")
-    ax.set_yscale("linear")
-    ax.dataLim.set(Bbox.null())
-    ax.ignore_existing_data_limits = True
-    ax.set_autoscale_on(True)
-    ax.set_prop_cycle(None)
-    ax.set_title("")
-    ax.set_xlabel("")
-    ax.set_ylabel("")
-    ax.grid(False, which="both")
-    ax.tick_params(which="both", grid_alpha=rcParams["grid.alpha"])
-
-
 def lines_as_collections(ax: Any, lines: list[tuple[dict[str, Any], Any, Any]]) -> None:
     """Lines of ``(style, x, y)`` (style: ``color``, ``ls``, ``marker``) drawn as one
     line collection and a marker collection per marker shape, as
     :meth:`~matplotlib.axes.Axes.plot` would draw each (width 1.2, markers of size 4 in
-    the line's colour), the markers over the lines; no legend entries.
-
-    A map of 1000 points has 100 lines a panel: a Line2D each cost about 2 ms to make
-    and draw, 0.2 s a one-panel map plot and 0.7 s the six panels of its bearing loads.
+    the line's colour), the markers over the lines; no legend entries: a map of
+    thousands of points draws its hundred lines a panel as one artist.
     """
     from matplotlib.collections import LineCollection
     from matplotlib.colors import to_rgba_array

@@ -5,6 +5,8 @@ from __future__ import annotations
 
 from collections.abc import Iterable
 
+from recipsim.errors import CaseError
+
 #: Names of the report's figures (file ``<name>.png``), in the order they are drawn;
 #: ``valves`` needs the simulated gas, ``bearing_loads`` the crank train's forces and
 #: ``orbits`` its flexible bearings, ``loss_breakdown`` the gas (the loss chain's waterfall),
@@ -36,8 +38,6 @@ def check_figure_names(names: Iterable[str], where: str = "--plots") -> tuple[st
     CaseError
         Naming an unknown figure and the allowed ones.
     """
-    from recipsim.errors import CaseError
-
     names = tuple(names)
     for name in names:
         if name not in FIGURE_NAMES:

@@ -16,8 +16,14 @@ from typing import Any
 import pandas as pd
 from matplotlib.figure import Figure
 
-from recipsim.report.figure_kit import PNG_OPTIONS, angle_axis, clear_axes, fewer_ticks
+from recipsim.report.figure_kit import PNG_OPTIONS, angle_axis, fewer_ticks
 from recipsim.report.figure_names import FIGURE_NAMES, TITLE_Y, check_figure_names
+from recipsim.report.mechanics_plots import (
+    film_bearings,
+    has_orbits,
+    plot_bearing_loads,
+    plot_orbits,
+)
 
 
 def _axes(ax: Any) -> tuple[Figure, Any]:
@@ -172,24 +178,18 @@ def save_cycle_figures(
     ``title`` (what was run: case, mechanics, drive, pressure source) heads every figure.
     ``only`` (names of :data:`FIGURE_NAMES`) draws just those of them that apply.
     Each figure is drawn and written before the next is built, with fixed margins
-    (:func:`fixed_margins`) and fast PNG compression (:data:`PNG_OPTIONS`); the
-    single-panel ones are drawn in turn on one Axes (:func:`clear_axes`).
+    (:func:`fixed_margins`).
     """
     from pathlib import Path
 
     directory = Path(directory)
     wanted = set(FIGURE_NAMES if only is None else check_figure_names(only))
     written = []
-    shared: Any = None  # the Axes of the single-panel figures
     for name, kind, make in _figure_makers(cycle, plenum):
         if name not in wanted:
             continue
         if kind == "single":
-            if shared is None:
-                shared = single_axes()
-            else:
-                clear_axes(shared)
-            fig = make(shared)
+            fig = make(single_axes())
         else:
             fig = make()
             if kind is not None:
@@ -202,8 +202,7 @@ def save_cycle_figures(
 
 
 def single_axes(figsize: tuple[float, float] = (6.4, 4.4)) -> Any:
-    """The Axes of a new one-panel figure in the fixed margins ``"single"``, for figures
-    drawn on it in turn (:func:`recipsim.report.figure_kit.clear_axes` between them)."""
+    """The Axes of a new one-panel figure in the fixed margins ``"single"``."""
     fig = Figure(figsize=figsize)
     ax = fig.add_subplot()
     fixed_margins(fig, "single")
@@ -229,13 +228,6 @@ def _figure_makers(
     if "suction_valve_lift [m]" in cycle:  # the gas is simulated (not a tabulated pressure)
         makers.append(("valves", "twin", lambda: plot_valves(cycle)))
     if "bearing_force_primary [N]" in cycle:
-        from recipsim.report.mechanics_plots import (
-            film_bearings,
-            has_orbits,
-            plot_bearing_loads,
-            plot_orbits,
-        )
-
         label = "flexible" if has_orbits(cycle) else "pinned"
         makers.append(("bearing_loads", "panels", lambda: plot_bearing_loads({label: cycle})))
         if label == "flexible":

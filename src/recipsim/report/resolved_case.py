@@ -42,6 +42,7 @@ from recipsim.case.motor import MOTOR_SPEC
 from recipsim.case.overrides import toml_literal
 from recipsim.case.schema import Field, Spec, read_table
 from recipsim.errors import CaseError
+from recipsim.physics.mechanics.layout import BEARING_NAMES
 from recipsim.version import __version__
 
 #: SI unit of each ``[mechanism.*]`` and ``[bearings.*]`` key written from the validated
@@ -207,8 +208,6 @@ def _pressure_curve(case: Case, table: Any, files: dict[str, bytes]) -> dict[str
 
 def _mechanism_objects(case: Case, table: str) -> dict[str, Any]:
     """The validated dataclass behind each sub-table of ``[mechanism]`` or ``[bearings]``."""
-    from recipsim.physics.mechanics.layout import BEARING_NAMES
-
     m = case.mechanism
     if table == "mechanism":
         return {"piston": m.piston, "connecting_rod": m.connecting_rod, "rotor": m.rotor}

@@ -39,6 +39,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from recipsim.model.plenum import isentropic_state
+from recipsim.model.scenes import named_state
 from recipsim.results.sampled import CycleColumns
 
 if TYPE_CHECKING:  # the figure processes read LOSS_COLUMNS without importing the solver
@@ -117,7 +118,6 @@ def loss_breakdown(
         dh_s_heated = fluid.state_ps(op.discharge_pressure, heated["s"])["h"] - heated["h"]
     else:
         dh_s_heated = dh_s_line
-    from recipsim.model.scenes import named_state
 
     end = named_state(model.scene, solution.final.y_end)  # type: ignore[union-attr]
     suction_flow = (end.suction_mass_in - end.suction_mass_out) * freq

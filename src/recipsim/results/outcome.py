@@ -29,7 +29,9 @@ from contextlib import contextmanager
 from typing import TYPE_CHECKING, Any
 
 from recipsim.errors import SolverError
+from recipsim.model.scenes import STATES, named_state
 from recipsim.results.sampled import CycleColumns, nan_max
+from recipsim.solve.residual import residual_reference
 
 if TYPE_CHECKING:
     from recipsim.solve.revolution import PeriodicSolution
@@ -125,8 +127,6 @@ def explained(stage: str) -> Iterator[None]:
 
 def delivered_mass(solution: PeriodicSolution) -> float:
     """Mass out through the discharge valve over the final revolution [kg] (gross)."""
-    from recipsim.model.scenes import named_state
-
     return float(named_state(solution.model.scene, solution.final.y_end).discharge_mass_out)
 
 
@@ -147,8 +147,6 @@ def no_delivery_closures(solution: PeriodicSolution, cycle: CycleColumns) -> dic
     to it the closure would read 1).
     """
     import numpy as np
-
-    from recipsim.model.scenes import named_state
 
     y = named_state(solution.model.scene, solution.final.y_end)
     m_suc = y.suction_mass_in - y.suction_mass_out
@@ -193,8 +191,6 @@ def drifting_states(solution: PeriodicSolution, count: int = 3) -> list[str]:
     residual reference, as ``"name 1.2e-03"``."""
     import numpy as np
 
-    from recipsim.solve.residual import residual_reference
-
     model = solution.model
     rev = solution.final
     ref = residual_reference(model, rev)
@@ -210,8 +206,6 @@ def drifting_states(solution: PeriodicSolution, count: int = 3) -> list[str]:
 def _state_names(model: Any) -> list[str]:
     """Names of the error-controlled states, from the scene's state table
     (:data:`recipsim.model.scenes.STATES`: ``gas_temperature``, ``mechanism_crank_speed``)."""
-    from recipsim.model.scenes import STATES
-
     entries = STATES[model.scene].entries
     return [entries[i].name if i < len(entries) else f"state {i}" for i in range(model.n_err)]
 

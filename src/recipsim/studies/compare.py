@@ -9,7 +9,7 @@ with NaN. Rows are ordered by group: operating point, gas, energy, mechanism, be
 (per bearing: RMS, peak, orbit radius), any quantity not known here ("other"), solver.
 
 The text columns of the summary rows (refrigerant, options) and the boolean
-``converged [-]`` go to ``cases.csv``, one row per case (:func:`cases_table`).
+``converged [-]`` go to ``cases.csv``, one row per case (:func:`case_records`).
 
 This module knows the summary's column names but nothing of how they are computed.
 """
@@ -281,13 +281,3 @@ def case_records(
         record.update({c: v for c, v in row.items() if not is_numeric(v)})
         records.append(record)
     return records
-
-
-def cases_table(
-    rows: Sequence[Mapping[str, Any]],
-    labels: Sequence[str],
-    extra: Sequence[Mapping[str, Any]] | None = None,
-) -> pd.DataFrame:
-    """:func:`case_records` as a DataFrame (the contents of ``cases.csv``): one row per
-    case, a column one case lacks empty for it."""
-    return pd.DataFrame.from_records(case_records(rows, labels, extra))

@@ -79,6 +79,7 @@ from recipsim.physics.mechanics.tabulated import PressureCurve
 from recipsim.studies.paper_hydrodynamic import DEFAULT_LAW, constant_curve, run_hydrodynamic
 from recipsim.studies.paper_linear_runs import flexible_runs, pinned_runs
 from recipsim.studies.paper_load_run import LoadRun
+from recipsim.studies.paper_report import readme, study_summary, write_figures
 from recipsim.studies.paper_runs import (
     HYDRODYNAMIC_RUNS,
     RUNS,
@@ -278,8 +279,6 @@ def write_paper_study(study: PaperStudy, out_dir: str | Path, *, plots: bool = T
     list of pathlib.Path
         The files written, as paths under ``out_dir``.
     """
-    from recipsim.studies.paper_report import readme, study_summary
-
     out_dir = Path(out_dir)
     with atomic_directory(out_dir) as tmp:
         names = ["table1.csv"]
@@ -297,6 +296,5 @@ def write_paper_study(study: PaperStudy, out_dir: str | Path, *, plots: bool = T
 
 
 def _write_figures(study: PaperStudy, directory: Path) -> list[Path]:
-    from recipsim.studies.paper_report import write_figures
 
     return write_figures(study, directory)

@@ -28,6 +28,7 @@ import numpy as np
 
 from recipsim.case.load import Case
 from recipsim.physics.mechanics.tabulated import PressureCurve
+from recipsim.pipeline import simulate_case
 from recipsim.studies.paper_load_run import LoadRun, tabulated_case
 
 #: Load configurations of the hydrodynamic column (the films bring their own damping,
@@ -121,8 +122,6 @@ def run_hydrodynamic(
     SolverError
         If an integration fails.
     """
-    from recipsim.pipeline import simulate_case
-
     runs: dict[str, HydrodynamicRun] = {}
     for config, curve in loads.items():
         run_case = hydrodynamic_case(

@@ -20,6 +20,10 @@ from recipsim.case.load import Case
 from recipsim.model.build import Model
 from recipsim.physics.mechanics.layout import BEARING_NAMES
 from recipsim.physics.mechanics.tabulated import PressureCurve
+from recipsim.results.tables import cycle_table, summary
+from recipsim.solve.drive import build_model_for
+from recipsim.solve.periodic import solve_periodic
+from recipsim.solve.shooting import solve_shooting
 
 
 @dataclass(frozen=True)
@@ -132,11 +136,6 @@ def solve_load(
     SolverError
         If an integration fails.
     """
-    from recipsim.results.tables import cycle_table, summary
-    from recipsim.solve.drive import build_model_for
-    from recipsim.solve.periodic import solve_periodic
-    from recipsim.solve.shooting import solve_shooting
-
     t0 = time.perf_counter()
     model = build_model_for(case)
     if start is not None:

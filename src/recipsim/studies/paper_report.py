@@ -12,6 +12,12 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
+from recipsim.report.mechanics_plots import (
+    plot_bearing_loads,
+    plot_drive_torque,
+    plot_orbits,
+    save_figure,
+)
 from recipsim.studies.paper_hydrodynamic import HYDRODYNAMIC_CONFIGURATIONS, JOURNALS
 from recipsim.studies.paper_runs import (
     CONFIGURATIONS,
@@ -34,13 +40,6 @@ def write_figures(study: PaperStudy, directory: Path) -> list[Path]:
     ``orbits.png`` (flexible runs), ``orbits_hydrodynamic.png`` (film journals inside
     their clearance circles, when the column was run), ``drive_torque.png``.
     """
-    from recipsim.report.mechanics_plots import (
-        plot_bearing_loads,
-        plot_drive_torque,
-        plot_orbits,
-        save_figure,
-    )
-
     c = study.cycles
     written = []
     for config in CONFIGURATIONS:

@@ -169,11 +169,6 @@ class HeosProperties(types.WrapperAddressProtocol):
     def signature(self) -> Any:
         return PROPS_SIGNATURE
 
-    @property
-    def coolprop_loaded(self) -> bool:
-        """Whether the callback has needed CoolProp (the table did not answer)."""
-        return self._coolprop_state() is not None
-
     def __call__(self, temperature: float, density: float) -> int:
         """Evaluate from Python (fills :attr:`buffer`), as the compiled code does: from
         the table in the buffer's tail where it answers, else HEOS."""

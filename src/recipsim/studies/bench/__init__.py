@@ -11,8 +11,6 @@ RMS error of the pressure trace. Modules:
 - :mod:`.measure`: one rung run in this process, timed, its compared quantities;
 - :mod:`.baseline`: the pure-Python ``solve_ivp`` baseline in a process without numba;
 - :mod:`.errors`: relative errors against the reference;
-- :mod:`.startup`: start-up of ``recipsim run`` in fresh interpreters (not with
-  ``--quick``), written to ``bench.json`` under ``startup``;
 - :mod:`.report`: ``work_precision.csv``, ``work_precision.png``, ``bench.json``;
 - :mod:`.command`: the ``recipsim bench`` subcommand.
 """

@@ -34,8 +34,22 @@ from typing import Any
 import numpy as np
 
 from recipsim.case.case import Case
+from recipsim.case.load import load_case
+from recipsim.errors import CaseError, RecipsimError
+from recipsim.results.tables import cycle_table, summary
+from recipsim.solve.drive import build_model_for
+from recipsim.studies.bench.errors import compared_quantities
+from recipsim.studies.bench.ivp import solve_periodic_ivp
 from recipsim.studies.bench.ladder import Rung, case_settings, fidelity
-from recipsim.studies.bench.measure import FAILED, OK, UNAVAILABLE, Outcome, load_rung
+from recipsim.studies.bench.measure import (
+    FAILED,
+    OK,
+    UNAVAILABLE,
+    UNCONVERGED,
+    Outcome,
+    load_rung,
+    pressure_trace,
+)
 
 #: Largest wall time of one baseline process [s].
 TIMEOUT = 3600.0
@@ -112,14 +126,6 @@ def _child(args: argparse.Namespace) -> dict[str, Any]:
     import time
 
     from numba.core import config as numba_config
-
-    from recipsim.case.load import load_case
-    from recipsim.errors import CaseError, RecipsimError
-    from recipsim.results.tables import cycle_table, summary
-    from recipsim.solve.drive import build_model_for
-    from recipsim.studies.bench.errors import compared_quantities
-    from recipsim.studies.bench.ivp import solve_periodic_ivp
-    from recipsim.studies.bench.measure import UNCONVERGED, pressure_trace
 
     if not getattr(numba_config, "DISABLE_JIT", False):
         return {"status": FAILED, "message": "the baseline must run with NUMBA_DISABLE_JIT=1"}

@@ -36,6 +36,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from recipsim.case.case import Case
+from recipsim.case.case_schema import SOLVER_SPEC
 from recipsim.case.overrides import parse_override
 from recipsim.errors import RecipsimError
 
@@ -80,8 +81,6 @@ SELF_CHECK_OVERRIDES = (
 def _revolutions_if_available() -> tuple[str, ...]:
     """``solver.periodic=revolutions`` where the option exists (the reference iterates
     revolutions, the plainest periodic solver), nothing where it does not yet."""
-    from recipsim.case.case_schema import SOLVER_SPEC
-
     return ("solver.periodic=revolutions",) if "periodic" in SOLVER_SPEC else ()
 
 

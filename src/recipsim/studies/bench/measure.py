@@ -27,7 +27,12 @@ import numpy as np
 from recipsim.case.case import Case
 from recipsim.case.load import load_case
 from recipsim.errors import CaseError, RecipsimError
+from recipsim.results.tables import cycle_table, summary
+from recipsim.solve.drive import build_model_for
+from recipsim.solve.motor_speed import solve_at_motor_speed
+from recipsim.solve.periodic import solve_periodic
 from recipsim.studies.bench.errors import compared_quantities
+from recipsim.studies.bench.ivp import solve_periodic_ivp
 from recipsim.studies.bench.ladder import (
     COMPILED,
     Rung,
@@ -114,14 +119,10 @@ def solve(model: Any, integrator: str) -> Any:
     at the motor's slip speed (``options.speed = "motor_slip"``) the speed's fixed point,
     every revolution of its solves counted."""
     if integrator in COMPILED:
-        from recipsim.solve.periodic import solve_periodic
-
         # the rung names the compiled integrator, whatever the case file's solver.method
         solver = dataclasses.replace(model.case.solver, method=integrator)
         model = dataclasses.replace(model, case=dataclasses.replace(model.case, solver=solver))
         if model.case.options.speed == "motor_slip":  # as `recipsim run` solves it
-            from recipsim.solve.motor_speed import solve_at_motor_speed
-
             at_speed = solve_at_motor_speed(model.case)  # builds a model per speed
             return dataclasses.replace(at_speed.solution, revolutions=at_speed.revolutions)
         return solve_periodic(model)
@@ -129,7 +130,6 @@ def solve(model: Any, integrator: str) -> Any:
         raise CaseError(
             model.case.path, "options.speed", "the solve_ivp driver solves at the case's speed"
         )
-    from recipsim.studies.bench.ivp import solve_periodic_ivp
 
     if getattr(model.case.solver, "periodic", "revolutions") == "shooting":
         raise CaseError(
@@ -177,9 +177,6 @@ def run_rung(
         A fast rung repeats beyond ``repeats`` until its solves add up to ``min_time``
         seconds (at most :data:`MAX_REPEATS`), for a steadier median.
     """
-    from recipsim.results.tables import cycle_table, summary
-    from recipsim.solve.drive import build_model_for
-
     loaded = load_rung(path, base_overrides, rung, base)
     if isinstance(loaded, Outcome):
         return loaded

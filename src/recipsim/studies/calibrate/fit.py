@@ -31,6 +31,7 @@ import numpy as np
 from scipy.optimize import least_squares
 
 from recipsim.case.case import Case
+from recipsim.case.units import _registry
 from recipsim.errors import RecipsimError
 from recipsim.studies.calibrate.data import MeasuredPoint
 from recipsim.studies.point_warnings import kept_warnings
@@ -88,8 +89,6 @@ class Parameter:
 
 def _si(text: str, where: str) -> float:
     """A bound or value as written (bare number in SI, or a quantity with its unit)."""
-    from recipsim.case.units import _registry
-
     text = text.strip()
     try:
         return float(text)

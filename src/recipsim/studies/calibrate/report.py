@@ -10,6 +10,7 @@ from pathlib import Path
 from typing import Any
 
 from recipsim.atomic import atomic_directory
+from recipsim.report.resolved_case import resolved_case
 from recipsim.studies.calibrate.run import Calibration
 
 
@@ -19,8 +20,6 @@ def _finite(value: Any) -> Any:
 
 def write_calibration(calibration: Calibration, out_dir: str | Path) -> Path:
     """Write ``calibration`` into ``out_dir`` (replaced whole); returns the directory."""
-    from recipsim.report.resolved_case import resolved_case
-
     target = Path(out_dir)
     text, files = resolved_case(calibration.calibrated)
     fit = calibration.fit

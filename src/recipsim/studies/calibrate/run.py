@@ -13,6 +13,7 @@ import pandas as pd
 
 from recipsim.case.case import Case
 from recipsim.errors import RecipsimError
+from recipsim.pipeline import simulate_case
 from recipsim.studies.calibrate.data import MeasuredPoint, read_points
 from recipsim.studies.calibrate.fit import (
     CalibrationError,
@@ -60,7 +61,6 @@ class Calibration:
 
 
 def _summary_row(case: Case) -> dict[str, Any]:
-    from recipsim.pipeline import simulate_case
 
     run = simulate_case(case)
     if not run.row.get("converged [-]", True):

@@ -9,7 +9,9 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING
 
+from recipsim.case.load import load_case
 from recipsim.errors import CaseError, RecipsimError
+from recipsim.pipeline import simulate_case
 from recipsim.studies.check.expectations import Expectation
 from recipsim.studies.check.metrics import (
     ORBIT_METRIC,
@@ -103,9 +105,6 @@ def check_case(
     Overrides are applied in this order: the case file, then (with ``fast``) the
     expectation's fast overrides, then ``overrides`` (``--set``).
     """
-    from recipsim.case.load import load_case
-    from recipsim.pipeline import simulate_case
-
     file = Path(file)
     row = CheckRow(case=file.stem, file=str(file), expected=expectation.expected, outcome="failed")
     row.reason = expectation.reason

@@ -30,6 +30,8 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from recipsim.model.scenes import named_state
+
 if TYPE_CHECKING:
     from recipsim.results.case_run import CaseRun
 
@@ -94,8 +96,6 @@ def reed_openings(lift: np.ndarray, stop_height: float) -> int:
 
 def closures(run: CaseRun) -> dict[str, float | None]:
     """Mass, energy and drive closures of a run (module docstring); None: not applicable."""
-    from recipsim.model.scenes import named_state
-
     out: dict[str, float | None] = {"mass": None, "energy": None, "drive": None}
     sol = run.solution
     if sol is None:

@@ -8,6 +8,7 @@ from dataclasses import asdict
 from pathlib import Path
 from typing import TYPE_CHECKING
 
+from recipsim.atomic import atomic_write
 from recipsim.studies.check.judge import CheckRow
 from recipsim.studies.check.metrics import METRICS, ORBIT_METRIC
 
@@ -99,8 +100,6 @@ def rows_frame(rows: Sequence[CheckRow]) -> pd.DataFrame:
 
 def write_check_csv(rows: Sequence[CheckRow], out: Path) -> Path:
     """Write ``out/check.csv`` atomically; returns its path."""
-    from recipsim.atomic import atomic_write
-
     path = Path(out) / "check.csv"
     frame = rows_frame(rows)
     atomic_write(path, lambda tmp: frame.to_csv(tmp, index=False))

@@ -15,6 +15,7 @@ from collections.abc import Sequence
 from typing import Any
 
 from recipsim.errors import CaseError, RecipsimError
+from recipsim.studies.sweep.dask_plugin import PrepareWorker
 from recipsim.studies.sweep.runner import (
     ResultCallback,
     StartCallback,
@@ -23,6 +24,7 @@ from recipsim.studies.sweep.runner import (
     nothing,
 )
 from recipsim.studies.sweep.worker import FAILED, PointTask, run_points, worker_version
+from recipsim.version import __version__
 
 _SCHEDULER_ADDRESS = re.compile(r"(tcp|tls|ws|wss|inproc|ucx)://[^\s/]+(:\d+)?/?")
 
@@ -31,8 +33,6 @@ def _prepare_dask_workers(client: Any, first: PointTask) -> None:
     """Register :class:`~recipsim.studies.sweep.dask_plugin.PrepareWorker` on the
     cluster: every worker, present or joining later, loads the solver and the base case
     once."""
-    from recipsim.studies.sweep.dask_plugin import PrepareWorker
-
     plugin = PrepareWorker(first.case, first.allow_external_paths)
     register = getattr(client, "register_plugin", None) or client.register_worker_plugin
     try:
@@ -95,8 +95,6 @@ def probe_scheduler(address: str, timeout: float) -> None:
 
 def _check_worker_version(client: Any, address: str) -> None:
     """Refuse workers that cannot import recipsim or run another version of it."""
-    from recipsim.version import __version__
-
     try:
         remote = client.submit(worker_version, pure=False).result(timeout=120)
     except Exception as exc:

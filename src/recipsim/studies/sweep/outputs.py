@@ -76,14 +76,6 @@ class SweepOutcome:
         return len(self.table)
 
     @property
-    def solve_seconds(self) -> float:
-        """The points' solve times (``wall_time [s]``) added up, 0 for a point without
-        one [s]."""
-        if "wall_time [s]" not in self.table:
-            return 0.0
-        return float(pd.to_numeric(self.table["wall_time [s]"], errors="coerce").sum())
-
-    @property
     def counts(self) -> dict[str, int]:
         """Number of points per status."""
         return dict(Counter(self.table["status"]))

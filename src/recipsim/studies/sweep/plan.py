@@ -47,6 +47,7 @@ from recipsim.case.schema import Choice, Field, Flag, Text
 from recipsim.case.units import to_si
 from recipsim.errors import CaseError
 from recipsim.studies.sweep.spec import SweepSpec
+from recipsim.studies.sweep.worker import point_case
 from recipsim.version import __version__
 
 # Messages of :mod:`recipsim.case.schema` and :mod:`recipsim.case.mechanism` that mean "this
@@ -270,8 +271,6 @@ def _check_keys(
     read once per process, the overrides applied to it), with the same errors as
     :func:`~recipsim.case.load.load_case`.
     """
-    from recipsim.studies.sweep.worker import point_case
-
     try:
         point_case(str(spec.base), overrides, allow_external_paths)
     except CaseError as exc:

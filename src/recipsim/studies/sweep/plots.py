@@ -22,7 +22,7 @@ from pandas.api.types import is_numeric_dtype
 
 from recipsim.atomic import atomic_write
 from recipsim.errors import CaseError
-from recipsim.report.figure_kit import clear_axes
+from recipsim.report.figure_kit import fewer_ticks, lines_as_collections
 from recipsim.report.figure_names import TITLE_Y
 from recipsim.report.plotting import PNG_OPTIONS, single_axes
 
@@ -163,8 +163,6 @@ def plot_map(
     """One quantity against ``x``, a line per combination of the ``groups`` columns
     (their legend in the axes with ``legend``), about five ticks a side; ``lines``:
     :func:`map_lines` of ``table``, found here if not given."""
-    from recipsim.report.figure_kit import fewer_ticks, lines_as_collections
-
     if ax is None:
         from matplotlib.figure import Figure
 
@@ -306,17 +304,13 @@ def save_map_plots(
     groups = group_columns(ok, axes, x)
     lines = map_lines(ok, x, groups)  # the same lines in every plot
     written = []
-    shared: Any = None  # the Axes the one-panel plots are drawn on in turn
     for column, label, name in (*MAP_QUANTITIES, ("", "", "map_bearing_loads.png")):
         if name[4:-4] not in wanted or (column and column not in ok):
             continue
         if column:
-            if shared is None:
-                shared = single_axes(figsize=(7.0, 4.8))
-            else:
-                clear_axes(shared)
-            fig = plot_map(ok, column, x, groups, ylabel=label, ax=shared, lines=lines)
-            shared.set_title(label.rsplit(" [", 1)[0], y=TITLE_Y)
+            ax = single_axes(figsize=(7.0, 4.8))
+            fig = plot_map(ok, column, x, groups, ylabel=label, ax=ax, lines=lines)
+            ax.set_title(label.rsplit(" [", 1)[0], y=TITLE_Y)
         else:  # panels and a legend below them, in fixed margins
             panels = plot_bearing_loads(ok, x, groups, lines)
             if panels is None:

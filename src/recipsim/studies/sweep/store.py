@@ -39,6 +39,7 @@ from typing import Any
 
 from recipsim.atomic import atomic_file
 from recipsim.errors import CaseError
+from recipsim.report.case_report import overrides_digest
 from recipsim.studies.sweep import record_segments
 from recipsim.studies.sweep.worker import STATUSES, PointTask, run_point
 
@@ -118,8 +119,6 @@ class PointStore:
         CaseError
             The directory holds a sweep run with other overrides (and not ``fresh``).
         """
-        from recipsim.report.case_report import overrides_digest
-
         path = self.root / "overrides.json"
         digest = overrides_digest(overrides)
         try:

@@ -167,28 +167,3 @@ def _pixels(fig) -> np.ndarray:
     canvas = FigureCanvasAgg(fig)
     canvas.draw()
     return np.asarray(canvas.buffer_rgba()).copy()
-
-
-def test_map_plots_drawn_in_turn_on_one_axes_are_the_fresh_plots():
-    """save_map_plots draws its one-panel plots on one Axes: each is the plot drawn on
-    a fresh one, pixel for pixel (no line, legend entry or limit of the previous plot
-    left), whether it has a legend entry per line or a key."""
-    from recipsim.report.figure_kit import clear_axes
-    from recipsim.report.plotting import single_axes
-
-    small = synthetic(bearings=False)
-    small = small[small["status"] == "ok"]
-    large, large_axes = large_map(bearings=False)
-    plots = [(small, AXES, column) for column in ("cooling_capacity [W]", "COP [-]")]
-    plots.insert(1, (large, large_axes, "cooling_capacity [W]"))
-    shared = single_axes((7.0, 4.8))
-    for index, (table, axes, column) in enumerate(plots):
-        x = x_column(table, axes)
-        groups = group_columns(table, axes, x)
-        if index:
-            clear_axes(shared)
-        reused = _pixels(plot_map(table, column, x, groups, ylabel=column, ax=shared))
-        fresh_axes = single_axes((7.0, 4.8))
-        fresh = _pixels(plot_map(table, column, x, groups, ylabel=column, ax=fresh_axes))
-        assert np.array_equal(reused, fresh), (index, column)
-        assert len(shared.get_lines()) == len(fresh_axes.get_lines())

@@ -1,6 +1,5 @@
 """Parameter bundles in compiled code: a float array read at constant indices against a
-NamedTuple, measured (issue 13 asks for typed bundles "where they cost nothing in the
-compiled path").
+NamedTuple, measured: the choice of flat arrays for the compiled parameters.
 
 A kernel reads every parameter of a bundle of ``size`` floats (the shapes of the real
 layouts: 60 cylinder parameters, 103 mechanism parameters, 165 of the coupled scene)
@@ -8,7 +7,7 @@ and is called a million times from a compiled loop, as the right-hand side is ca
 the integrator; it is also called from Python, as a revolution's integration is. Each
 variant compiles in a fresh interpreter, so neither pays the other's numba start-up.
 
-Run ``python -m recipsim.studies.bench.bundles`` for the table (about a minute).
+Run ``python benchmarks/parameter_bundles.py`` from a source checkout for the table.
 """
 
 from __future__ import annotations
