@@ -72,8 +72,8 @@ def breakdown_slip(s_r: float, rated_torque: float, t_k: float, u: float) -> flo
     s_hi = 1e3
     if excess(s_r) <= 0.0:
         return None
-    # bisection on the bracket (importing scipy.optimize for brentq costs 0.25 s of
-    # start-up); 200 halvings reach adjacent floats
+    # bisection on the bracket (not scipy.optimize's brentq: loading a case would then
+    # import scipy.optimize); 200 halvings reach adjacent floats
     s_lo = s_r
     for _ in range(200):
         mid = 0.5 * (s_lo + s_hi)

@@ -16,7 +16,7 @@ Standards (temperatures as manufacturers print them, rounded to 0.1 C):
   and thermo-notes section 3; the refrigerant files' ``ashrae_lbp`` point.
 - ``EN12900`` (EN 12900 / CECOMAF, the low-back-pressure household point): evaporating
   -25 C, condensing 55 C, suction gas 32 C, no subcooling (liquid at the bubble point),
-  ambient 32 C. Source: ``shared/data/catalogue/README.md`` and thermo-notes section 3
+  ambient 32 C. Source: ``src/recipsim/data/catalogue/README.md`` and thermo-notes section 3
   (the standard's text was not read).
 - ``AHRI_540``: the air-conditioning point only, evaporating 7.2 C (45 F), condensing
   54.4 C (130 F), superheat 11.1 K (20 F), subcooling 8.3 K (15 F), ambient 35 C (95 F),

@@ -28,7 +28,7 @@ network is the structure of Todescat et al. (1992, Purdue ICEC paper 936: suctio
 chamber, cylinder wall, discharge chamber, discharge muffler, shell and the gas inside
 the shell from steady balances with effective conductances measured on an Embraco
 compressor), with the motor and the oil as nodes of their own as in Ribas et al. (2008,
-ICEC paper 1907). Calibrate them (issue 16 item 8) where measurements exist.
+ICEC paper 1907). Calibrate them where measurements exist.
 """
 
 from __future__ import annotations

@@ -1,10 +1,10 @@
 """``recipsim bench CASE [--out DIR] [--repeats N] [--quick] [--set KEY=VALUE ...]``.
 
-Runs the ladder of :mod:`.ladder` on one case against its tight-tolerance reference and
-writes ``work_precision.csv``, ``work_precision.png`` and ``bench.json`` to
-``<out>/<case>/`` (``<case>+<digest>`` when ``--set`` is given, see
-:func:`recipsim.report.case_report.report_name`; default ``--out``: ``reports/bench``), then names
-the cheapest rung within 1e-3 and its speed-up over the pure-Python baseline.
+Runs the ladder of :mod:`recipsim.studies.bench.ladder` on one case against its
+tight-tolerance reference and writes ``work_precision.csv``, ``work_precision.png`` and
+``bench.json`` to ``<out>/<case>/`` (``<case>+<digest>`` when ``--set`` is given, see
+:func:`recipsim.report.case_report.report_name`; default ``--out``: ``reports/bench``),
+then names the cheapest rung within 1e-3 and its speed-up over the pure-Python baseline.
 
 Exit status: 0 done (whatever the rungs' statuses); 1 the reference failed or did not
 converge; 2 invalid case or option.

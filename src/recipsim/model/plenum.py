@@ -23,9 +23,8 @@ if TYPE_CHECKING:
 class PlenumState:
     """A constant boundary state [SI]; the setters of the model replace it, never change it.
 
-    Its entropy is computed on first use (``fluid`` and NaN ``known_entropy``; from the
-    table about 2 us a state): the thermal network's plena, moved after every
-    revolution, never need it.
+    Its entropy is computed on first use (``fluid`` and NaN ``known_entropy``): the
+    thermal network's plena, moved after every revolution, never need it.
     """
 
     pressure: float

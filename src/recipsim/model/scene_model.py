@@ -284,9 +284,7 @@ class WorkingModel(Model):
         plenum's density and its temperature with the plenum's temperature, the same
         compression from a scaled intake (exact for an ideal gas). The next revolution
         then starts near the new periodic state instead of one lagging revolution
-        behind (measured on 24 map points of the reference case: 5.0 instead of 6.5
-        revolutions); at the periodic state the plenum does not move and nothing
-        changes.
+        behind; at the periodic state the plenum does not move and nothing changes.
         """
         if self.thermal is None or not self.has_gas:
             return 0.0

@@ -199,8 +199,8 @@ class Layout:
         The Python layers read states, parameters and outputs through it instead of
         index constants (``end.suction_mass_in`` for ``y[Q_MSUC_IN]``). The compiled
         code keeps the arrays: a named tuple of the coupled scene's 165 parameters
-        makes a kernel that reads them 1.8 times slower and a call from Python 25 times
-        slower (``benchmarks/parameter_bundles.py`` in the source repository; docs/speed.md).
+        slows both a kernel that reads them and a call from Python
+        (``benchmarks/parameter_bundles.py`` in the source repository measures it).
 
         Parameters
         ----------

@@ -1,7 +1,7 @@
 """Mean friction of a rigid crank train: Petroff journals and a viscous piston skirt.
 
-Evaluated once per converged cycle on its uniform crank-angle samples (numpy, about
-100 us per cycle), never in an ODE. Both laws are the concentric-film limit, the
+Evaluated once per converged cycle on its uniform crank-angle samples (numpy), never
+in an ODE. Both laws are the concentric-film limit, the
 lightly loaded film's friction:
 
 - a journal of radius ``R``, length ``L`` and radial clearance ``c`` turning at

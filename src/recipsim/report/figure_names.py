@@ -25,8 +25,8 @@ OVERLAY_NAMES = (
 
 
 #: Title position, axes fraction: given, it spares matplotlib placing each title above the
-#: axes' top decorations at every draw (a quarter of a figure's drawing time), which
-#: these figures do not have, so the images are the same to the byte.
+#: axes' top decorations at every draw, which these figures do not have, so the images
+#: are the same to the byte.
 TITLE_Y = 1.0
 
 

@@ -185,7 +185,7 @@ def plot_bearing_loads(
         ax.set_ylabel("force [N]")
         ax.grid(True, alpha=0.3)
     # the panels share their angle axis: its limits and ticks set once (set on each
-    # panel, every setting made the ticks of all six anew)
+    # panel, every setting would make the ticks of all six anew)
     angle_axis(axes[0])
     for ax in axes[n:]:
         ax.set_visible(False)
@@ -209,7 +209,7 @@ def plot_orbits(
     first sample (TDC). A bearing on an oil film (``film_thickness_<name> [m]`` in the
     table) is drawn inside its clearance circle (dashed, radius the radial clearance,
     :func:`film_clearance`) with a cross at its smallest film, and the panel is
-    framed on the largest circle; linear bearings are drawn as before.
+    framed on the largest circle; a linear bearing is drawn as its orbit alone.
 
     Parameters
     ----------

@@ -46,9 +46,9 @@ def plot_pv(cycle: pd.DataFrame, ax: Any = None, log: bool = False, label: str =
 
         ax.set_xscale("log")
         ax.set_yscale("log")
-        # labels and grid lines at 1, 2, 5 x 10^k in plain numbers; the default labelled
-        # minor ticks overlapped on the volume axis, and unlabelled minor ticks (six a
-        # decade, with their grid lines) were a third of the figure's drawing time
+        # labels and grid lines at 1, 2, 5 x 10^k in plain numbers, no minor ticks: the
+        # default labelled ones overlap on the volume axis, and unlabelled ones (six a
+        # decade, with their grid lines) slow every draw
         for axis in (ax.xaxis, ax.yaxis):
             axis.set_major_locator(LogLocator(subs=(1.0, 2.0, 5.0)))
             axis.set_major_formatter(FormatStrFormatter("%g"))
@@ -130,9 +130,9 @@ def plot_torque(cycle: pd.DataFrame, ax: Any = None, label: str = "") -> Figure:
     return fig
 
 
-# Fixed margins of the report's figures [inch] (left, right, bottom, top): the
-# constrained layout engine, which measures every label at every draw, took about a
-# third of the drawing time. Sizes fit the report's labels at its font size.
+# Fixed margins of the report's figures [inch] (left, right, bottom, top), instead of
+# the constrained layout engine, which measures every label at every draw. Sizes fit
+# the report's labels at its font size.
 # The loss waterfall's are those its constrained layout found for its fixed labels.
 _MARGINS = {
     "single": (0.85, 0.25, 0.6, 0.65),

@@ -1,5 +1,5 @@
 """Where the electrical power goes: the loss chain from the socket to the isentropic
-power of the delivered gas (issue 16).
+power of the delivered gas.
 
 Summary columns, all time means [W]:
 
@@ -42,7 +42,7 @@ from recipsim.model.plenum import isentropic_state
 from recipsim.model.scenes import named_state
 from recipsim.results.sampled import CycleColumns
 
-if TYPE_CHECKING:  # the figure processes read LOSS_COLUMNS without importing the solver
+if TYPE_CHECKING:  # a type only: reading LOSS_COLUMNS does not import the solver
     from recipsim.solve.periodic import PeriodicSolution
 
 #: Breakdown columns, from the socket down (``isentropic_power [W]`` closes the chain).

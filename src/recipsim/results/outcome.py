@@ -81,8 +81,8 @@ def state_or_explain(
     what : str
         What is being computed (``"the discharge temperature"``), for the message.
     entropy : bool
-        With ``"ph"``: compute the entropy (an integral over the property table, about
-        40 us; NaN in the result when False).
+        With ``"ph"``: compute the entropy (an integral over the property table; NaN
+        in the result when False).
 
     Raises
     ------

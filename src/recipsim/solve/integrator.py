@@ -163,8 +163,8 @@ def scene_entry(name: str, code: int, w_entry: int) -> Any:
     ``w_entry``: the loop below, compiled with both as compile-time constants (numba
     takes a closure's variables as constants; each entry is cached in a file of its own,
     named after it). A closure rather than one loop inlined into each entry: numba's
-    inlining copied the loop's IR block by block with its whole scope, 1.8 of the 13.6 s
-    of CPU that compiling the rigid-crank entry took (issue 17).
+    inlining copies the loop's IR block by block with its whole scope, which every
+    entry's compilation would pay for.
 
     Parameters
     ----------
@@ -282,7 +282,7 @@ def scene_entry(name: str, code: int, w_entry: int) -> Any:
         # An event located in a step is landed on by re-taking the step from its start to
         # the event (the states and quadratures then see a smooth right-hand side, no
         # interpolation across the kink), through the one step call below: its code is
-        # compiled once (a second call site compiled the step again, 1 s of CPU).
+        # compiled once (a second call site would compile the step again).
         landing = False
         h_accepted = h  # the accepted step [s] while its event is landed on
         k_event = -1  # the event located in the accepted step, and its time [s]

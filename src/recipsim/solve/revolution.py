@@ -135,8 +135,7 @@ def sample_times(model: Model, n: int) -> tuple[np.ndarray, np.ndarray]:
 def _sample_times(n: int, omega: float, theta0: float) -> tuple[np.ndarray, np.ndarray]:
     """:func:`sample_times` at ``n`` samples, crank speed ``omega`` [rad/s] and start
     angle ``theta0`` [rad]; the same for every revolution of a solve (kept here, handed
-    out as copies: a sort of the n times per revolution was 3 % of a sweep point's
-    solve)."""
+    out as copies, rather than sorted again at every revolution)."""
     angles = 2.0 * math.pi * np.arange(n) / n
     times = np.mod(angles - theta0, 2.0 * math.pi) / omega
     order_time = np.argsort(times, kind="stable")
@@ -192,7 +191,7 @@ def revolution_setup(
 #: DOPRI5; ``"dopri5_stiff"`` switches to the Rosenbrock-W step where DOPRI5's stability
 #: limits the step (30 % fewer right-hand sides on the reference case at rtol 1e-6);
 #: ``"ros34pw2"`` uses the W-step throughout. The bench runs ``"dopri5_stiff"`` as its own
-#: rung; a case selects it once the case loader offers the name.
+#: rung.
 INTEGRATOR_METHODS = {
     "dopri5": METHOD_DOPRI5,
     "dopri5_stiff": METHOD_AUTO,
@@ -350,8 +349,8 @@ def sample_outputs(model: Model, rev: Revolution, cylinder_only: bool = False) -
 
     ``cylinder_only``: only the cylinder's block (its first ``cylinder.N_AUX`` columns),
     for the cylinder on the rigid crank, whose right-hand side fills nothing else (the
-    summary of a rigid-crank point: 15 % less of this compiled evaluation than all of the
-    scene's 111 outputs, most of them the mechanism's).
+    summary of a rigid-crank point, which need not evaluate all of the scene's 111
+    outputs, most of them the mechanism's).
     """
     width = N_AUX
     if cylinder_only:

@@ -1,16 +1,15 @@
 """The compiled integrator's entries: one per scene, and one per scene with the
 Rosenbrock-W step, and :func:`integrate`, which picks them.
 
-Each entry is the loop of :func:`recipsim.solve.integrator.scene_entry` compiled with its
-scene and W-step flag as compile-time constants: it compiles (and numba caches, in its
-own file) that scene's code only, and the explicit entry none of the W-method
+Each entry is the loop of :func:`recipsim.solve.integrator.scene_entry` compiled with
+its scene and W-step flag as compile-time constants: it compiles (and numba caches, in
+its own file) that scene's code only, and the explicit entry none of the W-method
 (:mod:`.w_gate`). :func:`integrate` runs a scene's explicit entry and hands over to its
 entry with the W-step where the W-step takes over (:data:`METHOD_AUTO` on a stiff
 stretch, :data:`METHOD_ROSW` from the start), so a case that never takes a W-step never
-compiles one (5.4 s of the 19.3 s of CPU that compiling the rigid-crank scene took). The
-hand-over repeats what the one loop does at a switch: the same state, step and samples,
-the first stage and the event values evaluated again at the same state (one more
-right-hand side in ``rhs_evaluations``).
+compiles one. The hand-over repeats what the one loop does at a switch: the same state,
+step and samples, the first stage and the event values evaluated again at the same state
+(one more right-hand side in ``rhs_evaluations``).
 """
 
 from __future__ import annotations
@@ -57,7 +56,7 @@ integrate_coupled_w = scene_entry("integrate_coupled_w", SCENE_COUPLED, WITH_W_S
 
 #: numba's argument types of every entry, as :func:`integrate` passes them (arrays
 #: C-contiguous; ``ipar``, ``mode`` and ``sample_modes`` int64; ``n_err`` and ``method``
-#: int64): what :func:`compile_entry` compiles ahead, without a case
+#: int64): what :func:`compile_entry` compiles without a case (``recipsim warmup``)
 _F1, _F2 = types.Array(types.float64, 1, "C"), types.Array(types.float64, 2, "C")
 _I1, _I2 = types.Array(types.int64, 1, "C"), types.Array(types.int64, 2, "C")
 _F, _N = types.float64, types.int64
@@ -108,7 +107,7 @@ def _w_entry(code: int) -> Any:
     entry = W_SCENE_INTEGRATORS[code]
     # (a plain function under NUMBA_DISABLE_JIT=1: nothing to compile)
     if not getattr(entry, "signatures", True) and numba_cache_lacks("integrator", entry.__name__):
-        logger.info("compiling the solver's Rosenbrock-W step for this scene (once: about 6 s)")
+        logger.info("compiling the solver's Rosenbrock-W step for this scene (once: a few seconds)")
     return entry
 
 

@@ -35,7 +35,7 @@ Method:
    ``_FD_STEP_*`` times the state's residual reference. The mechanism map is nearly
    linear in the deflections while the integrator's step selection makes it noisy at
    the level of the tolerance, so its steps are large (a fifth of the vibration
-   amplitude: a tenth of that left a Jacobian too noisy for one Newton step to gain
+   amplitude: a tenth of that leaves a Jacobian too noisy for one Newton step to gain
    more than 3x); gas states get 1e-3;
 3. Newton stops when the states repeat to half the tolerance
    (:func:`.periodic.state_change`); then a plain revolution from the end state: the

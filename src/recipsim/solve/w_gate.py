@@ -10,8 +10,7 @@ scene code of :func:`recipsim.model.scenes.rhs_for`): with :data:`WITH_W_STEP` t
 the W-step and its Jacobian's refresh; with :data:`EXPLICIT` they compile to a constant
 that the loop never uses (the explicit entry never sets ``use_w``), so an entry that
 runs DOPRI5 compiles none of the W-method: the finite-difference Jacobian, the LU
-factorisation and the four stages (5.4 s of the 19.3 s of CPU that compiling the
-rigid-crank scene took, issue 17).
+factorisation and the four stages.
 """
 
 from __future__ import annotations

@@ -12,8 +12,8 @@ reference compressor's film geometry, clearance and oil as in
 
 The runs turn at the constant speed of the pinned runs: the paper's ``torque_profile``
 drive (the pinned, frictionless driving torque) cannot supply the films' friction, so
-the crank would slow every revolution and never repeat (measured: no periodic state in
-60 revolutions, 16.6 million evaluations, on ``paper_tabulated``). The pin and the
+the crank would slow every revolution and never repeat (on ``paper_tabulated`` no
+periodic state is reached in 60 revolutions). The pin and the
 piston bearings keep the case's laws. The solver is DOPRI5 switching to the
 Rosenbrock-W step (the films' squeeze damping makes the crank train stiff), as in
 ``reference_r134a_lbp_lubricated``.

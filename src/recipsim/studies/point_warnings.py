@@ -2,13 +2,13 @@
 
 A point's physics can warn (a reed valve that lets more than 3 % of its gas flow back,
 :func:`recipsim.results.valve_metrics.warn_large_backflow`). ``recipsim run`` prints
-such a warning for its one case; a sweep kept printing a line per warning (183 lines
-for 171 of the 1000 points of ``throughput_1000``), also with ``--quiet``, and its table
-did not say which points they were. Inside :func:`kept_warnings` the records of
-:data:`POINT_LOGGERS` go to a list instead of the log: a sweep point's ``message``
-column carries them (:func:`recipsim.studies.sweep.worker.run_point`), a calibration
-drops those of its trial parameter sets and keeps those of the calibrated case's points
-in ``points.csv`` (:mod:`recipsim.studies.calibrate`).
+such a warning for its one case; a sweep of many points keeps each warning with the
+point it belongs to rather than printing a line per warning that names no point. Inside
+:func:`kept_warnings` the records of :data:`POINT_LOGGERS` go to a list instead of the
+log: a sweep point's ``message`` column carries them
+(:func:`recipsim.studies.sweep.worker.run_point`), a calibration drops those of its
+trial parameter sets and keeps those of the calibrated case's points in ``points.csv``
+(:mod:`recipsim.studies.calibrate`).
 
 Per thread (a Dask worker may solve points in several threads at once); outside
 :func:`kept_warnings` the loggers log as usual.

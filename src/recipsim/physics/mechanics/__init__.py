@@ -4,7 +4,8 @@ Modules, one job each:
 
 - :mod:`.layout`: index constants of the parameter array, state vector and outputs;
 - :mod:`.bodies`: rigid-body kinematics of rotor, rod and piston markers;
-- :mod:`.bearings`: bearing laws (``linear`` now), dispatched per bearing;
+- :mod:`.bearings`: bearing laws (``linear``, ``short_journal``, ``finite_journal``),
+  dispatched per bearing;
 - :mod:`.pinned`: rigid slider-crank inverse dynamics (bearing reactions, torque);
 - :mod:`.flexible`: compiled right-hand side of the flexible model, outputs,
   initial state, state accessors;

@@ -364,7 +364,7 @@ def short_journal_peak_pressure(
 
     ``p(theta, 0) = (3 mu L^2/(2 c^2)) V sin(theta - theta0)/(1 + eps cos theta)^3``
     maximised over the positive film; arguments as in :func:`short_journal_film`.
-    Post-processing only (about a microsecond).
+    Post-processing only.
     """
     _, _, eps, a, b, _ = film_kinematics(ex, ey, vx, vy, omega_journal, omega_bushing, clearance)
     v = math.sqrt(a * a + b * b)

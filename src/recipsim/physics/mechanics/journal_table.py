@@ -34,8 +34,7 @@ Flat table layout (float64, self-describing; ``offset`` is where it starts in a 
 array): the :data:`HEADER` (``H_*``), then for each eps node j and theta0 node m the
 :data:`NODE` values (the :data:`QUANTITIES` ``Q_r, Q_i`` and the peak-pressure ratio,
 then their d/du, d/dtheta0 and d2/du dtheta0) at ``N_HEADER + (j n_theta0 + m)
-N_NODE_VALUES``. Build time about 2 s per L/D (33 x 33 Reynolds solutions of 128 x 12
-nodes, warm-started).
+N_NODE_VALUES``. A table: 33 x 33 warm-started Reynolds solutions of 128 x 12 nodes.
 """
 
 from __future__ import annotations
@@ -262,7 +261,7 @@ def impedance_ratios(
 
 
 def build_journal_table(length_over_diameter: float) -> np.ndarray:
-    """Solve the Reynolds problems of one L/D and return its flat table (about 2 s).
+    """Solve the Reynolds problems of one L/D and return its flat table.
 
     Parameters
     ----------
@@ -384,7 +383,8 @@ def finite_journal_table(length_over_diameter: float, directory: Path | None = N
         if cached is not None:
             return cached
     logger.info(
-        "building the finite journal-bearing table for L/D = %.4g (once; about 2 s, cached in %s)",
+        "building the finite journal-bearing table for L/D = %.4g "
+        "(once; a few seconds, cached in %s)",
         length_over_diameter,
         path.parent,
     )

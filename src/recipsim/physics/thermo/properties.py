@@ -133,10 +133,9 @@ class HeosProperties(types.WrapperAddressProtocol):
 
         Catching the interrupt inside the callback is not enough: Python may raise it at
         the callback's first bytecode, before its ``try``, and ctypes then swallows it
-        (the solve went on: seen once, in a full test run; rare, 0 of 25 runs of the test
-        alone caught it). Only in
-        the main thread and under Python's default handler; where a caller has its own
-        (a sweep finishing its point first), that handler is left alone.
+        (rarely, but the solve would then go on). Only in the main thread and under
+        Python's default handler; where a caller has its own (a sweep finishing its
+        point first), that handler is left alone.
         """
         if (
             threading.current_thread() is not threading.main_thread()

@@ -1,9 +1,9 @@
 """Interpolated CoolProp properties for the compiled right-hand side (``properties = "table"``).
 
-A table replaces the CoolProp callback of :mod:`recipsim.physics.thermo.properties` (about
-2 us a call from compiled code) by a compiled evaluation (about 0.07 us) that fills
-the same buffer slots with the same conventions. It is built once per fluid from
-CoolProp's HEOS backend (1-6 s, :mod:`.property_table_build`) and cached on disk
+A table replaces the CoolProp callback of :mod:`recipsim.physics.thermo.properties` (a
+call out of compiled code into CoolProp) by a compiled evaluation that fills the same
+buffer slots with the same conventions. It is built once per fluid from CoolProp's
+HEOS backend (:mod:`.property_table_build`) and cached on disk
 (:func:`.property_table_cache.load_property_table`). This module holds the layout and
 the compiled evaluation and does not import CoolProp.
 
@@ -43,7 +43,7 @@ table, saturation table) that the model appends to the property buffer after its
 ``N_PROPS`` outputs, so the compiled integrator's signature does not change.
 
 Size (over the project's 400 lines): the layout constants and the compiled
-evaluation that reads them; to be split with :mod:`.property_table_build` (issue 13).
+evaluation that reads them.
 """
 
 from __future__ import annotations
@@ -288,8 +288,8 @@ class PropertyTable:
         reused (a model build otherwise allocates, page-faults and frees 11 MB twice).
         A reused buffer's tail already holds :attr:`data`: the compiled code and the
         property callback write only the outputs, so only the outputs and the
-        transport flag are written again (copying the tail cost 0.8 ms of a sweep
-        point's 11 ms). A reused buffer equals a new one.
+        transport flag are written again (a sweep builds a model per point). A reused
+        buffer equals a new one.
 
         Parameters
         ----------

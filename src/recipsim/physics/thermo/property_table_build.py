@@ -1,11 +1,10 @@
 """Build a property table from CoolProp's HEOS backend and measure its error.
 
-Imported only when a table is built or checked: it imports CoolProp (about 2 s).
+Imported only when a table is built or checked: it imports CoolProp.
 Layout and evaluation: :mod:`.property_table`; cache: :mod:`.property_table_cache`.
 
 Size (over the project's 400 lines): the grid, the CoolProp sampling, the dome
-handling and the error check against HEOS run as one build; splitting the error check
-and the saturation table out is listed on issue 13.
+handling and the error check against HEOS run as one build.
 """
 
 from __future__ import annotations

@@ -6,11 +6,11 @@ table stores (hottest node, low density), along the anchor isotherm
 ``ds = c_v / T dT``. Every vapour state is reached without crossing the dome. The
 integrands are the table's own piecewise cubics, integrated cell by cell with
 three-point Gauss-Legendre (exact for the cubic isotherm integrand).
-:func:`table_entropy_path` evaluates that definition directly (40-80 us: about 3 x 300
-table evaluations down a 300-node isochore).
+:func:`table_entropy_path` evaluates that definition directly (about 3 x 300 table
+evaluations down a 300-node isochore).
 
-:func:`table_entropy` gives the same value (to rounding, about 1e-15 relative) in about
-1 us from :func:`entropy_tables`, computed once per table (5-15 ms) and cached with it
+:func:`table_entropy` gives the same value (to rounding, about 1e-15 relative) from the
+sums of :func:`entropy_tables`, computed once per table and cached with it
 (:func:`table_entropy_sums`):
 
 * along the anchor isotherm, the integral from the anchor to every ln(rho) node; a state
@@ -243,8 +243,8 @@ def table_entropy_sums(table: PropertyTable, buf: np.ndarray | None = None) -> n
 def entropy_tables(buf: np.ndarray) -> np.ndarray:
     """The sums :func:`table_entropy` reads (layout ``E_*``), for the table in ``buf``.
 
-    Computed once per table (a few ms; numpy, so that no further compiled function is
-    built on a first run); a cell answers as :func:`table_props` does for the transport
+    Computed once per table (in numpy, so that no further compiled function is built
+    on a first run); a cell answers as :func:`table_props` does for the transport
     flag ``buf`` has now.
 
     Parameters

@@ -6,7 +6,7 @@ and the table's entropy sums (``ent``, :func:`.table_entropy.entropy_tables`), a
 a state into ``out`` (layout ``Q_*``) or reports a table miss (``False``, NaN), on which
 the caller asks HEOS. One call from Python replaces a Python loop of compiled calls:
 :class:`TableFluid` calls the one entry :func:`solve_state`, into which the helpers
-inline (``inline="always"``), so that a first run compiles them once (3-4 s CPU).
+inline (``inline="always"``), so that a first run compiles them once.
 
 ``(p, h)``, ``(p, s)``: Newton on ``(T, ln rho)`` with the table's derivatives;
 ``(rho, s)``: on ``T``; each to a relative residual of 1e-12 within 60 iterations, steps

@@ -31,17 +31,14 @@ How each answer is obtained:
   point); where that estimate exceeds :data:`LIQUID_EXPANSION_LIMIT` (near-critical
   liquid, large subcooling close to it) the question goes to HEOS. Accepted answers are
   within about 3 J/kg of HEOS (1.5e-5 of a 200 kJ/kg refrigerating effect); at the
-  shipped rating points 0.0004-0.11 J/kg (ASHRAE LBP) and 0.5 J/kg (R32, AHRI). The
-  second-order expansion this replaced (estimate ``t2^2 / t1``, 3-7 times its true
-  error) sent R290's ASHRAE point, R32's AHRI point and R134a above 55 C of condensing
-  to HEOS.
+  shipped rating points 0.0004-0.11 J/kg (ASHRAE LBP) and 0.5 J/kg (R32, AHRI).
 * saturated liquid at a pressure (EN 12900's liquid): the saturation table at the
   table's saturation temperature.
 * the dense supercritical states of a transcritical gas-cooler exit (R744 at 90 bar and
   35 C, 660 kg/m3) are outside the table: HEOS.
 
-Accuracy: the table's (1e-5); :mod:`tests.test_table_states` measures every answer
-against HEOS.
+Accuracy: the table's (1e-5); ``tests/unit/physics/thermo/test_table_states.py``
+measures every answer against HEOS.
 """
 
 from __future__ import annotations

@@ -12,5 +12,5 @@ RMS error of the pressure trace. Modules:
 - :mod:`.baseline`: the pure-Python ``solve_ivp`` baseline in a process without numba;
 - :mod:`.errors`: relative errors against the reference;
 - :mod:`.report`: ``work_precision.csv``, ``work_precision.png``, ``bench.json``;
-- :mod:`.command`: the ``recipsim bench`` subcommand.
+- the ``recipsim bench`` subcommand is :mod:`recipsim.cli.bench`.
 """

@@ -4,8 +4,8 @@ Same scene (right-hand side, events, event actions), same revolutions from 270 d
 same cycle residual and discharge-plenum update; only the integrator differs. It serves
 two rungs of the benchmark:
 
-- a scipy method driving the *compiled* right-hand side from Python (the measurement
-  behind the project's choice of a compiled integrator);
+- a scipy method driving the *compiled* right-hand side from Python (what the compiled
+  integrator itself gains over scipy's);
 - with ``NUMBA_DISABLE_JIT=1`` (:mod:`recipsim.studies.bench.baseline`) every compiled function
   runs as plain Python and properties come from the CoolProp object called from Python:
   the model as a user would write it with ``solve_ivp``.
@@ -79,8 +79,8 @@ _I64 = types.int64[::1]
 class SceneContext:
     """Everything the compiled right-hand side needs but the time and the state.
 
-    One object unboxed per call from Python (a first-class function argument costs
-    about 13 us of type dispatch on every call; a jitclass instance about 1 us).
+    One object unboxed per call from Python (a first-class function argument costs a
+    type dispatch on every call, a jitclass instance much less).
     """
 
     def __init__(self, props, par, ipar, pbuf, mode, aux, scratch):  # type: ignore[no-untyped-def]

@@ -15,8 +15,8 @@ them. Axes (see :func:`build_ladder`):
 - fidelity: cheaper valve models (``options.valves``), the rigid crank
   (``options.mechanics = "pinned"`` for a flexible case) and, for a case with any part
   of the loss chain, the indicated machine (``thermal = "fixed_wall"``, ``motor =
-  "lossless"``, ``friction = "off"``, ``speed = "case"``: what the chain costs in time,
-  issue 16's 1.5x limit, and what leaving it out changes); their errors are measured
+  "lossless"``, ``friction = "off"``, ``speed = "case"``: what the chain costs in time
+  and what leaving it out changes); their errors are measured
   against the reference of the case as given, i.e. they show what the simplification
   costs, and they never count as "the cheapest setting";
 - the baseline: the same model in pure Python (numba disabled) under ``solve_ivp``
@@ -142,8 +142,8 @@ def _table(
     return _rung(integrator, rtol, cycle, *extra, label=label, properties="table")
 
 
-#: The loss chain's options of the indicated machine (issue 16: lossless motor, no
-#: friction, adiabatic shell at the line state, the case's speed).
+#: The loss chain's options of the indicated machine (lossless motor, no friction,
+#: adiabatic shell at the line state, the case's speed).
 INDICATED = {"thermal": "fixed_wall", "motor": "lossless", "friction": "off", "speed": "case"}
 
 

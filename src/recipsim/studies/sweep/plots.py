@@ -233,7 +233,8 @@ def plot_bearing_loads(
         ax.set_visible(False)
     fig.suptitle("peak bearing loads")
     # one legend for all panels, below them, in fixed margins [inch]: inside a panel it
-    # hid the data and the constrained layout took a third of the drawing time
+    # would hide the data, and the constrained layout engine measures every label at
+    # every draw
     if not handles:
         handles, labels = axes.flat[0].get_legend_handles_labels()
     width, height = fig.get_size_inches()

@@ -1,19 +1,15 @@
 """A sweep's point records as lines appended to segment files, one segment per process.
 
-Each finished point used to be a file of its own, written to a temporary file and renamed
-into place. Creating a file is the costliest step of saving a point: on the 2-core
-machine 0.18-0.30 ms of a sweep point (up to 1 ms while the disk is busy), beside a
-4.3-6.9 ms solve, where appending the same record to a file already open takes 0.06 ms
-(``recipsim bench-system``'s ``record`` stage; docs/speed.md).
-
-Each process that saves points appends to segments of its own,
-``points/<run>-<pid>-<n>.jsonl``: created exclusively and opened once, never shared
-with another process and never opened again once closed. A record is one line (its JSON
-text with its checksum, :func:`recipsim.studies.sweep.store.record_bytes`) handed to
-the system in one write. A process killed while writing leaves at most the last line
-of its own segment cut short; that line fails to parse or its checksum, is skipped, and
-its point is computed again. A write that fails closes the segment: the next record
-starts a new one rather than follow a partial line.
+Creating a file is the costliest step of saving a point, far costlier than appending the
+same record to a file already open, so each process that saves points appends to
+segments of its own, ``points/<run>-<pid>-<n>.jsonl``: created exclusively and opened
+once, never shared with another process and never opened again once closed. A record is
+one line (its JSON text with its checksum,
+:func:`recipsim.studies.sweep.store.record_bytes`) handed to the system in one write. A
+process killed while writing leaves at most the last line of its own segment cut short;
+that line fails to parse or its checksum, is skipped, and its point is computed again. A
+write that fails closes the segment: the next record starts a new one rather than follow
+a partial line.
 """
 
 from __future__ import annotations

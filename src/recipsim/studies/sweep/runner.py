@@ -109,15 +109,15 @@ def run_inline(
 
 
 def _context() -> Any:
-    # fork after the parent imported CoolProp and the solver: a worker starts in
-    # milliseconds instead of seconds. Elsewhere the platform's default (spawn).
+    # fork after the parent imported CoolProp and the solver: a worker starts with them
+    # instead of importing them again. Elsewhere the platform's default (spawn).
     if sys.platform == "linux":
         return multiprocessing.get_context("fork")
     return multiprocessing.get_context()
 
 
 #: Wall time a batch of points sent to a worker should take [s]: long enough that the
-#: cost of a round trip (pickling, a pipe, waking the parent: about 1 ms) is under 1 %,
+#: cost of a round trip (pickling, a pipe, waking the parent) is a small part of it,
 #: short enough that Ctrl-C and the progress bar stay responsive.
 CHUNK_SECONDS = 0.25
 

@@ -243,10 +243,8 @@ class SolveAndSave:
 
     Used by the local process pool, whose workers share the parent's file system: each
     worker appends its own points' records to its own segment (:mod:`.record_segments`), so the
-    parent only collects them. Measured on the 100-point map when each record was a
-    file, saving cost the parent about 2 ms of CPU per point (two JSON encodings, a
-    checksum, a file written and renamed): one process doing it for every worker capped
-    a map at about 500 points/s, which 16 workers at 10-20 ms per point exceed.
+    parent only collects them: one process encoding, checksumming and writing the
+    records of every worker would limit how fast many workers finish a map.
 
     Attributes
     ----------

@@ -158,9 +158,10 @@ def point_case(path: str, overrides: tuple[str, ...], allow_external_paths: bool
     the point's overrides applied and validated (:meth:`~recipsim.case.load.Case.with_`,
     which validates again only the sections the overrides reach).
 
-    Equal to ``load_case(path, overrides)`` (same values, same errors), at about a
-    hundredth of its cost: the base file, its ``extends`` chain and its refrigerant file
-    are read once (again when the base file or its refrigerant file changes). A base case
+    Equal to ``load_case(path, overrides)`` (same values, same errors), without reading
+    and validating the whole case at every point: the base file, its ``extends`` chain
+    and its refrigerant file are read once (again when the base file or its refrigerant
+    file changes). A base case
     that is invalid by itself (a point's overrides may complete it) is loaded whole at
     every point instead.
 
