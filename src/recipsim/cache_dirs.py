@@ -1,11 +1,13 @@
 """One rule for recipsim's cache directories.
 
-Every cache (property tables, numba's compiled code, pint's parsed unit definitions)
+Every cache (property tables, numba's compiled code, pint's parsed unit definitions,
+journal-bearing tables)
 lives under :func:`cache_dir`: ``$RECIPSIM_CACHE`` if set, else the platform's user cache
 directory for ``recipsim`` from platformdirs (on Linux ``$XDG_CACHE_HOME/recipsim``, by
-default ``~/.cache/recipsim``). Directories are created with mode 0o700: numba's cache is
-loaded with pickle, so a cache directory that others can write is a way to run their
-code in your process; recipsim warns once if it finds one (see ``docs/caches.md``).
+default ``~/.cache/recipsim``). Directories are created with mode 0o700: numba's and
+pint's caches are loaded with pickle, so a cache directory that others can write is a
+way to run their code in your process; recipsim warns once if it finds one and then does
+not use those caches (:func:`trusted_cache`, see ``docs/caches.md``).
 
 numba's cache of recipsim's own compiled functions is kept per version of the compiled
 sources (:func:`numba_cache_path`), by a cache locator that serves recipsim's files only
@@ -92,7 +94,8 @@ def _RecipsimCacheLocator() -> type:  # noqa: N802 (a class, made once)
             return self._cache_path
 
         def ensure_cache_path(self) -> None:
-            private_dir(Path(self._cache_path))
+            if trusted_cache(Path(self._cache_path)) is None:
+                raise OSError(f"untrusted cache directory {self._cache_path}")
             super().ensure_cache_path()
 
         @classmethod
@@ -136,14 +139,36 @@ def private_dir(path: Path) -> Path:
 
 def check_private(path: Path) -> None:
     """Warn (once) if ``path`` is a directory that the group or others may write."""
-    try:
-        mode = path.stat().st_mode
-    except OSError:
-        return
-    if mode & (stat.S_IWGRP | stat.S_IWOTH) and str(path) not in _warned:
+    if not is_private(path) and path.is_dir() and str(path) not in _warned:
         _warned.add(str(path))
         warnings.warn(
-            f"recipsim's cache directory {path} is writable by other users; numba's "
-            "cache there is loaded with pickle: chmod go-w it (see docs/caches.md)",
+            f"recipsim's cache directory {path} is writable by other users (or not yours); "
+            "its pickled caches (numba's compiled code, pint's unit definitions) are not "
+            "used: chmod go-w it (see docs/caches.md)",
             stacklevel=2,
         )
+
+
+def is_private(path: Path) -> bool:
+    """Whether ``path`` is owned by this user and writable by no one else."""
+    try:
+        info = path.stat()
+    except OSError:
+        return False
+    return info.st_uid == os.getuid() and not info.st_mode & (stat.S_IWGRP | stat.S_IWOTH)
+
+
+def trusted_cache(path: Path) -> Path | None:
+    """``path`` created private (:func:`private_dir`), if it and the cache root are owned
+    by this user and writable by no one else; else None (with a warning): a cache that is
+    loaded with pickle is used only from there, since whoever can write a folder can plant
+    code in it or swap it for another."""
+    try:
+        private_dir(path)
+    except OSError:
+        return None
+    root = cache_dir()
+    folders = [root, path] if Path(path).is_relative_to(root) else [path]
+    for folder in folders:
+        check_private(folder)
+    return path if all(is_private(folder) for folder in folders) else None

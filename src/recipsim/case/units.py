@@ -2,7 +2,9 @@
 
 Bare numbers are taken to be in the SI unit of the key (K, Pa, m, kg, rad/s, ...).
 Strings carry a unit, e.g. ``"3500 rpm"``, ``"-23.3 degC"`` or ``"22 mm"``; pint does
-the conversion, once per distinct (string, unit) pair in a process.
+the conversion, once per distinct (string, unit) pair in a process. pint's parsed unit
+definitions are cached on disk only in a folder no one else can write
+(:func:`recipsim.cache_dirs.trusted_cache`).
 
 An angular speed (a key in ``rad/s``) given as a frequency without an angle (``"50 Hz"``,
 ``"50 1/s"``) is read in revolutions per second, as a shaft speed is meant: pint alone
@@ -17,13 +19,19 @@ from typing import Any
 
 import pint
 
+from recipsim.cache_dirs import cache_dir, trusted_cache
 from recipsim.errors import CaseError
 
 
 @lru_cache(maxsize=1)
 def _registry() -> Any:
-    # autoconvert_offset_to_baseunit: "-23.3 degC" converts to K without an error.
-    registry: Any = pint.UnitRegistry(autoconvert_offset_to_baseunit=True)
+    # autoconvert_offset_to_baseunit: "-23.3 degC" converts to K without an error. pint
+    # keeps its parsed definitions (pickled) in a cache folder: only a trusted one.
+    folder = trusted_cache(cache_dir() / "pint")
+    try:
+        registry: Any = pint.UnitRegistry(autoconvert_offset_to_baseunit=True, cache_folder=folder)
+    except Exception:  # an unreadable or malformed cache (pint raises several types): parse
+        registry = pint.UnitRegistry(autoconvert_offset_to_baseunit=True)
     registry.define("@alias revolution = rev")  # "rev/s", as engineers write it
     return registry
 

@@ -17,7 +17,7 @@ so this only matters for the conversion).
 
 Named oils:
 
-- :data:`SPINDLE_OIL`: a light mineral (spindle) oil with three published dynamic
+- :func:`spindle_oil`: a light mineral (spindle) oil with three published dynamic
   viscosities, 18.6 / 6.3 / 2.4 mPa s at 30 / 60 / 100 C (Stachowiak & Batchelor,
   *Engineering Tribology*, Table 2.3, "spindle oil", adapted there from its ref. [12]).
   Its 6.3 mPa s at 60 C is the design's 0.006 Pa s; with the assumed density
@@ -35,10 +35,10 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import lru_cache
 
 import numpy as np
 from numba import njit
-from scipy.optimize import brentq
 
 #: Law codes for :func:`oil_viscosity`.
 LAW_VOGEL = 0
@@ -188,6 +188,8 @@ def fit_vogel(
             f"no Vogel curve passes through {temperatures}, {viscosities}: ln(mu) must be "
             "convex in T (the viscosity must fall more slowly as the temperature rises)"
         )
+    from scipy.optimize import brentq  # a heavy import, needed only to fit an oil
+
     c = brentq(mismatch, far, near, xtol=1e-12 * t[0], rtol=1e-15, maxiter=500)
     b = (y[0] - y[1]) / (1.0 / (t[0] - c) - 1.0 / (t[1] - c))
     a = math.exp(y[0] - b / (t[0] - c))
@@ -257,21 +259,18 @@ def celsius(t: float) -> float:
 MINERAL_OIL_DENSITY = 860.0
 
 
-#: The light mineral spindle oil, a Vogel curve through three points (Stachowiak &
-#: Batchelor, Table 2.3).
-SPINDLE_OIL = fit_vogel(
-    "spindle oil (light mineral)",
-    (celsius(30.0), celsius(60.0), celsius(100.0)),
-    (18.6e-3, 6.3e-3, 2.4e-3),
-    MINERAL_OIL_DENSITY,
-    source="Stachowiak & Batchelor, Engineering Tribology, Table 2.3 (spindle oil); "
-    "density assumed",
-)
-
-
+@lru_cache(maxsize=1)
 def spindle_oil() -> Oil:
-    """The light mineral spindle oil, :data:`SPINDLE_OIL`."""
-    return SPINDLE_OIL
+    """The light mineral spindle oil, a Vogel curve through three points (Stachowiak &
+    Batchelor, Table 2.3), fitted when first asked for."""
+    return fit_vogel(
+        "spindle oil (light mineral)",
+        (celsius(30.0), celsius(60.0), celsius(100.0)),
+        (18.6e-3, 6.3e-3, 2.4e-3),
+        MINERAL_OIL_DENSITY,
+        source="Stachowiak & Batchelor, Engineering Tribology, Table 2.3 (spindle oil); "
+        "density assumed",
+    )
 
 
 #: The spindle oil's Walther slope through its 30 C and 100 C points.

@@ -46,8 +46,6 @@ import math
 from collections.abc import Callable
 from dataclasses import dataclass
 
-from scipy.optimize import brentq, minimize_scalar
-
 VARIANTS = ("RSIR", "PSC")
 #: Slip at which the forward march of the torque inverse starts [-].
 _FIRST_SLIP = 1e-4
@@ -314,6 +312,8 @@ def _shaft_torque(circuit: MotorCircuit, slip: float) -> float:
 
 def _refine_peak(circuit: MotorCircuit, low: float, high: float) -> tuple[float, float]:
     """Slip and value of the shaft-torque maximum inside ``[low, high]`` [-, N m]."""
+    from scipy.optimize import minimize_scalar  # a heavy import, needed only here
+
     best = minimize_scalar(
         lambda s: -_shaft_torque(circuit, s),
         bounds=(low, high),
@@ -434,6 +434,8 @@ def motor_operating_point_at_torque(
                 high = peak_slip
                 break
             low, previous, high = high, current, min(high * _SLIP_STEP, 1.0)
+    from scipy.optimize import brentq  # a heavy import, needed only here
+
     slip = brentq(excess, low, high, xtol=1e-15, rtol=1e-15, maxiter=200)
     return motor_operating_point_at_slip(circuit, float(slip))
 

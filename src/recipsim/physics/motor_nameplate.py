@@ -16,7 +16,6 @@ from dataclasses import dataclass, replace
 from functools import lru_cache
 
 import numpy as np
-from scipy.optimize import least_squares
 
 from recipsim.physics.motor_circuit import (
     MotorCircuit,
@@ -207,6 +206,8 @@ def motor_circuit_from_nameplate(plate: MotorNameplate) -> MotorCircuit:
         example an efficiency that leaves no room for the rotor copper loss the slip
         implies).
     """
+    from scipy.optimize import least_squares  # a heavy import, needed only to fit
+
     _check_nameplate(plate)
     w_s = 4.0 * math.pi * plate.frequency / plate.poles
     slip = 1.0 - plate.rated_speed / w_s

@@ -11,14 +11,13 @@ from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 import pandas as pd
-from matplotlib.figure import Figure
-from matplotlib.ticker import NullFormatter, ScalarFormatter
 
 from recipsim.physics.mechanics.layout import BEARING_NAMES
+from recipsim.report.figure_kit import new_figure
 from recipsim.report.figure_names import OVERLAY_NAMES
 from recipsim.report.mechanics_plots import (
     ANGLE_COLUMN,
@@ -31,6 +30,9 @@ from recipsim.report.mechanics_plots import (
     plot_drive_torque,
     save_figure,
 )
+
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
 
 PRESSURE_COLUMN = "cylinder_pressure [Pa]"
 VOLUME_COLUMN = "cylinder_volume [m3]"
@@ -76,7 +78,7 @@ def plot_pressure_overlay(
     tables = {k: t for k, t in cycles.items() if PRESSURE_COLUMN in t and ANGLE_COLUMN in t}
     if not tables:
         return None
-    fig = Figure(figsize=(7.0, 4.6), layout="constrained")
+    fig = new_figure(figsize=(7.0, 4.6), layout="constrained")
     ax = fig.subplots()
     for k, label in enumerate(cycles):  # the k-th case keeps its style in every figure
         if label not in tables:
@@ -119,7 +121,7 @@ def plot_pv_overlay(cycles: Mapping[str, pd.DataFrame]) -> Figure | None:
     tables = {k: t for k, t in cycles.items() if PRESSURE_COLUMN in t and VOLUME_COLUMN in t}
     if not tables:
         return None
-    fig = Figure(figsize=(11.0, 4.6), layout="constrained")
+    fig = new_figure(figsize=(11.0, 4.6), layout="constrained")
     linear, loglog = fig.subplots(1, 2)
     for k, label in enumerate(cycles):
         if label not in tables:
@@ -132,6 +134,8 @@ def plot_pv_overlay(cycles: Mapping[str, pd.DataFrame]) -> Figure | None:
     loglog.set_xscale("log")
     loglog.set_yscale("log")
     for axis in (loglog.xaxis, loglog.yaxis):  # plain numbers, no crowded minor labels
+        from matplotlib.ticker import NullFormatter, ScalarFormatter
+
         axis.set_major_formatter(ScalarFormatter())
         axis.set_minor_formatter(NullFormatter())
     for ax, title in ((linear, "p-V diagram"), (loglog, "p-V diagram (log-log)")):
@@ -206,7 +210,7 @@ def plot_orbit_overlay(
     """
     if not any(has_orbits(t, bearings) for t in cycles.values()):
         return None
-    fig = Figure(figsize=(4.4 * len(bearings) + 0.4, 4.6), layout="constrained")
+    fig = new_figure(figsize=(4.4 * len(bearings) + 0.4, 4.6), layout="constrained")
     axes = np.atleast_1d(fig.subplots(1, len(bearings), squeeze=False)).ravel()
     for ax, bearing in zip(axes, bearings, strict=True):
         for k, (label, table) in enumerate(cycles.items()):

@@ -5,9 +5,12 @@ as a few collections.
 
 from __future__ import annotations
 
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
+
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
 
 #: PNG compression of the report's figures (zlib level 1: fast, files slightly larger).
 PNG_OPTIONS = {"compress_level": 1}
@@ -20,6 +23,15 @@ STEPS = (1.0, 2.0, 2.5, 4.0, 5.0, 10.0)
 
 #: Ticks of a crank angle axis [deg]: every 90 deg from TDC over one revolution.
 ANGLE_TICKS = np.arange(0.0, 361.0, 90.0)
+
+
+def new_figure(**options: Any) -> Figure:
+    """A new :class:`matplotlib.figure.Figure` (``options`` as it takes them), outside
+    pyplot: no backend chosen, no global registry. matplotlib is imported here, when a
+    figure is drawn, so that runs without figures never load it."""
+    from matplotlib.figure import Figure
+
+    return Figure(**options)
 
 
 def fewer_ticks(ax: Any, x: bool = True, y: bool = True, nbins: int = NBINS) -> None:

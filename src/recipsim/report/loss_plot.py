@@ -4,13 +4,14 @@ of the delivered gas (:mod:`recipsim.results.loss_breakdown`)."""
 from __future__ import annotations
 
 from collections.abc import Mapping
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
-from matplotlib.figure import Figure
-
-from recipsim.report.figure_kit import fewer_ticks
+from recipsim.report.figure_kit import fewer_ticks, new_figure
 from recipsim.report.figure_names import TITLE_Y
 from recipsim.results.loss_breakdown import LOSS_COLUMNS
+
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
 
 _LABELS = {
     "loss_motor [W]": "motor",
@@ -29,7 +30,7 @@ def plot_loss_breakdown(row: Mapping[str, Any], ax: Any = None, title: str = "")
     input on top, each loss as a bar stepping down (its share of the input written
     beside it), the isentropic power of the delivered gas at the bottom."""
     if ax is None:
-        fig = Figure(figsize=(6.4, 4.4), layout="constrained")
+        fig = new_figure(figsize=(6.4, 4.4), layout="constrained")
         ax = fig.add_subplot()
     else:
         fig = ax.figure

@@ -15,15 +15,17 @@ from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 import pandas as pd
-from matplotlib.figure import Figure
 
 from recipsim.physics.mechanics.layout import BEARING_NAMES
-from recipsim.report.figure_kit import PNG_OPTIONS, angle_axis
+from recipsim.report.figure_kit import PNG_OPTIONS, angle_axis, new_figure
 from recipsim.report.figure_names import TITLE_Y
+
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
 
 ANGLE_COLUMN = "crank_angle [deg]"
 TORQUE_COLUMN = "drive_torque [N m]"
@@ -174,7 +176,7 @@ def plot_bearing_loads(
     n = len(bearings)
     ncols = 2 if n > 1 else 1
     nrows = -(-n // ncols)
-    fig = Figure(figsize=(10.0, 2.6 * nrows + 0.8), layout="constrained")
+    fig = new_figure(figsize=(10.0, 2.6 * nrows + 0.8), layout="constrained")
     axes = np.atleast_1d(fig.subplots(nrows, ncols, sharex=True, squeeze=False)).ravel()
     for ax, bearing in zip(axes, bearings, strict=False):
         for k, (label, table) in enumerate(tables.items()):
@@ -233,7 +235,7 @@ def plot_orbits(
     if not panels:
         raise ValueError(f"no table has displacements of {', '.join(bearings)}")
     n = len(panels)
-    fig = Figure(figsize=(3.9 * n + 0.4, 4.3), layout="constrained")
+    fig = new_figure(figsize=(3.9 * n + 0.4, 4.3), layout="constrained")
     axes = np.atleast_1d(fig.subplots(1, n, squeeze=False)).ravel()
     for ax, (label, table) in zip(axes, panels.items(), strict=True):
         largest = 0.0
@@ -307,7 +309,7 @@ def plot_drive_torque(tables: Mapping[str, pd.DataFrame], title: str = "") -> Fi
     """
     if not tables:
         raise ValueError("no tables to plot")
-    fig = Figure(figsize=(7.0, 4.4), layout="constrained")
+    fig = new_figure(figsize=(7.0, 4.4), layout="constrained")
     ax = fig.subplots()
     for k, (label, table) in enumerate(tables.items()):
         angle = table[ANGLE_COLUMN].to_numpy(dtype=float)

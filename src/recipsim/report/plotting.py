@@ -11,12 +11,11 @@ renders without one.
 from __future__ import annotations
 
 from collections.abc import Callable, Collection
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import pandas as pd
-from matplotlib.figure import Figure
 
-from recipsim.report.figure_kit import PNG_OPTIONS, angle_axis, fewer_ticks
+from recipsim.report.figure_kit import PNG_OPTIONS, angle_axis, fewer_ticks, new_figure
 from recipsim.report.figure_names import FIGURE_NAMES, TITLE_Y, check_figure_names
 from recipsim.report.mechanics_plots import (
     film_bearings,
@@ -25,10 +24,13 @@ from recipsim.report.mechanics_plots import (
     plot_orbits,
 )
 
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
+
 
 def _axes(ax: Any) -> tuple[Figure, Any]:
     if ax is None:
-        fig = Figure(figsize=(6.4, 4.4), layout="constrained")
+        fig = new_figure(figsize=(6.4, 4.4), layout="constrained")
         return fig, fig.add_subplot()
     return ax.figure, ax
 
@@ -203,14 +205,14 @@ def save_cycle_figures(
 
 def single_axes(figsize: tuple[float, float] = (6.4, 4.4)) -> Any:
     """The Axes of a new one-panel figure in the fixed margins ``"single"``."""
-    fig = Figure(figsize=figsize)
+    fig = new_figure(figsize=figsize)
     ax = fig.add_subplot()
     fixed_margins(fig, "single")
     return ax
 
 
 #: Makes one figure, on the given Axes where it has one panel (else it ignores it).
-Maker = Callable[..., Figure]
+Maker = Callable[..., "Figure"]
 
 
 def _figure_makers(

@@ -8,6 +8,8 @@ from typing import TYPE_CHECKING
 
 import pandas as pd
 
+from recipsim.report.figure_kit import new_figure
+
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
 
@@ -16,9 +18,7 @@ def plot_startup(table: pd.DataFrame, title: str = "") -> Figure:
     """Four stacked panels sharing the time axis [s]: crank speed [rpm], motor torque
     [N m], cylinder pressure with the suction and discharge plenums [bar], and the load
     of every bearing [N]. Returns the figure (no backend is chosen)."""
-    from matplotlib.figure import Figure
-
-    fig = Figure(figsize=(8.0, 10.0), layout="constrained")
+    fig = new_figure(figsize=(8.0, 10.0), layout="constrained")
     axes = fig.subplots(4, 1, sharex=True)
     t = table["time [s]"]
     axes[0].plot(t, table["crank_speed [rpm]"], lw=0.8)

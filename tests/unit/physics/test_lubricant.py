@@ -11,11 +11,11 @@ from recipsim.physics.lubricant import (
     DEFAULT_OIL,
     LAW_VOGEL,
     LAW_WALTHER,
-    SPINDLE_OIL,
     celsius,
     fit_vogel,
     fit_walther,
     oil_viscosity,
+    spindle_oil,
 )
 
 SPINDLE_T = (celsius(30.0), celsius(60.0), celsius(100.0))
@@ -25,8 +25,8 @@ SPINDLE_MU = (18.6e-3, 6.3e-3, 2.4e-3)
 def test_vogel_passes_through_its_three_points() -> None:
     # an exact three-parameter fit: only round-off separates it from the data
     for t, mu in zip(SPINDLE_T, SPINDLE_MU, strict=True):
-        assert SPINDLE_OIL.viscosity(t) == pytest.approx(mu, rel=1e-10)
-    assert SPINDLE_OIL.law_code == LAW_VOGEL
+        assert spindle_oil().viscosity(t) == pytest.approx(mu, rel=1e-10)
+    assert spindle_oil().law_code == LAW_VOGEL
 
 
 def test_vogel_from_kinematic_points_scales_with_density() -> None:
@@ -64,12 +64,12 @@ def test_walther_and_vogel_agree_between_the_data_points() -> None:
         "w", (SPINDLE_T[0], SPINDLE_T[2]), (18.6e-3, 2.4e-3), 860.0, kinematic=False
     )
     temps = np.linspace(SPINDLE_T[0], SPINDLE_T[2], 71)
-    rel = [abs(walther.viscosity(t) / SPINDLE_OIL.viscosity(t) - 1.0) for t in temps]
+    rel = [abs(walther.viscosity(t) / spindle_oil().viscosity(t) - 1.0) for t in temps]
     assert max(rel) < 0.04
     assert max(rel) > 0.005  # the two laws are really different curves
 
 
-@pytest.mark.parametrize("oil", [SPINDLE_OIL, DEFAULT_OIL])
+@pytest.mark.parametrize("oil", [spindle_oil(), DEFAULT_OIL])
 def test_viscosity_falls_with_temperature(oil) -> None:  # type: ignore[no-untyped-def]
     temps = np.linspace(celsius(-20.0), celsius(130.0), 151)
     mu = np.array([oil.viscosity(t) for t in temps])
@@ -85,8 +85,10 @@ def test_default_oil_is_iso_vg10_class() -> None:
 
 
 def test_compiled_function_matches_the_method() -> None:
-    a, b, c = SPINDLE_OIL.coefficients
-    assert oil_viscosity(celsius(50.0), LAW_VOGEL, a, b, c) == SPINDLE_OIL.viscosity(celsius(50.0))
+    a, b, c = spindle_oil().coefficients
+    assert oil_viscosity(celsius(50.0), LAW_VOGEL, a, b, c) == spindle_oil().viscosity(
+        celsius(50.0)
+    )
 
 
 @pytest.mark.parametrize(

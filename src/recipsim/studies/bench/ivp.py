@@ -32,7 +32,6 @@ from typing import Any
 import numpy as np
 from numba import njit, types
 from numba.experimental import jitclass
-from scipy.integrate import solve_ivp
 
 from recipsim.errors import SolverError
 from recipsim.model import scenes
@@ -254,6 +253,8 @@ def _solve_piece(
     SolverError
         If ``solve_ivp`` fails or cannot locate an event.
     """
+    from scipy.integrate import solve_ivp  # a heavy import, needed by these rungs only
+
     atol, max_step = limits
     try:
         sol = solve_ivp(

@@ -21,6 +21,7 @@ import numpy as np
 import pandas as pd
 
 from recipsim.atomic import atomic_directory
+from recipsim.report.figure_kit import new_figure
 from recipsim.studies.bench.errors import MAX_ERROR, error_columns
 from recipsim.studies.bench.measure import OK, Outcome
 
@@ -165,9 +166,7 @@ _STYLE = {
 
 def plot(frame: pd.DataFrame, title: str, limit: float = ERROR_LIMIT, by: str = WALL) -> Any:
     """Max error against median time (column ``by``), log-log, one labelled marker per rung."""
-    from matplotlib.figure import Figure
-
-    fig = Figure(figsize=(11, 8))
+    fig = new_figure(figsize=(11, 8))
     ax = fig.add_subplot()
     shown = frame[frame["status"].isin((OK, "unconverged")) & np.isfinite(frame[MAX_ERROR])]
     best = cheapest(frame, limit, by=by)

@@ -28,7 +28,6 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.optimize import least_squares
 
 from recipsim.case.case import Case
 from recipsim.case.units import _registry
@@ -320,6 +319,8 @@ def fit_parameters(
     x0 = np.array([p.to_x(p.initial) for p in parameters])
     x0 = np.clip(x0, lower + 1e-6 * (upper - lower), upper - 1e-6 * (upper - lower))
     check_identifiable(forward_jacobian(f, x0), parameters)
+    from scipy.optimize import least_squares  # a heavy import, needed only to fit
+
     result = least_squares(
         f,
         x0,

@@ -25,7 +25,6 @@ from recipsim.atomic import mark_output
 from recipsim.errors import RecipsimError
 from recipsim.report.case_report import report_dir
 from recipsim.studies.sweep import runner
-from recipsim.studies.sweep.dask_runner import run_dask  # needs dask
 from recipsim.studies.sweep.outputs import (
     Plots,
     SweepOutcome,
@@ -323,6 +322,9 @@ def _compute(
 
     try:
         if scheduler:
+            # the optional dependency dask is imported only for a sweep on a cluster
+            from recipsim.studies.sweep.dask_runner import run_dask
+
             run_dask(tasks, scheduler, on_result, on_start, scheduler_timeout)
         elif jobs > 1:  # local workers share this file system: each saves its points
             save = SolveAndSave(str(store.root), run_id)

@@ -14,17 +14,19 @@ import math
 import re
 from collections.abc import Collection, Iterable, Sequence
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import pandas as pd
-from matplotlib.figure import Figure
 from pandas.api.types import is_numeric_dtype
 
 from recipsim.atomic import atomic_write
 from recipsim.errors import CaseError
-from recipsim.report.figure_kit import fewer_ticks, lines_as_collections
+from recipsim.report.figure_kit import fewer_ticks, lines_as_collections, new_figure
 from recipsim.report.figure_names import TITLE_Y
 from recipsim.report.plotting import PNG_OPTIONS, single_axes
+
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
 
 MAP_QUANTITIES: tuple[tuple[str, str, str], ...] = (
     ("cooling_capacity [W]", "cooling capacity [W]", "map_cooling_capacity.png"),
@@ -164,9 +166,7 @@ def plot_map(
     (their legend in the axes with ``legend``), about five ticks a side; ``lines``:
     :func:`map_lines` of ``table``, found here if not given."""
     if ax is None:
-        from matplotlib.figure import Figure
-
-        fig = Figure(figsize=(7.0, 4.8), layout="constrained")
+        fig = new_figure(figsize=(7.0, 4.8), layout="constrained")
         ax = fig.add_subplot()
     else:
         fig = ax.figure
@@ -211,8 +211,6 @@ def plot_bearing_loads(
         return None
     ncols = min(3, len(columns))
     nrows = math.ceil(len(columns) / ncols)
-    from matplotlib.figure import Figure
-
     lines = map_lines(table, x, groups) if lines is None else lines
     if len(lines) > MAX_LEGEND_LINES:
         handles, labels = legend_entries(table, groups)
@@ -223,7 +221,7 @@ def plot_bearing_loads(
     # a legend that would take over 40 % of the panels' height gets height of its own
     height = 3.4 * nrows
     height += max(0.0, 0.6 + legend_height - 0.4 * height)
-    fig = Figure(figsize=(4.2 * ncols, height))
+    fig = new_figure(figsize=(4.2 * ncols, height))
     axes = fig.subplots(nrows, ncols, squeeze=False)
     for ax, column in zip(axes.flat, columns, strict=False):
         name = BEARING_COLUMN.match(column).group(1)  # type: ignore[union-attr]

@@ -261,3 +261,63 @@ def test_each_scene_announces_its_own_first_compilation(tmp_path, monkeypatch):
     cached.write_text("")
     assert not numba_cache_lacks("integrator", "integrate_cylinder")
     assert numba_cache_lacks("integrator", "integrate_coupled")
+
+
+def test_pickled_caches_are_not_loaded_from_a_root_others_can_write(tmp_path, monkeypatch):
+    """A cache root (or its pint folder) writable by others: a warning naming it, and
+    neither pint's pickled definitions nor numba's cache are taken from there; the run
+    still works (unit strings converted, nothing planted read)."""
+    from recipsim.cache_dirs import trusted_cache
+
+    root = tmp_path / "shared-cache"
+    root.mkdir()
+    root.chmod(0o777)
+    monkeypatch.setenv("RECIPSIM_CACHE", str(root))
+    with pytest.warns(UserWarning, match="writable by other users"):
+        assert trusted_cache(root / "pint") is None
+    root.chmod(0o700)
+    assert trusted_cache(root / "pint") == root / "pint"
+    (root / "pint").chmod(0o777)
+    with pytest.warns(UserWarning, match="writable by other users"):
+        assert trusted_cache(root / "pint") is None
+
+
+def test_a_planted_pint_pickle_in_an_open_cache_never_runs(tmp_path):
+    """pint's definitions cache is pickled: a pickle planted in it runs code when it is
+    loaded (shown on a private folder, the user's own, where it is loaded), so a folder
+    others can write is never read: there the planted code leaves no trace."""
+    root = tmp_path / "cache"
+    env = {**os.environ, "RECIPSIM_CACHE": str(root)}
+    code = "from recipsim.case.units import to_si; print(to_si('22 mm', 'm', 'f', 'k'))"
+
+    def convert() -> str:
+        out = subprocess.run(
+            [sys.executable, "-W", "ignore", "-c", code],
+            env=env, capture_output=True, text=True, timeout=120,
+        )  # fmt: skip
+        assert out.returncode == 0, out.stderr
+        return out.stdout.strip()
+
+    assert convert() == "0.022"  # fills the cache
+    pickles = list((root / "pint").rglob("*.pickle"))
+    assert pickles
+    marker = tmp_path / "planted-code-ran"
+
+    def plant() -> None:
+        payload = (
+            "import os, pickle, sys\n"
+            "class P:\n"
+            f"    def __reduce__(self): return (os.system, ('touch {marker}',))\n"
+            "for name in sys.argv[1:]:\n"
+            "    open(name, 'wb').write(pickle.dumps(P()))\n"
+        )
+        subprocess.run([sys.executable, "-c", payload, *map(str, pickles)], check=True)
+
+    plant()
+    convert()
+    assert marker.exists()  # private: the user's own cache is trusted and read
+    marker.unlink()
+    plant()
+    (root / "pint").chmod(0o777)
+    assert convert() == "0.022"
+    assert not marker.exists()
