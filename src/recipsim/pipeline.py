@@ -39,9 +39,9 @@ logger = logging.getLogger("recipsim")
 #: cache): their first-run note is not looked for again.
 _COMPILED: set[str] = set()
 
-#: What a first run of a scene costs in compiling, measured on a 2-core machine with
-#: empty caches (the estimate printed before it starts).
-COMPILE_ESTIMATE = "about 30-60 s"
+#: What compiling a scene's solver takes on a first run (the estimate printed before it
+#: starts; see ``benchmarks/time_to_answer.py --first-run`` to measure it).
+COMPILE_ESTIMATE = "about 10 s on a small machine"
 
 
 def solve_case(case: Case) -> tuple[Case, PeriodicSolution | None, StartupRun | None]:

@@ -244,7 +244,11 @@ def load_property_table(
         )
     from recipsim.physics.thermo.property_table_build import build_table
 
-    logger.info("building the %s property table (once, cached in %s)", coolprop_name, path.parent)
+    logger.info(
+        "building the %s property table (once, about 5 s on a small machine; cached in %s)",
+        coolprop_name,
+        path.parent,
+    )
     table = build_table(coolprop_name, t_min, t_max, res)
     table.path = path
     _write(path, table, key)
