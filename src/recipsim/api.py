@@ -20,12 +20,14 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
+import numpy as np
 import pandas as pd
 
 from recipsim.case.case import Case
 from recipsim.case.load import load_case
 from recipsim.case.overrides import parse_override, toml_literal
 from recipsim.case.shipped import KIND_FOLDERS, shipped_cases_table
+from recipsim.errors import CaseError
 from recipsim.pipeline import simulate_case
 from recipsim.report.case_report import write_case_report
 from recipsim.report.loss_plot import plot_loss_breakdown
@@ -80,43 +82,36 @@ class Result:
     # ---- plots: each draws into ``ax`` (or a new figure) and returns the Axes --------
     def plot_pv(self, ax: Axes | None = None, log: bool = False) -> Axes:
         """Indicator diagram, cylinder pressure against volume (log-log with ``log``)."""
-
         return _first_axes(plot_pv(self.cycle, ax=ax, log=log, label=self.case.name), ax)
 
     def plot_pressure(self, ax: Axes | None = None) -> Axes:
         """Cylinder pressure against crank angle, with the suction and discharge lines."""
-
         op = self.case.operating_point
         plenum = (op.suction_pressure, op.discharge_pressure)
         return _first_axes(plot_pressure(self.cycle, ax=ax, plenum=plenum), ax)
 
     def plot_torque(self, ax: Axes | None = None) -> Axes:
         """Driving torque with its gas and inertia parts against crank angle."""
-
         return _first_axes(plot_torque(self.cycle, ax=ax), ax)
 
     def plot_valves(self, ax: Axes | None = None) -> Axes:
         """Reed lifts and valve mass flows against crank angle (cylinder scenes)."""
-
         return _first_axes(plot_valves(self.cycle, ax=ax), ax)
 
     def plot_bearing_loads(self) -> Any:
         """Force magnitude of every bearing against crank angle; returns the figure's
         array of Axes (one per bearing)."""
-
         return plot_bearing_loads({self.case.name: self.cycle}).axes
 
     def plot_orbits(self) -> Any:
         """Journal orbits (flexible mechanics): the bearings on oil films inside their
         clearance circles, else the primary and secondary; returns the figure's Axes."""
-
         bearings = film_bearings(self.cycle) or ("primary", "secondary")
         return plot_orbits({self.case.name: self.cycle}, bearings=bearings).axes
 
     def plot_losses(self, ax: Axes | None = None) -> Axes:
         """Where the electrical power goes: the loss chain as a waterfall, from the
         electrical input to the isentropic power of the delivered gas."""
-
         return _first_axes(plot_loss_breakdown(self.summary, ax=ax, title=self.case.name), ax)
 
     @property
@@ -132,7 +127,6 @@ class Result:
     def plot_startup(self) -> Any:
         """Speed, motor torque, pressures and bearing loads against time from standstill
         (a run with ``solver.start = "rest"``); returns the figure's array of Axes."""
-
         table = self.startup
         if table is None:
             raise ValueError(f"{self.case.name} was not run from rest (solver.start)")
@@ -143,7 +137,6 @@ class Result:
         """Write the report (``summary.csv``, ``cycle.csv``, figures, ``case.toml``,
         ``provenance.json``) into ``directory``, atomically; a directory that recipsim
         did not write is refused (:class:`~recipsim.errors.CaseError`)."""
-
         return write_case_report(self._run, Path(directory), list(self.case.overrides), plots)
 
 
@@ -168,6 +161,7 @@ def simulate(case: Case) -> Result:
     SolverError
         Naming the crank angle and the state where the integration failed.
     """
+    _check_case(case, "simulate", "case")
     run = simulate_case(case)
     return Result(
         case=case,
@@ -191,7 +185,6 @@ def compare(a: Case | Result, b: Case | Result) -> pd.DataFrame:
         it, suffixed ``_a``/``_b`` when the names are equal); ``difference`` (B - A) and
         ``relative_difference [-]``.
     """
-
     results = [r if isinstance(r, Result) else simulate(r) for r in (a, b)]
     labels = case_labels(results[0].case.name, results[1].case.name)
     return comparison_table(results[0]._run.row, results[1]._run.row, *labels)
@@ -246,26 +239,13 @@ def sweep(
     CaseError
         An unknown key or a grid over the limit, before anything runs.
     """
-
+    _check_case(case, "sweep", "case")
+    grid = _checked_axes(axes)
+    if jobs is not None and (isinstance(jobs, bool) or not isinstance(jobs, int) or jobs < 1):
+        raise CaseError("recipsim.sweep", "jobs", f"{jobs!r}: a whole number >= 1, or None")
     sweep_name = name or f"{case.name}_sweep"
-    parsed = [parse_override(text) for text in case.overrides]
-    fixed = tuple((".".join(path), value) for path, value in parsed)
-    grid = tuple((str(key), tuple(values)) for key, values in axes.items())
-    lines = [f"name = {toml_literal(sweep_name)}", f"base = {toml_literal(case.path)}"]
-    lines += ["[set]"] + [f"{toml_key(k)} = {toml_literal(v)}" for k, v in fixed]
-    lines += ["[axes]"]
-    lines += [f"{toml_key(k)} = [{', '.join(toml_literal(v) for v in vs)}]" for k, vs in grid]
-    spec = SweepSpec(
-        name=sweep_name,
-        description=f"recipsim.sweep of {case.name}",
-        path=Path(case.path),
-        text="\n".join(lines) + "\n",
-        base=Path(case.path).resolve(),
-        fixed=fixed,
-        axes=grid,
-        points=(),
-        max_points=DEFAULT_MAX_POINTS if max_points is None else max_points,
-    )
+    limit = DEFAULT_MAX_POINTS if max_points is None else max_points
+    spec = _sweep_spec(case, sweep_name, grid, limit)
     options: dict[str, Any] = {
         "jobs": jobs,
         "scheduler": scheduler,
@@ -321,11 +301,66 @@ def calibrate(
         An ill-posed fit: more parameters than measured values, a parameter without
         influence, or parameters whose effects cannot be told apart.
     """
-
+    _check_case(case, "calibrate", "case")
     result = calibrate_case(case, data, parameters, points, targets)
     if directory is not None:
         write_calibration(result, directory)
     return result
+
+
+def _sweep_spec(
+    case: Case, name: str, grid: tuple[tuple[str, tuple[Any, ...]], ...], max_points: int
+) -> SweepSpec:
+    """The sweep file that :func:`sweep` runs: the case's file and overrides, the axes."""
+    fixed = tuple((".".join(path), value) for path, value in map(parse_override, case.overrides))
+    lines = [f"name = {toml_literal(name)}", f"base = {toml_literal(case.path)}"]
+    lines += ["[set]"] + [f"{toml_key(k)} = {toml_literal(v)}" for k, v in fixed]
+    lines += ["[axes]"]
+    lines += [f"{toml_key(k)} = [{', '.join(toml_literal(v) for v in vs)}]" for k, vs in grid]
+    return SweepSpec(
+        name=name,
+        description=f"recipsim.sweep of {case.name}",
+        path=Path(case.path),
+        text="\n".join(lines) + "\n",
+        base=Path(case.path).resolve(),
+        fixed=fixed,
+        axes=grid,
+        points=(),
+        max_points=max_points,
+    )
+
+
+def _check_case(case: Any, function: str, argument: str) -> None:
+    """Refuse anything but a :class:`Case` where one is due, naming the argument."""
+    if not isinstance(case, Case):
+        raise CaseError(
+            f"recipsim.{function}",
+            argument,
+            f"expected a Case (from recipsim.load_case), got {type(case).__name__} {case!r:.60}",
+        )
+
+
+def _checked_axes(axes: Any) -> tuple[tuple[str, tuple[Any, ...]], ...]:
+    """A sweep's axes as (dotted key, values); each axis a non-empty list of numbers,
+    strings or booleans (a string is one value, never a list of characters)."""
+    if not isinstance(axes, Mapping) or not axes:
+        raise CaseError("recipsim.sweep", "axes", "a non-empty mapping of case key to values")
+    grid = []
+    for key, values in axes.items():
+        where = f"axes[{key!r}]"
+        if not isinstance(key, str) or not key:
+            raise CaseError("recipsim.sweep", where, "an axis is named by a dotted case key")
+        if isinstance(values, (str, bytes)) or not isinstance(values, Sequence):
+            raise CaseError("recipsim.sweep", where, f"a list of values, got {values!r:.60}")
+        if not values:
+            raise CaseError("recipsim.sweep", where, "an axis needs at least one value")
+        for value in values:
+            if not isinstance(value, (str, int, float, bool, np.generic)):
+                raise CaseError(
+                    "recipsim.sweep", where, f"{value!r:.60} is not a number, text or boolean"
+                )
+        grid.append((key, tuple(values)))
+    return tuple(grid)
 
 
 def toml_key(dotted: str) -> str:

@@ -90,7 +90,8 @@ def _temporary_prefix(target: Path) -> str:
     return f".{target.name}.tmp-{socket.gethostname()}-"
 
 
-def _pid_alive(pid: int) -> bool:
+def pid_alive(pid: int) -> bool:
+    """Whether process ``pid`` runs on this host (one of another user counts)."""
     try:
         os.kill(pid, 0)
     except ProcessLookupError:
@@ -101,29 +102,32 @@ def _pid_alive(pid: int) -> bool:
 
 
 def clean_stale_temporaries(target: Path) -> None:
-    """Remove temporary and old copies of ``target`` left by killed runs on this host.
+    """Remove the temporary and old copies of ``target`` that recipsim runs on this host
+    made and left behind when they were killed.
 
-    A temporary directory is named ``.<name>.tmp-<host>-<pid>-<random>``; it is removed
-    only when its process is gone, so a concurrent run's work is never touched.
+    Only names recipsim makes are considered, each carrying the process id of the run
+    that made it: ``.<name>.tmp-<host>-<pid>-<n>`` (a report being built) and
+    ``.<name>.old-<pid>-<ns>`` (the previous report, moved aside while the new one is
+    renamed into place, which also carries recipsim's marker). Such a directory is
+    removed only when its process is gone; anything else (a user's
+    ``.<name>.old-mybackup``, a link) is never touched.
     """
-    prefix = _temporary_prefix(target)
+    tmp_name = re.compile(re.escape(_temporary_prefix(target)) + r"(\d+)-\d+")
+    old_name = re.compile(re.escape(f".{target.name}.old-") + r"(\d+)-\d+")
     try:
-        entries = list(target.parent.glob(f".{glob_escape(target.name)}.*"))
+        entries = list(target.parent.iterdir())
     except OSError:
         return
     for entry in entries:
-        rest = entry.name[len(prefix) :] if entry.name.startswith(prefix) else None
-        if rest is not None:
-            pid = rest.split("-", 1)[0]
-            if pid.isdigit() and not _pid_alive(int(pid)):
-                shutil.rmtree(entry, ignore_errors=True)
-        elif entry.name.startswith(f".{target.name}.old-"):
-            shutil.rmtree(entry, ignore_errors=True)
-
-
-def glob_escape(text: str) -> str:
-    """Escape the glob metacharacters of ``text``."""
-    return re.sub(r"([*?\[])", r"[\1]", text)
+        tmp, old = tmp_name.fullmatch(entry.name), old_name.fullmatch(entry.name)
+        match = tmp or old
+        if match is None or entry.is_symlink() or not entry.is_dir():
+            continue
+        if pid_alive(int(match.group(1))):
+            continue
+        if old is not None and not (entry / MARKER).is_file():
+            continue
+        shutil.rmtree(entry, ignore_errors=True)
 
 
 @contextmanager

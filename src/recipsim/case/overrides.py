@@ -13,6 +13,8 @@ from collections.abc import Mapping, Sequence
 from functools import lru_cache
 from typing import Any
 
+import numpy as np
+
 from recipsim.errors import CaseError
 
 
@@ -44,12 +46,14 @@ def _parsed_override(text: str) -> tuple[tuple[str, ...], Any]:
 
 
 def toml_literal(value: Any) -> str:
-    """Write a scalar as a TOML value, the right-hand side of a ``--set`` override."""
-    if isinstance(value, bool):
+    """Write a scalar as a TOML value, the right-hand side of a ``--set`` override (numpy
+    scalars as the Python numbers they equal)."""
+    if isinstance(value, (bool, np.bool_)):
         return "true" if value else "false"
-    if isinstance(value, int):
-        return str(value)
-    if isinstance(value, float):
+    if isinstance(value, (int, np.integer)):
+        return str(int(value))
+    if isinstance(value, (float, np.floating)):
+        value = float(value)
         if math.isnan(value):
             return "nan"
         if math.isinf(value):

@@ -20,6 +20,7 @@ from __future__ import annotations
 import argparse
 import logging
 import sys
+import warnings
 from pathlib import Path
 from typing import Any
 
@@ -124,8 +125,28 @@ def main(argv: list[str] | None = None) -> int:
     """Entry point of the ``recipsim`` command."""
     args = _parser().parse_args(argv)
     _show_progress_notes(not getattr(args, "quiet", False))
-    status: int = args.handler(args, argv)
+    with warnings.catch_warnings():  # restores the caller's warning display afterwards
+        warnings.showwarning = _one_line_warning
+        try:
+            status: int = args.handler(args, argv)
+        except KeyboardInterrupt:  # reports are written atomically: nothing half-written
+            print(
+                "recipsim: interrupted (Ctrl-C); no report was left half-written", file=sys.stderr
+            )
+            return 130
     return status
+
+
+def _one_line_warning(
+    message: Warning | str,
+    category: type[Warning],
+    filename: str,
+    lineno: int,
+    file: Any = None,
+    line: str | None = None,
+) -> None:
+    """Show a warning as one line on standard error, ``recipsim: warning: ...``."""
+    print(f"recipsim: warning: {message}", file=sys.stderr)
 
 
 def _show_progress_notes(show: bool) -> None:

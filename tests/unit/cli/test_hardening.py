@@ -91,20 +91,30 @@ def test_paper_and_compare_refuse_unsafe_names(box, capsys):
 
 
 def test_a_report_replaces_its_previous_self_and_cleans_leftovers(box, capsys):
-    """A killed run leaves ``.<name>.tmp-<host>-<pid>-*``: the next run removes the ones
-    whose process is gone and keeps a live one (a concurrent run's)."""
+    """A killed run leaves ``.<name>.tmp-<host>-<pid>-<n>`` (and, killed while renaming,
+    ``.<name>.old-<pid>-<ns>`` with recipsim's marker): the next run removes those whose
+    process is gone and keeps a live one (a concurrent run's). Nothing else beside the
+    report is touched: a user's ``.<name>.old-mybackup``, an ``.old-`` folder without the
+    marker, one whose process still runs."""
     dead = _dead_pid()
     host = socket.gethostname()
     name = report_name("reference_r134a_lbp", BOUNDS)
-    stale = box.out / f".{name}.tmp-{host}-{dead}-abc"
-    live = box.out / f".{name}.tmp-{host}-{os.getpid()}-def"
-    old = box.out / f".{name}.old-1-2"
-    for d in (stale, live, old):
+    stale = box.out / f".{name}.tmp-{host}-{dead}-7"
+    live = box.out / f".{name}.tmp-{host}-{os.getpid()}-8"
+    old = box.out / f".{name}.old-{dead}-1700000000000000000"
+    backup = box.out / f".{name}.old-mybackup"
+    unmarked = box.out / f".{name}.old-{dead}-1700000000000000001"
+    old_live = box.out / f".{name}.old-{os.getpid()}-1700000000000000002"
+    for d in (stale, live, old, backup, unmarked, old_live):
         d.mkdir()
         (d / "summary.csv").write_text("half")
+    for d in (old, old_live):
+        (d / MARKER).write_text("written by recipsim")
     assert run(box, REFERENCE, *BOUNDS_ARGS) in (0, 1)
     assert run(box, REFERENCE, *BOUNDS_ARGS) in (0, 1)  # replaces its own report
-    assert not stale.exists() and not old.exists() and live.exists()
+    assert not stale.exists() and not old.exists()
+    for kept in (live, backup, unmarked, old_live):
+        assert (kept / "summary.csv").read_text() == "half", kept
     assert (box.out / name / "summary.csv").is_file()
     assert box.unchanged()
 

@@ -251,7 +251,14 @@ def load_property_table(
     )
     table = build_table(coolprop_name, t_min, t_max, res)
     table.path = path
-    _write(path, table, key)
+    try:
+        _write(path, table, key)
+    except OSError as exc:  # an unusable cache directory: the run goes on without it
+        warnings.warn(
+            f"property table cache {path.parent} is not usable ({exc.strerror or exc}); "
+            "the table is kept in memory for this run only (see RECIPSIM_CACHE)",
+            stacklevel=2,
+        )
     return table
 
 
@@ -277,7 +284,11 @@ def fluid_constants(coolprop_name: str) -> FluidConstants:
         return isinstance(key, dict) and all(key.get(k) == v for k, v in wanted.items())
 
     directory = cache_dir() / "property_tables"
-    for path in sorted(directory.glob(f"{_safe(coolprop_name)}-*.npz")):
+    try:
+        paths = sorted(directory.glob(f"{_safe(coolprop_name)}-*.npz"))
+    except OSError:  # an unusable cache directory: nothing cached
+        paths = []
+    for path in paths:
         cached = _read(path, same_fluid, warn=False)
         if cached is not None:
             return cached.constants

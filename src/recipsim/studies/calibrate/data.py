@@ -19,6 +19,7 @@ Every value keeps its printed resolution: a catalogue rounds its figures (capaci
 from __future__ import annotations
 
 import csv
+import io
 import math
 import re
 from collections.abc import Sequence
@@ -26,7 +27,13 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from recipsim.case.files import read_input_text
 from recipsim.errors import CaseError
+
+#: Largest data file read [bytes]: a catalogue's table is a few kilobytes.
+MAX_DATA_BYTES = 1_000_000
+#: Most measured points fitted at once (each is simulated at every trial of the fit).
+MAX_POINTS = 500
 
 #: Targets fitted when the command names none (those the file has).
 DEFAULT_TARGETS = ("cooling_capacity [W]", "COP [-]")
@@ -116,11 +123,19 @@ def read_points(
         Naming the file, the column (or row and column) and what is expected.
     """
     file = str(path)
-    with open(path, newline="", encoding="utf-8") as handle:
-        rows = list(csv.reader(handle))
+    text = read_input_text(Path(path), "calibration data", MAX_DATA_BYTES)
+    try:
+        rows = list(csv.reader(io.StringIO(text.removeprefix("\ufeff"), newline="")))
+    except csv.Error as exc:  # a field over csv's size limit, a stray NUL
+        raise CaseError(file, "", f"not a readable CSV file ({exc})") from None
     if len(rows) < 2:
         raise CaseError(file, "", "expected a header row and at least one data row")
+    if len(rows) - 1 > MAX_POINTS:
+        raise CaseError(file, "", f"{len(rows) - 1} rows; at most {MAX_POINTS} measured points")
     header = [h.strip() for h in rows[0]]
+    repeated = sorted({h for h in header if header.count(h) > 1})
+    if repeated:
+        raise CaseError(file, repeated[0], "the column appears more than once; keep one")
     missing = [t for t in (targets or ()) if t not in header]
     if missing:
         raise CaseError(file, missing[0], f"no such column; the file has {header}")

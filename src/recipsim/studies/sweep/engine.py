@@ -218,6 +218,7 @@ def _open_store(root: Path, overrides: list[str], fresh: bool) -> PointStore:
     """Claim the sweep's output directory for ``overrides`` (emptied with ``fresh``)."""
     mark_output(root)
     store = PointStore(root)
+    store.check_links()
     store.claim(overrides, fresh)
     store.clean_temporaries()
     if fresh:
@@ -296,14 +297,7 @@ def _compute(
     def on_start() -> None:
         nonlocal bar
         if progress:  # a bar in a terminal or a notebook, nothing in a log file
-            bar = tqdm(
-                total=len(tasks),
-                desc=name,
-                unit="pt",
-                file=sys.stderr,
-                dynamic_ncols=True,
-                disable=None,
-            )
+            bar = tqdm(total=len(tasks), desc=name, unit="pt", file=sys.stderr, disable=None)
 
     def on_record(task: PointTask, record: dict[str, Any]) -> None:
         nonlocal not_ok

@@ -31,13 +31,14 @@ from __future__ import annotations
 
 import hashlib
 import json
+import re
 import time
 from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from recipsim.atomic import atomic_file
+from recipsim.atomic import atomic_file, pid_alive
 from recipsim.errors import CaseError
 from recipsim.report.case_report import overrides_digest
 from recipsim.studies.sweep import record_segments
@@ -46,6 +47,9 @@ from recipsim.studies.sweep.worker import STATUSES, PointTask, run_point
 #: A point file larger than this is not read (it was not written by recipsim) [bytes]: the
 #: limit of a segment's line.
 _MAX_RECORD_BYTES = record_segments.MAX_LINE_BYTES
+
+#: A temporary file of :mod:`recipsim.atomic` (its process id in the first group).
+_TEMPORARY = re.compile(r"\.[^/]*\.(\d+)-\d+[^/]*\.tmp")
 
 #: format of a point record: 4, a line of a segment (:mod:`.record_segments`); files of one point
 #: each, 3 (checksum over the keys in order) and 2 (over the keys sorted), are still read
@@ -98,10 +102,33 @@ class PointStore:
         """Per-point report directory."""
         return self.reports / point_id
 
+    def check_links(self) -> None:
+        """Refuse output folders that are symbolic links (``points/``, ``reports/``):
+        recipsim writes and cleans only inside the folder the user pointed to.
+
+        Raises
+        ------
+        CaseError
+            Naming the folder.
+        """
+        for folder in (self.points, self.reports):
+            if folder.is_symlink():
+                raise CaseError(
+                    str(folder),
+                    "--out",
+                    "is a symbolic link; recipsim does not follow links inside its output "
+                    "folders (remove the link, or point --out elsewhere)",
+                )
+
     def clean_temporaries(self) -> None:
-        """Remove temporary files left by a sweep killed while writing."""
-        if self.points.is_dir():
-            for tmp in self.points.glob(".*.tmp"):
+        """Remove the temporary files that sweeps killed while writing left in
+        ``points/``: only names recipsim makes (``.<stem>.<pid>-<n><suffix>.tmp``), only
+        regular files, only where that process is gone."""
+        if not self.points.is_dir() or self.points.is_symlink():
+            return
+        for tmp in self.points.glob(".*.tmp"):
+            match = _TEMPORARY.fullmatch(tmp.name)
+            if match and tmp.is_file() and not tmp.is_symlink() and not pid_alive(int(match[1])):
                 tmp.unlink(missing_ok=True)
 
     def claim(self, overrides: Sequence[str], fresh: bool = False) -> None:

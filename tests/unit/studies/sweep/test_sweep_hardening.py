@@ -7,12 +7,16 @@ the sweep could write) that nothing outside ``--out`` changed.
 from __future__ import annotations
 
 import json
+import os
 import socket
+import subprocess
+import sys
 import time
 import tracemalloc
 from pathlib import Path
 
 import pandas as pd
+import pytest
 
 from helpers import REFERENCE, Sandbox, one_line_error
 from recipsim.atomic import MARKER
@@ -186,3 +190,47 @@ def test_out_on_a_file_is_one_line(tmp_path, capsys):
     assert main(["sweep", str(sweep), "--out", str(target), "--quiet"]) == 2
     assert "not a directory" in one_line_error(capsys)
     assert target.read_text() == "x"
+
+
+@pytest.mark.parametrize("folder", ["points", "reports"])
+def test_an_output_folder_that_is_a_link_is_refused_and_its_target_untouched(
+    tmp_path, capsys, folder
+):
+    """``points/`` or ``reports/`` as a symbolic link: exit 2 naming it, and nothing in
+    the link's target is written or deleted (a hidden ``.*.tmp`` file there survives)."""
+    sweep = write(tmp_path, SMALL)
+    elsewhere = tmp_path / "elsewhere"
+    elsewhere.mkdir()
+    precious = elsewhere / ".draft.tmp"
+    precious.write_text("mine")
+    root = tmp_path / "o" / "small"
+    root.mkdir(parents=True)
+    (root / MARKER).write_text("written by recipsim")  # an earlier sweep's directory
+    (root / folder).symlink_to(elsewhere)
+    assert main(["sweep", str(sweep), "--out", str(tmp_path / "o"), "--jobs", "1"]) == 2
+    assert "symbolic link" in one_line_error(capsys)
+    assert sorted(p.name for p in elsewhere.iterdir()) == [".draft.tmp"]
+    assert precious.read_text() == "mine"
+
+
+def test_only_recipsims_own_stale_temporaries_are_cleaned(tmp_path):
+    """In ``points/``: a temporary file of a dead process is removed; one of a live
+    process, a user's hidden ``.notes.tmp`` and a link named like a temporary are kept."""
+    from recipsim.studies.sweep.store import PointStore
+
+    store = PointStore(tmp_path)
+    store.points.mkdir()
+    dead = subprocess.Popen([sys.executable, "-c", "pass"])
+    dead.wait()
+    stale = store.points / f".abc.{dead.pid}-3.json.tmp"
+    live = store.points / f".abc.{os.getpid()}-4.json.tmp"
+    notes = store.points / ".notes.tmp"
+    target = tmp_path / "target.txt"
+    target.write_text("x")
+    link = store.points / f".lnk.{dead.pid}-5.json.tmp"
+    for path in (stale, live, notes):
+        path.write_text("x")
+    link.symlink_to(target)
+    store.clean_temporaries()
+    assert not stale.exists()
+    assert live.exists() and notes.exists() and link.is_symlink() and target.exists()
