@@ -33,7 +33,7 @@ from typing import Any
 import numpy as np
 
 from recipsim.case.load import load_case
-from recipsim.cli.options import add_common_options, exit_status
+from recipsim.cli.options import add_common_options, exit_status, positive_int
 from recipsim.model.build import build_model
 from recipsim.physics.mechanics.tabulated import PressureCurve
 from recipsim.report.case_report import report_dir
@@ -84,7 +84,7 @@ def add_paper_parser(sub: Any) -> None:
     )
     p.add_argument(
         "--undamped-revolutions",
-        type=int,
+        type=positive_int,
         default=None,
         help="revolutions of an undamped transient, the last one reported (default 8)",
     )
