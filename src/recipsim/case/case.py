@@ -13,7 +13,12 @@ from typing import Any
 
 from recipsim.case.build import case_sections, derived_sections
 from recipsim.case.mechanism import MechanismSpec
-from recipsim.case.overrides import apply_overrides, override_tables, override_texts
+from recipsim.case.overrides import (
+    apply_overrides,
+    blamed_on_override,
+    override_tables,
+    override_texts,
+)
 from recipsim.case.refrigerant import RefrigerantSpec
 from recipsim.case.sections import (
     Geometry,
@@ -25,6 +30,7 @@ from recipsim.case.sections import (
     Valves,
 )
 from recipsim.case.thermal import ThermalSpec, parse_thermal
+from recipsim.errors import CaseError
 from recipsim.physics.mechanics.tabulated import PressureCurve
 from recipsim.physics.motor import MotorSpec
 from recipsim.physics.motor_circuit import MotorCircuit
@@ -97,9 +103,12 @@ class Case:
         try:  # only the sections that the overrides reach are validated again
             changed = derived_sections(vars(self), raw, override_tables(texts))
         except Exception:  # validated whole again: the error the file gives first
-            case = case_from_dict(
-                raw, self.path, self.source_text, allow_external_paths=self.allow_external_paths
-            )
+            try:
+                case = case_from_dict(
+                    raw, self.path, self.source_text, allow_external_paths=self.allow_external_paths
+                )
+            except CaseError as exc:
+                raise blamed_on_override(exc, texts) from None
             return replace(
                 case, overrides=overrides_now, allow_external_paths=self.allow_external_paths
             )

@@ -44,6 +44,7 @@ from recipsim.case.extends import resolve_extends, shipped_case
 from recipsim.case.files import read_toml
 from recipsim.case.overrides import (
     apply_overrides,
+    blamed_on_override,
     override,
     override_texts,
     parse_override,
@@ -59,6 +60,7 @@ from recipsim.case.sections import (
     Valves,
     ValveSpec,
 )
+from recipsim.errors import CaseError
 
 
 def load_case(
@@ -93,7 +95,10 @@ def load_case(
         With the file, the key and what is allowed.
     """
     file, texts, raw, text = _overridden_raw(path, overrides, allow_external_paths)
-    case = case_from_dict(raw, file, text, allow_external_paths=allow_external_paths)
+    try:
+        case = case_from_dict(raw, file, text, allow_external_paths=allow_external_paths)
+    except CaseError as exc:
+        raise blamed_on_override(exc, texts) from None
     return replace(case, overrides=tuple(texts), allow_external_paths=allow_external_paths)
 
 

@@ -124,3 +124,14 @@ def apply_overrides(raw: dict[str, Any], overrides: list[str], file: str) -> dic
             node = nxt
         node[path[-1]] = value
     return data
+
+
+def blamed_on_override(error: CaseError, texts: Sequence[str]) -> CaseError:
+    """``error`` attributed to the override that set its key, if one did (the last one
+    of that key or of a table above it): the message then names ``override KEY=VALUE``
+    instead of the case file, whose value was replaced. Otherwise ``error`` itself."""
+    for text in reversed(texts):
+        key = ".".join(parse_override(text)[0])
+        if error.key == key or error.key.startswith(key + "."):
+            return CaseError(f"override {text}", error.key, error.message)
+    return error

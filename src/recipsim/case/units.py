@@ -90,6 +90,10 @@ def _convert(value: str, unit: str) -> float | str:
         if unit == "rad/s" and _frequency_without_angle(q):
             return float(q.to("1/s").magnitude) * 2.0 * math.pi  # revolutions per second
         return float(q.to(unit).magnitude)
+    except (OverflowError, ValueError) as exc:
+        if isinstance(exc, OverflowError) or "digits" in str(exc):
+            return f"{value!r}: the number is too large for a float"
+        return f"{value!r} has the wrong dimension: expected a quantity in {unit}"
     except Exception:
         return f"{value!r} has the wrong dimension: expected a quantity in {unit}"
 

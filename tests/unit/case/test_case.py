@@ -73,10 +73,12 @@ def test_overrides_are_validated_like_the_file():
     ],
 )
 def test_bad_input_names_file_key_and_allowed(override, key, fragment):
+    """A bad value set by an override is blamed on the override (where the value came
+    from), with the key and what is allowed; the same value in a file names the file."""
     with pytest.raises(CaseError) as err:
         load_case(REFERENCE, [override])
     assert err.value.key == key
-    assert err.value.file == str(REFERENCE)
+    assert err.value.file == f"override {override}"
     assert fragment in str(err.value)
 
 
@@ -95,7 +97,7 @@ def test_cli_refuses_bad_input_with_exit_2_and_no_traceback(capsys):
     status = main(["run", str(REFERENCE), "--set", "geometry.stroke=5", "--no-plots"])
     err = capsys.readouterr().err
     assert status == 2
-    assert "geometry.stroke" in err and str(REFERENCE) in err
+    assert "geometry.stroke" in err and "override geometry.stroke=5" in err
     assert "Traceback" not in err
 
 
