@@ -29,7 +29,7 @@ from recipsim.results.case_run import CaseRun, case_run, summary_only
 from recipsim.results.outcome import explained
 from recipsim.solve.drive import build_model_for
 from recipsim.solve.motor_speed import solve_at_motor_speed
-from recipsim.solve.periodic import PeriodicSolution, solve_periodic
+from recipsim.solve.periodic import PeriodicSolution, check_step_budget, solve_periodic
 from recipsim.solve.scene_entries import entry_name
 from recipsim.solve.startup import StartupRun, solve_from_rest
 
@@ -67,6 +67,8 @@ def solve_case(case: Case) -> tuple[Case, PeriodicSolution | None, StartupRun | 
         quantity and state of a failed property evaluation.
     """
     entry = entry_name(case.options, case.solver)
+    if entry is not None:
+        check_step_budget(case.solver)  # before anything is compiled or integrated
     if entry is not None and entry not in _COMPILED and numba_cache_lacks("integrator", entry):
         logger.info(
             "compiling the solver for this scene (once per installation, %s)", COMPILE_ESTIMATE

@@ -92,6 +92,7 @@ def solver_settings(raw: dict[str, Any] | None, file: str) -> SolverSettings:
         else sv["standstill_pressure"],
         pull_down_time=sv["pull_down_time"],
         envelope=sv["envelope"],
+        step_budget=int(sv["step_budget"]),
     )
 
 

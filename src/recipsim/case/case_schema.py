@@ -138,6 +138,15 @@ SOLVER_SPEC: Spec = {
     "max_step": Field(
         "rad", math.radians(2.0), lo=1e-7, hi=math.pi, doc="largest crank-angle step"
     ),
+    "step_budget": Field(
+        "dimensionless",
+        20_000_000,
+        lo=1000,
+        hi=1e12,
+        integer=True,
+        doc="most integration steps a solve may take; a case whose max_step alone needs "
+        "more is refused before it starts, with an estimate",
+    ),
     "start": Choice(
         ("periodic", "rest"),
         "periodic",

@@ -172,3 +172,5 @@ class SolverSettings:
     pull_down_time: float = 2.5
     #: outside the refrigerant's envelope: "refuse" or "ignore" (recipsim.case.envelope)
     envelope: str = "refuse"
+    #: most integration steps a solve may take (:func:`recipsim.solve.periodic.check_step_budget`)
+    step_budget: int = 20_000_000

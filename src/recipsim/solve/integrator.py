@@ -62,6 +62,7 @@ from recipsim.model.scenes import (
 )
 from recipsim.model.scenes import scene_rhs as scene_rhs  # re-exported (every scene)
 from recipsim.physics.layout_table import Layout
+from recipsim.physics.thermo.property_slots import SIGNAL_CHECK
 from recipsim.solve.dense_output import hermite, record_samples
 from recipsim.solve.dopri5 import dopri5_step, stiffness_estimate
 from recipsim.solve.events import any_crossing, locate_first_event
@@ -100,6 +101,13 @@ PROPERTY_FAILURE = 2
 CHATTERING = 3
 #: an explicit entry's stop where the W-step takes over (never the status of :func:`integrate`)
 NEEDS_W_STEP = 4
+#: the user pressed Ctrl-C (the caller raises KeyboardInterrupt)
+INTERRUPTED = 5
+
+#: accepted steps between two questions to the property callback whether the user
+#: pressed Ctrl-C: the compiled loop never returns to Python otherwise, so a solve of
+#: millions of steps would not see it
+SIGNAL_CHECK_STEPS = 2048
 
 #: accepted steps in a row at one instant (events) before the run stops as chattering
 MAX_EVENTS_AT_ONE_INSTANT = 50
@@ -366,6 +374,9 @@ def scene_entry(name: str, code: int, w_entry: int) -> Any:
                 sample_modes, yint,
             )  # fmt: skip
             counts[1] += 1
+            if counts[1] % SIGNAL_CHECK_STEPS == 0 and props(SIGNAL_CHECK, 0.0) != 0:
+                result = INTERRUPTED
+                break
             if use_w:
                 counts[4] += 1
                 jac_age += 1

@@ -36,6 +36,8 @@ import time
 
 import numpy as np
 
+from recipsim.case.sections import SolverSettings
+from recipsim.errors import SolverError
 from recipsim.model.build import Model, WorkingModel
 from recipsim.model.scenes import SCENE_CYLINDER
 from recipsim.solve.residual import cycle_residual, residual_reference, state_change
@@ -121,6 +123,33 @@ def predicted_revolutions(history: list[float], tolerance: float) -> float:
     return math.log(tolerance / now) / math.log(rate)
 
 
+#: Rough cost of one integration step [s], for the estimate of a refused solve.
+STEP_COST_ESTIMATE = 5e-6
+
+
+def check_step_budget(settings: SolverSettings) -> None:
+    """Refuse, before integrating, a solve whose largest crank-angle step alone needs
+    more steps than ``solver.step_budget`` over ``solver.min_revolutions`` revolutions,
+    with an estimate of what it would take.
+
+    Raises
+    ------
+    SolverError
+        Naming ``solver.max_step``, the steps it needs and the budget.
+    """
+    per_revolution = math.ceil(2.0 * math.pi / settings.max_step)
+    needed = settings.min_revolutions * per_revolution
+    if needed > settings.step_budget:
+        hours = needed * STEP_COST_ESTIMATE / 3600.0
+        raise SolverError(
+            f"solver.max_step = {settings.max_step:.3g} rad needs at least {needed:,} steps "
+            f"({settings.min_revolutions} revolutions of {per_revolution:,}), over "
+            f"solver.step_budget = {settings.step_budget:,} (roughly {hours:.2g} h at "
+            f"{STEP_COST_ESTIMATE * 1e6:.0f} us a step): raise solver.max_step, or "
+            "solver.step_budget to run it anyway"
+        )
+
+
 def solve_periodic(model: Model) -> PeriodicSolution:
     """Periodic steady state with the solver of ``model.case.solver.periodic``.
 
@@ -185,7 +214,7 @@ def _iterate(
     h = model.period * 1e-4
     previous: Revolution | None = None
     history: list[float] = []
-    tally = _Tally()
+    tally = _Tally(s.step_budget)
     rev: Revolution | None = None
     recent: list[Revolution] = []
     residual = math.inf

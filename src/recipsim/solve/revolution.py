@@ -18,6 +18,7 @@ from recipsim.model.build import Model, WorkingModel, scenes
 from recipsim.model.scenes import N_AUX
 from recipsim.solve.integrator import (
     CHATTERING,
+    INTERRUPTED,
     METHOD_AUTO,
     METHOD_DOPRI5,
     METHOD_ROSW,
@@ -284,6 +285,8 @@ def next_first_step(model: Model, h_last: float) -> float:
 
 
 def _raise_failure(model: Model, status: int, t: float, y: np.ndarray, mode: np.ndarray) -> None:
+    if status == INTERRUPTED:  # Ctrl-C under a handler that does not raise it itself
+        raise KeyboardInterrupt
     if model.scene == scenes.SCENE_CYLINDER:
         theta_rad = model.start_angle + model.shaft_speed * t
     else:
@@ -321,9 +324,11 @@ def discharge_enthalpy(model: Model, rev: Revolution) -> float | None:
 
 
 class _Tally:
-    """Integrator counters over every revolution of a solve."""
+    """Integrator counters over every revolution of a solve; ``budget``: the most
+    accepted steps it may take (``solver.step_budget``), None for no limit."""
 
-    def __init__(self) -> None:
+    def __init__(self, budget: int | None = None) -> None:
+        self.budget = budget
         self.revolutions = 0
         self.nfev = 0
         self.steps = 0
@@ -340,6 +345,12 @@ class _Tally:
             count = int(rev.stats[slot])
             total = getattr(self, name)
             setattr(self, name, total + count if total >= 0 and count >= 0 else -1)
+        if self.budget is not None and self.steps > self.budget:
+            raise SolverError(
+                f"the solve took {self.steps:,} steps in {self.revolutions} revolutions, "
+                f"over solver.step_budget = {self.budget:,}: loosen solver.rtol or "
+                "solver.max_step, or raise solver.step_budget"
+            )
 
 
 def sample_outputs(model: Model, rev: Revolution, cylinder_only: bool = False) -> np.ndarray:

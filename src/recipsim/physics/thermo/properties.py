@@ -45,7 +45,9 @@ from recipsim.physics.thermo.property_slots import (
     PROP_PRESSURE,
     PROP_QUALITY,
     PROP_VISCOSITY,
+    SIGNAL_CHECK,
     STATUS_DOMAIN,
+    STATUS_INTERRUPTED,
     STATUS_OK,
 )
 
@@ -274,6 +276,8 @@ def _coolprop_callback(
 
     def callback(temperature: float, density: float) -> int:
         try:
+            if temperature == SIGNAL_CHECK:  # the integrator asks whether to stop
+                return STATUS_INTERRUPTED if interrupted[0] else STATUS_OK
             if interrupted[0]:
                 return STATUS_DOMAIN
             if not (t_min <= temperature <= t_max) or not (density > 0.0):

@@ -24,6 +24,11 @@ N_PROPS = PROPS.size
 
 STATUS_OK = 0
 STATUS_DOMAIN = 1
+#: the answer to :data:`SIGNAL_CHECK` when a Ctrl-C arrived during the solve
+STATUS_INTERRUPTED = 2
+#: a temperature [K] that asks the property callback only whether the user interrupted
+#: (the callback runs Python, where a pending Ctrl-C is handled); no state is evaluated
+SIGNAL_CHECK = 0.0
 
 __all__ = [
     "PROPS",
@@ -42,4 +47,6 @@ __all__ = [
     "N_PROPS",
     "STATUS_OK",
     "STATUS_DOMAIN",
+    "STATUS_INTERRUPTED",
+    "SIGNAL_CHECK",
 ]
