@@ -21,10 +21,12 @@ numba's configuration stay as the user set them.
 from __future__ import annotations
 
 import hashlib
+import logging
 import os
+import pickle
 import stat
 import warnings
-from functools import lru_cache
+from functools import cache, lru_cache
 from pathlib import Path
 from typing import Any
 
@@ -78,6 +80,25 @@ def use_recipsim_numba_cache() -> None:
         locators.insert(0, _RecipsimCacheLocator())
 
 
+@cache
+def discard_unreadable_indexes(folder: str) -> None:
+    """Remove the numba cache indexes (``*.nbi``) of ``folder`` that do not unpickle (a
+    file truncated or overwritten), once per folder and process: numba would raise on
+    them at every run; without them it compiles those functions again and rewrites the
+    index. Only recipsim's own, trusted cache folders are scanned."""
+    for index in Path(folder).glob("*.nbi"):
+        try:
+            with open(index, "rb") as handle:
+                pickle.load(handle)  # numba's format: its version, then the index data
+                pickle.loads(handle.read())
+        except Exception:  # anything unreadable: pickle raises many types
+            # logged (one line), not warned: this runs while recipsim is being imported
+            logging.getLogger("recipsim").warning(
+                "recipsim: numba cache index %s was unreadable; it is compiled again", index
+            )
+            index.unlink(missing_ok=True)
+
+
 @lru_cache(maxsize=1)
 def _RecipsimCacheLocator() -> type:  # noqa: N802 (a class, made once)
     """numba's cache locator for the files of this package (see the module docstring)."""
@@ -97,6 +118,7 @@ def _RecipsimCacheLocator() -> type:  # noqa: N802 (a class, made once)
             if trusted_cache(Path(self._cache_path)) is None:
                 raise OSError(f"untrusted cache directory {self._cache_path}")
             super().ensure_cache_path()
+            discard_unreadable_indexes(self._cache_path)
 
         @classmethod
         def from_function(cls, py_func: Any, py_file: str) -> Any:

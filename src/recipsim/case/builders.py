@@ -24,7 +24,7 @@ from recipsim.case.case_schema import (
 from recipsim.case.files import resolve_reference
 from recipsim.case.mechanism import MechanismSpec
 from recipsim.case.pressure_curve import read_pressure_curve
-from recipsim.case.schema import read_table
+from recipsim.case.schema import check_keys, read_table
 from recipsim.case.sections import (
     Geometry,
     HeatTransfer,
@@ -142,6 +142,7 @@ def valves(raw: dict[str, Any] | None, options: Options, file: str) -> Valves:
     """``[valves]`` and its suction and discharge reeds (placeholders for ideal valves,
     which use none); the port position defaults to the reed's length less half its width."""
     raw = dict(raw or {})
+    check_keys(raw, {*VALVES_TOP_SPEC, "suction", "discharge"}, file, "valves")
     top = read_table(
         {k: v for k, v in raw.items() if k not in ("suction", "discharge")},
         VALVES_TOP_SPEC,

@@ -191,6 +191,13 @@ def _read_refrigerant_file(path: Path) -> RefrigerantSpec:
     limits = read_table(raw.get("limits"), LIMITS_SPEC, file, "limits")
     t_min = max(constants.t_min, limits["min_temperature"] or 0.0)
     t_max = min(constants.t_max, limits["max_temperature"] or 1e9)
+    if not t_min < t_max:
+        raise CaseError(
+            file,
+            "limits",
+            f"the temperature range is empty: from {t_min:.6g} K (min_temperature or "
+            f"CoolProp's lowest) to {t_max:.6g} K (max_temperature or CoolProp's highest)",
+        )
     p_max = min(constants.p_max, limits["max_pressure"] or 1e12)
     points_raw = raw.get("rating_points", {})
     if not isinstance(points_raw, dict):

@@ -84,6 +84,8 @@ def _convert(value: str, unit: str) -> float | str:
         q = ureg.Quantity(value)
     except Exception as exc:  # pint raises several unrelated types for bad strings
         return f"cannot read {value!r} as a quantity ({exc})"
+    if not _finite(getattr(q, "magnitude", q)):
+        return f"{value!r} is not a finite number"
     try:
         if not hasattr(q, "to"):
             return float(q)
@@ -96,6 +98,15 @@ def _convert(value: str, unit: str) -> float | str:
         return f"{value!r} has the wrong dimension: expected a quantity in {unit}"
     except Exception:
         return f"{value!r} has the wrong dimension: expected a quantity in {unit}"
+
+
+def _finite(magnitude: Any) -> bool:
+    """Whether a parsed number is finite (one too large for a float counts as finite
+    here: the conversion then says it is too large)."""
+    try:
+        return math.isfinite(float(magnitude))
+    except (OverflowError, TypeError, ValueError):
+        return True
 
 
 def _frequency_without_angle(q: Any) -> bool:

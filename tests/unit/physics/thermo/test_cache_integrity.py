@@ -321,3 +321,34 @@ def test_a_planted_pint_pickle_in_an_open_cache_never_runs(tmp_path):
     (root / "pint").chmod(0o777)
     assert convert() == "0.022"
     assert not marker.exists()
+
+
+@pytest.mark.parametrize("damage", [b"", b"garbage", "half"])
+def test_a_corrupted_numba_cache_index_is_compiled_again(tmp_path, damage):
+    """A truncated or overwritten numba index (``*.nbi``) in recipsim's cache: the next
+    process says so in one line, compiles the function again, gives the same value, and
+    the one after it reads the rewritten cache silently."""
+    env = {**os.environ, "RECIPSIM_CACHE": str(tmp_path / "cache")}
+    env.pop("NUMBA_CACHE_DIR", None)
+    code = (
+        "from recipsim.physics.kinematics import piston_displacement\n"
+        "print(repr(piston_displacement(0.7, 0.0092, 0.036)[0]))\n"
+    )
+
+    def run() -> subprocess.CompletedProcess[str]:
+        return subprocess.run(
+            [sys.executable, "-c", code], env=env, capture_output=True, text=True, timeout=120
+        )
+
+    first = run()
+    assert first.returncode == 0, first.stderr
+    (index,) = (tmp_path / "cache").rglob("kinematics.piston_displacement-*.nbi")
+    whole = index.read_bytes()
+    index.write_bytes(whole[: len(whole) // 2] if damage == "half" else damage)
+    again = run()
+    assert again.returncode == 0 and again.stdout == first.stdout, again.stderr
+    assert "Traceback" not in again.stderr
+    assert [line for line in again.stderr.splitlines() if "was unreadable" in line]
+    third = run()
+    assert third.returncode == 0 and third.stdout == first.stdout
+    assert "unreadable" not in third.stderr
