@@ -31,7 +31,7 @@ import numpy as np
 
 from recipsim.case.case import Case
 from recipsim.case.units import _registry
-from recipsim.errors import RecipsimError
+from recipsim.errors import CaseError, RecipsimError
 from recipsim.studies.calibrate.data import MeasuredPoint
 from recipsim.studies.point_warnings import kept_warnings
 
@@ -133,6 +133,8 @@ def parse_parameter(text: str, case: Case) -> Parameter:
         if not sep:
             raise CalibrationError(f"--parameters {text!r}: bounds are written LOWER:UPPER")
         lower, upper = _si(low_text, key), _si(high_text, key)
+        if not (math.isfinite(lower) and math.isfinite(upper)):
+            raise CalibrationError(f"{key}: bounds must be finite numbers ({lower:g}:{upper:g})")
         if not lower < upper:
             raise CalibrationError(f"{key}: lower bound {lower:g} is not below {upper:g}")
     elif value is not None and value > 0.0:
@@ -144,6 +146,10 @@ def parse_parameter(text: str, case: Case) -> Parameter:
         )
     if value is None or not lower <= value <= upper:
         value = math.sqrt(lower * upper) if lower > 0.0 else 0.5 * (lower + upper)
+    try:  # a key the case does not have, or a value it refuses, named before any fit
+        case.with_({key: value})
+    except CaseError as exc:
+        raise CalibrationError(f"--parameters {text!r}: {exc.message}") from None
     return Parameter(key, lower, upper, value)
 
 

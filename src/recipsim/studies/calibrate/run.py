@@ -3,6 +3,7 @@ point with the calibrated case, tabulate (:class:`Calibration`)."""
 
 from __future__ import annotations
 
+import difflib
 import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
@@ -12,12 +13,15 @@ from typing import Any
 import pandas as pd
 
 from recipsim.case.case import Case
-from recipsim.errors import RecipsimError
+from recipsim.errors import CaseError, RecipsimError
 from recipsim.pipeline import simulate_case
+from recipsim.results.column_docs import documented
+from recipsim.results.summary_docs import STARTUP_SUMMARY_DOCS, SUMMARY_DOCS
 from recipsim.studies.calibrate.data import MeasuredPoint, read_points
 from recipsim.studies.calibrate.fit import (
     CalibrationError,
     FitResult,
+    Parameter,
     fit_parameters,
     parse_parameter,
 )
@@ -118,6 +122,7 @@ def calibrate_case(
     if len({p.key for p in specs}) < len(specs):
         raise CalibrationError("a parameter is named twice")
     fitting = [p for p in measured if p.row in used]
+    _check_points(case, fitting, chosen, specs, str(data))
     fit = fit_parameters(case, fitting, chosen, specs, simulate)
     calibrated = case.with_({p.key: v for p, v in zip(specs, fit.values, strict=True)})
     table = _parameter_table(fit)
@@ -129,6 +134,40 @@ def calibrate_case(
         _point_table(calibrated, measured, used, chosen, simulate),
         str(data),
     )
+
+
+#: The columns a summary row can hold (the targets a fit can compare).
+SUMMARY_COLUMNS = documented(SUMMARY_DOCS + STARTUP_SUMMARY_DOCS)
+
+
+def _check_points(
+    case: Case,
+    points: Sequence[MeasuredPoint],
+    targets: Sequence[str],
+    specs: Sequence[Parameter],
+    data: str,
+) -> None:
+    """Refuse, before any fit, targets that no summary has and points whose inputs the
+    case refuses at the parameters' starting values (a unit in a header that does not
+    fit its values, kelvin in a degC column), naming the data file, row and key: a fit
+    would otherwise see every such point fail alike and blame the parameters.
+
+    Raises
+    ------
+    CaseError
+        Naming the data file and the column or row.
+    """
+    for target in targets:
+        if target not in SUMMARY_COLUMNS:
+            close = difflib.get_close_matches(target, sorted(SUMMARY_COLUMNS), n=1)
+            hint = f"; did you mean {close[0]!r}?" if close else ""
+            raise CaseError(data, target, f"a target must be a summary column{hint}")
+    start = {p.key: p.initial for p in specs}
+    for point in points:
+        try:
+            case.with_({**point.overrides, **start})
+        except CaseError as exc:
+            raise CaseError(data, f"row {point.row}", f"{exc.key}: {exc.message}") from None
 
 
 def _at_bound(value: float, lower: float, upper: float) -> bool:
