@@ -41,6 +41,8 @@ STEP = 0.01
 MIN_INFLUENCE = 1e-5
 #: Largest condition number of the scaled Jacobian of an identifiable problem.
 MAX_CONDITION = 1e6
+#: Widest spread of a fitted logarithmic parameter (one standard deviation) [decades].
+MAX_DECADES = 1.0
 #: Solver settings of the fit's runs: a cycle tolerance well below the step's effect.
 SOLVER_OVERRIDES = {"solver.cycle_tolerance": 1e-6, "solver.max_revolutions": 400}
 #: Residual of a point whose run failed: far from any fit, so the fit steers away.
@@ -278,6 +280,24 @@ def check_identifiable(jac: np.ndarray, parameters: Sequence[Parameter]) -> None
             )
 
 
+def check_determined(parameters: Sequence[Parameter], std: Sequence[float]) -> None:
+    """Refuse a fit whose data leave a parameter free over more than
+    :data:`MAX_DECADES` decades (a logarithmic one) or over more than its whole range (a
+    linear one, fitted as a fraction of its range), at one standard deviation (the larger
+    of the data's resolution and the residuals' estimates)."""
+    loose = []
+    for p, sigma in zip(parameters, std, strict=True):
+        limit = MAX_DECADES * math.log(10.0) if p.logarithmic else 1.0
+        if not sigma <= limit:
+            spread = f"{sigma / math.log(10.0):.3g} decades" if p.logarithmic else "its range"
+            loose.append(f"{p.key} (one standard deviation spans {spread})")
+    if loose:
+        raise CalibrationError(
+            "the data do not determine " + ", ".join(loose) + ": its effect is the same as "
+            "another parameter's or too small to measure; fit fewer parameters or add points"
+        )
+
+
 def fit_parameters(
     case: Case,
     points: Sequence[MeasuredPoint],
@@ -341,7 +361,11 @@ def fit_parameters(
     if np.any(r == FAILED_RESIDUAL):
         raise CalibrationError("a calibration point does not run at the fitted values")
     jac = forward_jacobian(f, result.x)
+    check_identifiable(jac, parameters)  # at the optimum too: effects may align there
     std_res = _std(jac, r, f.sigma, len(parameters))
+    check_determined(
+        parameters, [max(a, b) if b == b else a for a, b in zip(*std_res, strict=True)]
+    )
     return FitResult(
         parameters=tuple(parameters),
         values=tuple(p.from_x(v) for p, v in zip(parameters, result.x, strict=True)),

@@ -66,3 +66,22 @@ def test_a_target_no_summary_holds_is_named(tmp_path) -> None:
 def test_the_checks_pass_a_good_file_on_to_the_fit(tmp_path) -> None:
     with pytest.raises((AssertionError, RecipsimError), match="no simulation may run"):
         _calibrate(tmp_path, GOOD)
+
+
+def test_a_parameter_the_data_cannot_determine_is_refused_after_the_fit(tmp_path) -> None:
+    """The capacity moves by 0.15 % per e-fold of the parameter, under the catalogue's
+    printed resolution (0.5 W of 68 W): one standard deviation would span 1.5 decades,
+    so the fit is refused rather than reported with an interval over decades."""
+    import math
+
+    from recipsim.studies.calibrate.fit import case_value
+
+    def weak(case) -> dict[str, float]:
+        preload = case_value(case, "valves.suction.preload")
+        return {"cooling_capacity [W]": 68.0 * (1.0 + 0.0015 * math.log(preload / 0.1))}
+
+    data = tmp_path / "data.csv"
+    data.write_text(GOOD)
+    case = load_case(REFERENCE)
+    with pytest.raises(CalibrationError, match="do not determine valves.suction.preload"):
+        calibrate_case(case, data, ["valves.suction.preload=0.01 N:1 N"], simulate=weak)
