@@ -13,7 +13,7 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any
 
-from recipsim.case.units import to_si
+from recipsim.case.units import in_written_unit, to_si
 from recipsim.errors import CaseError
 
 REQUIRED = object()
@@ -47,12 +47,16 @@ class Field:
     integer: bool = False
 
     def allowed(self) -> str:
-        lo = "(" if self.open_lo else "["
-        hi = ")" if self.open_hi else "]"
         unit = "" if self.unit == "dimensionless" else f" {self.unit}"
-        return f"{lo}{self.lo:g}, {self.hi:g}{hi}{unit}"
+        return self._brackets(f"{self.lo:g}", f"{self.hi:g}") + unit
 
-    def check(self, value: float, file: str, key: str) -> float:
+    def _brackets(self, lo: str, hi: str) -> str:
+        """``lo, hi`` in the brackets of the range: ``(`` for an open end, ``[`` else."""
+        return f"{'(' if self.open_lo else '['}{lo}, {hi}{')' if self.open_hi else ']'}"
+
+    def check(self, value: float, file: str, key: str, written: Any = None) -> float:
+        """``value`` (SI) if it is in range; else a :class:`CaseError` that also gives the
+        value and the range in the unit the user ``written`` it in."""
         bad_lo = value <= self.lo if self.open_lo else value < self.lo
         bad_hi = value >= self.hi if self.open_hi else value > self.hi
         if not math.isfinite(value):
@@ -60,7 +64,10 @@ class Field:
                 file, key, f"{value:g} is not a finite number; allowed {self.allowed()}"
             )
         if bad_lo or bad_hi:
-            raise CaseError(file, key, f"{value:g} is out of range; allowed {self.allowed()}")
+            own = in_written_unit(written, self.unit, (self.lo, self.hi))
+            shown = f"{written} ({value:g} {self.unit})" if own else f"{value:g}"
+            also = f", that is {self._brackets(own[0], own[1])} {own[2]}" if own else ""
+            raise CaseError(file, key, f"{shown} is out of range; allowed {self.allowed()}{also}")
         if self.integer and value != int(value):
             raise CaseError(file, key, f"{value:g} must be a whole number")
         return value
@@ -206,7 +213,7 @@ def read_table(
             continue
         value = raw[key]
         if isinstance(field, Field):
-            out[key] = field.check(to_si(value, field.unit, file, dotted), file, dotted)
+            out[key] = field.check(to_si(value, field.unit, file, dotted), file, dotted, value)
         elif isinstance(field, Choice):
             if value not in field.choices:
                 raise CaseError(

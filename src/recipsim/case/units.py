@@ -113,3 +113,24 @@ def _frequency_without_angle(q: Any) -> bool:
     """Whether ``q`` is a rate (1/time) whose units name no angle (Hz, 1/s, 1/min)."""
     base = q.to_base_units()
     return bool(base.dimensionality == {"[time]": -1} and "radian" not in base.units._units)
+
+
+def in_written_unit(written: Any, unit: str, values: tuple[float, ...]) -> tuple[str, ...] | None:
+    """``values`` in the SI ``unit`` converted to the unit of ``written`` (a string with a
+    unit, as in a case file) and formatted, then that unit: ``("0", "19099", "rpm")`` for
+    ``"30000 rpm"`` and (0, 2000) rad/s. None where ``written`` has no unit of its own
+    (a bare number, an SI unit) or one that cannot be converted back plainly."""
+    if not isinstance(written, str):
+        return None
+    try:
+        q = _registry().Quantity(written)
+        if not hasattr(q, "units") or str(q.units) in ("", "dimensionless"):
+            return None
+        if unit == "rad/s" and _frequency_without_angle(q):
+            return None  # a frequency read as revolutions: pint would convert it as radians
+        if q.units == _registry().Unit(unit):
+            return None
+        converted = [_registry().Quantity(v, unit).to(q.units).magnitude for v in values]
+    except Exception:  # pint raises several types: the SI range alone is shown
+        return None
+    return (*(f"{v:.5g}" for v in converted), written.strip().split(maxsplit=1)[-1])

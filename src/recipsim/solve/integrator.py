@@ -33,6 +33,10 @@ At tight tolerances DOPRI5's steps stay inside its stability region, the test ne
 fires and the integration is pure DOPRI5. :data:`METHOD_DOPRI5` never switches,
 :data:`METHOD_ROSW` uses the W-method throughout (tests).
 
+Size (over the project's 400 lines): the loop of :func:`scene_entry` is one compiled
+function (the step, the events, the samples, the method switch and the interrupt check
+share its locals); the pieces that can stand alone are in the modules below.
+
 The pieces: :mod:`.dopri5` (the explicit step and the stiffness test),
 :mod:`.stiff` (the Rosenbrock-W step and its Jacobian), :mod:`.events` (event
 location), :mod:`.dense_output` (Hermite interpolation and samples) and

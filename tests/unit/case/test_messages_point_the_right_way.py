@@ -50,3 +50,26 @@ def test_an_override_is_named_as_the_source_of_its_value(value: str, words: str)
     with pytest.raises(CaseError, match=words) as info:
         load_case(REFERENCE).with_({"geometry.bore": value})
     assert info.value.file.startswith("override geometry.bore=")
+
+
+@pytest.mark.parametrize(
+    ("key", "value", "words"),
+    [
+        (
+            "operating_point.shaft_speed",
+            "30000 rpm",
+            "30000 rpm (3141.59 rad/s) is out of range; allowed (0, 2000] rad/s, that is "
+            "(0, 19099] rpm",
+        ),
+        (
+            "operating_point.evaporating_temperature",
+            "-300 degC",
+            "allowed [50, 700] K, that is [-223.15, 426.85] degC",
+        ),
+        ("geometry.bore", 0.9, "0.9 is out of range; allowed [0.001, 0.5] m"),
+    ],
+)
+def test_a_value_out_of_range_is_given_back_in_the_unit_it_was_written_in(key, value, words):
+    with pytest.raises(CaseError) as info:
+        load_case(REFERENCE).with_({key: value})
+    assert words in info.value.message
