@@ -74,6 +74,10 @@ def _change(a: np.ndarray, b: np.ndarray, reference: np.ndarray) -> float:
     return float(np.max(np.abs(a[judged] - b[judged]) / reference[judged]))
 
 
+#: How much better a period of n revolutions must repeat than one revolution does.
+SUBHARMONIC_CONTRAST = 100.0
+
+
 def subharmonic_period(ends: list[np.ndarray], reference: np.ndarray, tolerance: float) -> int:
     """Smallest n in :data:`SUBHARMONIC_PERIODS` with which the end states repeat.
 
@@ -90,16 +94,22 @@ def subharmonic_period(ends: list[np.ndarray], reference: np.ndarray, tolerance:
     -------
     int
         n if the states after n revolutions repeat within ``tolerance`` (checked over
-        the last two periods) while one revolution changes them by more; 1 otherwise.
+        the last two periods) while one revolution changes them by more, and by
+        :data:`SUBHARMONIC_CONTRAST` times more; 1 otherwise.
     """
-    if len(ends) < 2 or _change(ends[-1], ends[-2], reference) < tolerance:
+    if len(ends) < 2:
+        return 1
+    one = _change(ends[-1], ends[-2], reference)
+    if one < tolerance:
         return 1
     for n in SUBHARMONIC_PERIODS:
         if len(ends) < 2 * n + 1:
             break
-        if all(
-            _change(ends[-1 - k], ends[-1 - k - n], reference) < tolerance for k in range(n + 1)
-        ):
+        changes = [_change(ends[-1 - k], ends[-1 - k - n], reference) for k in range(n + 1)]
+        # a period of n revolutions repeats far better than one revolution does: where
+        # both are at the integration's noise (a tolerance below what the solve can
+        # reach), a chance match is not a subharmonic
+        if max(changes) < tolerance and one >= SUBHARMONIC_CONTRAST * max(changes):
             return n
     return 1
 

@@ -200,3 +200,24 @@ def test_shooting_on_the_two_revolution_map_finds_the_physical_orbit():
     revs = _two_revolutions(model, sol.final.y_end.copy(), sol.final.mode_end.copy())
     assert period_change(model, revs) < tol
     assert state_change(model, revs[0]) > 5 * tol
+
+
+def test_a_tolerance_below_the_noise_is_not_taken_for_a_subharmonic() -> None:
+    """``cycle_tolerance = 1e-12`` on the reference case: the residual stalls near 2e-7
+    (the revolution's closures) and the end states jitter at round-off; the run is
+    reported not converged, never as a period of n revolutions by a chance match."""
+    from helpers import REFERENCE
+    from recipsim.case.load import load_case
+    from recipsim.pipeline import simulate_row
+
+    case = load_case(
+        REFERENCE,
+        {
+            "solver.cycle_tolerance": 1e-12,
+            "solver.periodic": "revolutions",
+            "operating_point.evaporating_temperature": "-30 degC",
+        },
+    )
+    row = simulate_row(case)
+    assert row["status"] == "not_converged" and not row["converged [-]"]
+    assert row["periodic_method"] == "revolutions" and "stalled" in row["status_message"]
