@@ -41,3 +41,14 @@ def test_the_api_in_a_script_exits_without_a_leak_report(tmp_path: Path) -> None
     assert out.returncode == 0, out.stderr
     assert out.stdout.strip() == "True"
     assert "nanobind" not in out.stderr
+
+
+@pytest.mark.parametrize("value", ["-5", "0", "two"])
+def test_paper_refuses_a_count_of_revolutions_below_one(capsys, value: str) -> None:
+    from recipsim.cli.main import main
+
+    with pytest.raises(SystemExit) as info:
+        main(["paper", "--undamped-revolutions", value])
+    assert info.value.code == 2
+    err = capsys.readouterr().err
+    assert "--undamped-revolutions" in err and "Traceback" not in err
