@@ -1,13 +1,13 @@
 """One rule for recipsim's cache directories.
 
 Every cache (property tables, numba's compiled code, pint's parsed unit definitions,
-journal-bearing tables)
-lives under :func:`cache_dir`: ``$RECIPSIM_CACHE`` if set, else the platform's user cache
-directory for ``recipsim`` from platformdirs (on Linux ``$XDG_CACHE_HOME/recipsim``, by
-default ``~/.cache/recipsim``). Directories are created with mode 0o700: numba's and
-pint's caches are loaded with pickle, so a cache directory that others can write is a
-way to run their code in your process; recipsim warns once if it finds one and then does
-not use those caches (:func:`trusted_cache`, see ``docs/caches.md``).
+journal-bearing tables) lives under :func:`cache_dir`: ``$RECIPSIM_CACHE`` if set, else
+the platform's user cache directory for ``recipsim`` from platformdirs (on Linux
+``$XDG_CACHE_HOME/recipsim``, by default ``~/.cache/recipsim``). Directories are
+created with mode 0o700: numba's and pint's caches are loaded with pickle, so a cache
+directory that others can write is a way to run their code in your process; recipsim
+warns once if it finds one and then does not use those caches (:func:`trusted_cache`,
+see ``docs/caches.md``).
 
 numba's cache of recipsim's own compiled functions is kept per version of the compiled
 sources (:func:`numba_cache_path`), by a cache locator that serves recipsim's files only
@@ -15,7 +15,9 @@ sources (:func:`numba_cache_path`), by a cache locator that serves recipsim's fi
 file changes, not when a constant it reads from another module does (a parameter-layout
 index), so one directory per digest of all the compiled sources keeps a stale cache from
 reading the wrong slots. Nothing else is redirected: the process environment and
-numba's configuration stay as the user set them.
+numba's configuration stay as the user set them. The locator uses numba's
+extension point for cache locations (a class in ``CacheImpl._locator_classes``); a numba
+without it leaves recipsim's functions to numba's own cache rules.
 """
 
 from __future__ import annotations
@@ -75,7 +77,11 @@ def use_recipsim_numba_cache() -> None:
     """
     from numba.core import caching
 
-    locators: list[Any] = caching.CacheImpl._locator_classes
+    impl = getattr(caching, "CacheImpl", None) or getattr(caching, "_CacheImpl", None)
+    locators: list[Any] | None = getattr(impl, "_locator_classes", None)
+    if locators is None:  # another numba: its own cache rules apply to recipsim too
+        logging.getLogger("recipsim").debug("numba has no cache locator list")
+        return
     if not any(cls is _RecipsimCacheLocator() for cls in locators):
         locators.insert(0, _RecipsimCacheLocator())
 
@@ -94,7 +100,7 @@ def discard_unreadable_indexes(folder: str) -> None:
         except Exception:  # anything unreadable: pickle raises many types
             # logged (one line), not warned: this runs while recipsim is being imported
             logging.getLogger("recipsim").warning(
-                "recipsim: numba cache index %s was unreadable; it is compiled again", index
+                "numba cache index %s was unreadable; it is compiled again", index
             )
             index.unlink(missing_ok=True)
 
