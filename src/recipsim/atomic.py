@@ -182,6 +182,20 @@ def _create_temporary(path: Path) -> tuple[int, Path]:
     return fd, Path(tmp)
 
 
+#: A temporary file name of :func:`_create_temporary_at` (its process id in group 1).
+_TEMPORARY_FILE = re.compile(r"\.[^/]*\.(\d+)-\d+[^/]*\.tmp")
+
+
+def clean_stale_temporary_files(folder: Path) -> None:
+    """Remove from ``folder`` the temporary files (:func:`_create_temporary_at`) that
+    processes of this host left when they were killed: only names recipsim makes, only
+    regular files (never a link), only where that process is gone."""
+    for tmp in folder.glob(".*.tmp"):
+        match = _TEMPORARY_FILE.fullmatch(tmp.name)
+        if match and tmp.is_file() and not tmp.is_symlink() and not pid_alive(int(match[1])):
+            tmp.unlink(missing_ok=True)
+
+
 def _create_temporary_at(target: str) -> tuple[int, str]:
     """:func:`_create_temporary` on a path as a string.
 

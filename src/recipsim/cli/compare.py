@@ -206,9 +206,9 @@ def run_comparison(
         for p, s, label in zip(paths, sets, labels, strict=True)
     ]
     records = case_records([r.row for r in runs], labels, extra)
-    _write(target, runs, labels, sets, (table, records), plots, argv, start)
-    cases_table = pd.DataFrame.from_records(records)
-    return Comparison(runs, labels, table, cases_table, target, time.perf_counter() - start)
+    cases = pd.DataFrame.from_records(records)
+    _write(target, runs, labels, sets, (table, cases), plots, argv, start)
+    return Comparison(runs, labels, table, cases, target, time.perf_counter() - start)
 
 
 #: Default ``--out`` of ``recipsim compare`` (the parent of ``<A>_vs_<B>``).
@@ -232,14 +232,14 @@ def _write(
     runs: tuple[CaseRun, CaseRun],
     labels: tuple[str, str],
     sets: list[list[str]],
-    tables: tuple[pd.DataFrame, list[dict[str, Any]]],
+    tables: tuple[pd.DataFrame, pd.DataFrame],
     plots: bool,
     argv: list[str] | None,
     start: float,
 ) -> None:
     """Build the output directory beside ``target`` and swap it in (``tables``: the
-    comparison table and the cases' records)."""
-    table, records = tables
+    comparison table and the cases' table)."""
+    table, cases = tables
     with atomic_directory(target) as tmp:
         for run, label, s in zip(runs, labels, sets, strict=True):
             write_case_report(run, tmp / label, s, plots)
@@ -254,8 +254,8 @@ def _write(
             cycles = {label: run.cycle for run, label in zip(runs, labels, strict=True)}
             save_overlay_figures(cycles, tmp, plenum, OVERLAY_NAMES)
         table.to_csv(tmp / "comparison.csv", index=False)
-        pd.DataFrame.from_records(records).to_csv(tmp / "cases.csv", index=False)
-        meta = _provenance(runs, labels, records, argv)
+        cases.to_csv(tmp / "cases.csv", index=False)
+        meta = _provenance(runs, labels, cases.to_dict("records"), argv)
         meta["wall_time_s"] = time.perf_counter() - start
         (tmp / "provenance.json").write_text(json_text(meta))
 

@@ -11,8 +11,9 @@ import pandas as pd
 from recipsim.case.case import Case
 from recipsim.results.outcome import classify, explained
 from recipsim.results.provenance import case_provenance, provenance
+from recipsim.results.sampled import CycleColumns
 from recipsim.results.startup import startup_summary
-from recipsim.results.tables import cycle_columns, pinned_tabulated_columns, summary, summary_row
+from recipsim.results.tables import cycle_columns, pinned_tabulated_columns, summary
 from recipsim.solve.periodic import PeriodicSolution
 from recipsim.solve.startup import StartupRun
 
@@ -72,19 +73,26 @@ def case_run(
     else:
         columns = cycle_columns(solution)
         meta = provenance(solution, argv)
-    with explained("post-processing the converged revolution"):
-        row = summary(solution, columns, case)
-        if startup is not None:
-            row |= startup_summary(startup)
-    row["status"], row["status_message"] = classify(solution, columns, row)
+    row = _status_row(case, solution, columns, startup)
     return CaseRun(case, solution, pd.DataFrame(columns), row, meta, startup)
 
 
 def summary_only(solution: PeriodicSolution, startup: StartupRun | None = None) -> dict[str, Any]:
     """The summary row of :func:`case_run` (the same values) from only the columns the
     summary reads, without the cycle table or the provenance: what a sweep point keeps."""
+    columns = cycle_columns(solution, full=False)
+    return _status_row(solution.model.case, solution, columns, startup)
+
+
+def _status_row(
+    case: Case,
+    solution: PeriodicSolution | None,
+    columns: CycleColumns,
+    startup: StartupRun | None,
+) -> dict[str, Any]:
+    """The summary row (with the start-up's columns), then its status and message."""
     with explained("post-processing the converged revolution"):
-        row, columns = summary_row(solution)
+        row = summary(solution, columns, case)
         if startup is not None:
             row |= startup_summary(startup)
     row["status"], row["status_message"] = classify(solution, columns, row)

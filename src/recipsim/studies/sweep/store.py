@@ -31,14 +31,13 @@ from __future__ import annotations
 
 import hashlib
 import json
-import re
 import time
 from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from recipsim.atomic import atomic_file, pid_alive
+from recipsim.atomic import atomic_file, clean_stale_temporary_files
 from recipsim.errors import CaseError
 from recipsim.report.case_report import overrides_digest
 from recipsim.studies.sweep import record_segments
@@ -47,9 +46,6 @@ from recipsim.studies.sweep.worker import STATUSES, PointTask, run_point
 #: A point file larger than this is not read (it was not written by recipsim) [bytes]: the
 #: limit of a segment's line.
 _MAX_RECORD_BYTES = record_segments.MAX_LINE_BYTES
-
-#: A temporary file of :mod:`recipsim.atomic` (its process id in the first group).
-_TEMPORARY = re.compile(r"\.[^/]*\.(\d+)-\d+[^/]*\.tmp")
 
 #: format of a point record: 4, a line of a segment (:mod:`.record_segments`); files of one point
 #: each, 3 (checksum over the keys in order) and 2 (over the keys sorted), are still read
@@ -124,12 +120,8 @@ class PointStore:
         """Remove the temporary files that sweeps killed while writing left in
         ``points/``: only names recipsim makes (``.<stem>.<pid>-<n><suffix>.tmp``), only
         regular files, only where that process is gone."""
-        if not self.points.is_dir() or self.points.is_symlink():
-            return
-        for tmp in self.points.glob(".*.tmp"):
-            match = _TEMPORARY.fullmatch(tmp.name)
-            if match and tmp.is_file() and not tmp.is_symlink() and not pid_alive(int(match[1])):
-                tmp.unlink(missing_ok=True)
+        if self.points.is_dir() and not self.points.is_symlink():
+            clean_stale_temporary_files(self.points)
 
     def claim(self, overrides: Sequence[str], fresh: bool = False) -> None:
         """Record the sweep's ``--set`` overrides in ``overrides.json``, refusing to
