@@ -155,16 +155,21 @@ STEPS: tuple[_Step, ...] = (
         ("refrigerant", "fluid"),
     ),
     _Step(
-        "geometry0",
-        lambda s: builders.geometry(s.raw.get("geometry"), s.file),
-        frozenset({"geometry"}),
-        kept=False,
-    ),
-    _Step(
         "valves",
         lambda s, opt: builders.valves(s.raw.get("valves"), opt, s.file),
         frozenset({"valves"}),
         ("options0",),
+    ),
+    _Step(
+        "geometry0",
+        lambda s, valves: builders.geometry(
+            s.raw.get("geometry"),
+            s.file,
+            (valves.suction.port_diameter, valves.discharge.port_diameter),
+        ),
+        frozenset({"geometry"}),
+        ("valves",),
+        kept=False,
     ),
     _Step(
         "leakage",

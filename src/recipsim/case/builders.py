@@ -13,6 +13,7 @@ from typing import Any
 
 from recipsim.atomic import checked_name, name_from_stem
 from recipsim.case.case_schema import (
+    ALTERNATIVE_KEYS,
     GEOMETRY_SPEC,
     HEADER_SPEC,
     HEAT_TRANSFER_SPEC,
@@ -108,21 +109,36 @@ def with_liner_length(geometry: Geometry, mechanism: MechanismSpec) -> Geometry:
     )
 
 
-def geometry(raw: dict[str, Any] | None, file: str) -> Geometry:
-    """``[geometry]`` [m, m3]: one of clearance ratio and volume, a rod longer than the
-    crank radius; the liner's length stays None where not given (:func:`with_liner_length`)."""
+def geometry(
+    raw: dict[str, Any] | None, file: str, port_diameters: tuple[float, float]
+) -> Geometry:
+    """``[geometry]`` [m, m3]: one of clearance ratio, clearance volume and top clearance,
+    a rod longer than the crank radius; the liner's length stays None where not given
+    (:func:`with_liner_length`).
+
+    With ``top_clearance`` the dead volume is built as the metal has it: the gap times
+    the bore area, the suction and discharge ports through the valve plate
+    (``port_diameters`` [m], ``valve_plate_thickness`` long) and ``other_dead_volume``,
+    so a change of bore changes the clearance ratio.
+    """
     g = read_table(raw, GEOMETRY_SPEC, file, "geometry")
     area = math.pi * g["bore"] ** 2 / 4.0
     swept = area * g["stroke"]
-    if (g["clearance_ratio"] is None) == (g["clearance_volume"] is None):
+    given = [key for key in ALTERNATIVE_KEYS["geometry"] if g[key] is not None]
+    if len(given) != 1:
         raise CaseError(
             file,
             "geometry.clearance_ratio",
-            "give exactly one of clearance_ratio and clearance_volume",
+            "give exactly one of clearance_ratio, clearance_volume and top_clearance",
         )
-    vc = (
-        g["clearance_volume"] if g["clearance_volume"] is not None else g["clearance_ratio"] * swept
-    )
+    if g["top_clearance"] is not None:
+        ports = sum(math.pi * d * d / 4.0 for d in port_diameters)
+        vc = g["top_clearance"] * area + g["valve_plate_thickness"] * ports
+        vc += g["other_dead_volume"]
+    elif g["clearance_volume"] is not None:
+        vc = g["clearance_volume"]
+    else:
+        vc = g["clearance_ratio"] * swept
     if g["connecting_rod_length"] <= 0.5 * g["stroke"]:
         raise CaseError(
             file,

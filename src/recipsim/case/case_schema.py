@@ -10,6 +10,7 @@ in the docs is generated from these mappings (``docs/_ext/case_reference.py``).
 from __future__ import annotations
 
 import math
+from typing import Any
 
 from recipsim.case.rating import RATING_SPEC
 from recipsim.case.schema import Choice, Field, Flag, Spec, Text
@@ -72,8 +73,53 @@ GEOMETRY_SPEC: Spec = {
     "connecting_rod_length": Field("m", lo=1e-3, hi=2.0),
     "clearance_ratio": Field("dimensionless", None, lo=0.0, hi=1.0, open_lo=True),
     "clearance_volume": Field("m^3", None, lo=0.0, open_lo=True),
+    "top_clearance": Field(
+        "m",
+        None,
+        lo=0.0,
+        hi=0.01,
+        open_lo=True,
+        doc="piston crown to valve plate at top dead centre; the dead volume is then this "
+        "gap times the bore area, the ports' volume and other_dead_volume",
+    ),
+    "valve_plate_thickness": Field(
+        "m",
+        0.0,
+        lo=0.0,
+        hi=0.05,
+        doc="length of the suction and discharge ports through the valve plate (with "
+        "top_clearance: their volume is dead volume)",
+    ),
+    "other_dead_volume": Field(
+        "m^3",
+        0.0,
+        lo=0.0,
+        hi=1e-3,
+        doc="with top_clearance: dead volume not in the gap or the ports (recesses, "
+        "the piston's top land)",
+    ),
     "liner_length": Field("m", None, lo=1e-3, hi=1.0, doc="head to open end of the bore"),
 }
+
+#: Keys of which a case gives exactly one: a case (or an override) that sets one of a group
+#: replaces whichever the case it extends gave (``{table: (key, ...)}``).
+ALTERNATIVE_KEYS: dict[str, tuple[str, ...]] = {
+    "geometry": ("clearance_ratio", "clearance_volume", "top_clearance"),
+}
+
+
+def drop_replaced_alternatives(merged: dict[str, Any], chosen: dict[str, Any]) -> None:
+    """Remove from ``merged`` (a case's raw data, modified in place) the keys of each
+    :data:`ALTERNATIVE_KEYS` group that ``chosen`` (the extending case, or an override as
+    a nested table) does not give, where ``chosen`` gives one of the group."""
+    for table, group in ALTERNATIVE_KEYS.items():
+        mine = chosen.get(table)
+        if not isinstance(mine, dict) or not any(key in mine for key in group):
+            continue
+        target = merged.get(table)
+        if isinstance(target, dict):
+            merged[table] = {k: v for k, v in target.items() if k in mine or k not in group}
+
 
 VALVE_SPEC: Spec = {
     "port_diameter": Field("m", lo=1e-4, hi=0.2),

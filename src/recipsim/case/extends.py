@@ -9,6 +9,7 @@ import copy
 from pathlib import Path
 from typing import Any
 
+from recipsim.case.case_schema import drop_replaced_alternatives
 from recipsim.case.files import MAX_EXTENDS_DEPTH, find_case_file, read_toml, resolve_reference
 from recipsim.errors import CaseError
 
@@ -74,4 +75,6 @@ def resolve_extends(
     base = resolve_extends(base, parent, chain + [parent], allow_external)
     base.pop("name", None)
     base.pop("description", None)
-    return _deep_merge(base, raw)
+    merged = _deep_merge(base, raw)
+    drop_replaced_alternatives(merged, raw)
+    return merged

@@ -15,6 +15,7 @@ from typing import Any
 
 import numpy as np
 
+from recipsim.case.case_schema import drop_replaced_alternatives
 from recipsim.errors import CaseError
 
 
@@ -123,6 +124,8 @@ def apply_overrides(raw: dict[str, Any], overrides: list[str], file: str) -> dic
             nxt = node[part] = dict(nxt)
             node = nxt
         node[path[-1]] = value
+        if len(path) == 2:
+            drop_replaced_alternatives(data, {path[0]: {path[1]: value}})
     return data
 
 

@@ -39,6 +39,7 @@ from typing import Any
 
 from recipsim.case.schema import Field, Spec, read_table
 from recipsim.physics.thermo.shell_network import LINK_NAMES, NetworkParameters
+from recipsim.physics.thermo.suction_path import HALF_SINE_VELOCITY_SQUARE_FACTOR
 
 _UA = "W/K"
 #: Default conductance of each link [W/K] and what it stands for.
@@ -87,11 +88,34 @@ THERMAL_SPEC: Spec = {
     "suction_muffler_flow_area": Field(
         "m^2", 3.0e-5, lo=0.0, hi=0.01, open_lo=True, doc="area of v (6.2 mm tube)"
     ),
+    "suction_muffler_tube_length": Field(
+        "m", 0.0, lo=0.0, hi=1.0, doc="length of the tube of area ..._flow_area (Darcy f L/D)"
+    ),
+    "suction_pulsation_factor": Field(
+        "dimensionless", 1.0, lo=1.0, hi=HALF_SINE_VELOCITY_SQUARE_FACTOR,
+        doc="mean(v^2)/mean(v)^2 in the tube: 1 smoothed, pi^2/4 a half-sine draw",
+    ),
+    "suction_muffler_gas_side_area": Field(
+        "m^2", None, lo=0.0, hi=1.0, open_lo=True,
+        doc="wetted area of the muffler's inside; its link to the shell gas is then this "
+        "film (Dittus-Boelter, pulsating) in series with ua_suction_muffler_shell_gas",
+    ),
+    "suction_passage_gas_side_area": Field(
+        "m^2", None, lo=0.0, hi=1.0, open_lo=True,
+        doc="wetted area of the suction passage in the head and plate; its link to the "
+        "cylinder wall is then this film in series with ua_suction_muffler_cylinder_wall",
+    ),
     "discharge_muffler_loss_coefficient": Field(
         "dimensionless", 0.0, lo=0.0, hi=1000.0, doc="K of dp = K rho v^2 / 2 (0: no drop)"
     ),
     "discharge_muffler_flow_area": Field(
         "m^2", 7.0e-6, lo=0.0, hi=0.01, open_lo=True, doc="area of v (3 mm tube)"
+    ),
+    "discharge_muffler_tube_length": Field(
+        "m", 0.0, lo=0.0, hi=5.0, doc="length of the tube of area ..._flow_area (Darcy f L/D)"
+    ),
+    "discharge_pulsation_factor": Field(
+        "dimensionless", 1.0, lo=1.0, hi=20.0, doc="mean(v^2)/mean(v)^2 in the tube"
     ),
 }  # fmt: skip
 
@@ -114,6 +138,13 @@ class ThermalSpec:
         [-].
     suction_muffler_flow_area, discharge_muffler_flow_area : float
         [m2].
+    suction_muffler_tube_length, discharge_muffler_tube_length : float
+        [m].
+    suction_pulsation_factor, discharge_pulsation_factor : float
+        mean(v^2) / mean(v)^2 in the muffler tubes [-].
+    suction_muffler_gas_side_area, suction_passage_gas_side_area : float
+        Gas-side wetted areas [m2] of the suction muffler and of the suction passage;
+        NaN: the links' conductances are the fixed UA values.
     """
 
     conductances: tuple[float, ...]
@@ -126,6 +157,12 @@ class ThermalSpec:
     suction_muffler_flow_area: float
     discharge_muffler_loss_coefficient: float
     discharge_muffler_flow_area: float
+    suction_muffler_tube_length: float = 0.0
+    suction_pulsation_factor: float = 1.0
+    suction_muffler_gas_side_area: float = math.nan
+    suction_passage_gas_side_area: float = math.nan
+    discharge_muffler_tube_length: float = 0.0
+    discharge_pulsation_factor: float = 1.0
 
     def network(self, ambient_temperature: float) -> NetworkParameters:
         """The network's parameters at ``ambient_temperature`` [K]."""
@@ -162,4 +199,10 @@ def parse_thermal(data: Any, file: str) -> ThermalSpec:
         suction_muffler_flow_area=float(v["suction_muffler_flow_area"]),
         discharge_muffler_loss_coefficient=float(v["discharge_muffler_loss_coefficient"]),
         discharge_muffler_flow_area=float(v["discharge_muffler_flow_area"]),
+        suction_muffler_tube_length=float(v["suction_muffler_tube_length"]),
+        suction_pulsation_factor=float(v["suction_pulsation_factor"]),
+        suction_muffler_gas_side_area=maybe("suction_muffler_gas_side_area"),
+        suction_passage_gas_side_area=maybe("suction_passage_gas_side_area"),
+        discharge_muffler_tube_length=float(v["discharge_muffler_tube_length"]),
+        discharge_pulsation_factor=float(v["discharge_pulsation_factor"]),
     )

@@ -44,15 +44,23 @@ from recipsim.physics.thermo import cylinder as cyl
 from recipsim.physics.thermo.shell_network import (
     CW,
     DC,
+    LINK_NAMES,
     SG,
     SM,
     NetworkLoads,
+    NetworkParameters,
     NetworkPressures,
     NetworkSolution,
-    muffler_pressure_drop,
     solve_network,
 )
 from recipsim.physics.thermo.shell_nodes import GP_DC, GP_SM
+from recipsim.physics.thermo.suction_path import (
+    HALF_SINE_VELOCITY_SQUARE_FACTOR,
+    half_sine_film_factor,
+    series_conductance,
+    tube_film_coefficient,
+    tube_pressure_drop,
+)
 
 _DEW_MARGIN = 0.5  # K
 
@@ -85,11 +93,14 @@ class AppliedNetwork:
         The flows and sources it was solved with.
     pressures : NetworkPressures
         Its node pressures (suction and discharge plenum pressures among them).
+    parameters : NetworkParameters
+        The conductances it was solved with (the suction path's films at its flows).
     """
 
     solution: NetworkSolution
     loads: NetworkLoads
     pressures: NetworkPressures
+    parameters: NetworkParameters
 
 
 class ThermalCoupling:
@@ -172,13 +183,15 @@ class ThermalCoupling:
         op = model.case.operating_point
         spec = self.spec
         suction_flow = loads.delivered_mass_flow + loads.leakage_mass_flow
-        dp_s = muffler_pressure_drop(
-            spec.suction_muffler_loss_coefficient, suction_flow, model.suction.density,
-            spec.suction_muffler_flow_area,
+        dp_s = _tube_drop(
+            model.fluid, model.suction, suction_flow, spec.suction_muffler_loss_coefficient,
+            spec.suction_muffler_flow_area, spec.suction_muffler_tube_length,
+            spec.suction_pulsation_factor,
         )  # fmt: skip
-        dp_d = muffler_pressure_drop(
-            spec.discharge_muffler_loss_coefficient, loads.delivered_mass_flow,
-            model.discharge.density, spec.discharge_muffler_flow_area,
+        dp_d = _tube_drop(
+            model.fluid, model.discharge, loads.delivered_mass_flow,
+            spec.discharge_muffler_loss_coefficient, spec.discharge_muffler_flow_area,
+            spec.discharge_muffler_tube_length, spec.discharge_pulsation_factor,
         )  # fmt: skip
         if dp_s >= 0.5 * op.suction_pressure:
             raise ValueError(
@@ -224,16 +237,47 @@ class ThermalCoupling:
         state = self._state(model)
         p_sm = pressures.node[GP_SM]
         guess = None if self.applied is None else self.applied.solution.temperature
+        parameters = self.network_parameters(model, response.loads)
 
         def loads_at(t_sm: float) -> NetworkLoads:
             return response.at(t_sm, state(p_sm, t_sm))
 
         try:
-            return solve_network(self.parameters, loads_at, pressures, state, guess)
+            return solve_network(parameters, loads_at, pressures, state, guess)
         except ValueError:
             # far from the periodic state (a shooting iterate, a nearly closed valve) the
             # linearised response can mislead Newton: the revolution's loads as they are
-            return solve_network(self.parameters, response.loads, pressures, state, guess)
+            return solve_network(parameters, response.loads, pressures, state, guess)
+
+    def network_parameters(self, model: CoupledModel, loads: NetworkLoads) -> NetworkParameters:
+        """The network's conductances at a revolution's flows: where the case gives the
+        suction path's gas-side areas, the links of the suction muffler to the shell gas
+        and to the cylinder wall are the gas film at the flow into the cylinder
+        (Dittus-Boelter in the muffler tube, :mod:`recipsim.physics.thermo.suction_path`)
+        in series with the fixed UA of the wall and outer side."""
+        spec = self.spec
+        areas = {
+            "suction_muffler_shell_gas": spec.suction_muffler_gas_side_area,
+            "suction_muffler_cylinder_wall": spec.suction_passage_gas_side_area,
+        }
+        if all(math.isnan(a) for a in areas.values()):
+            return self.parameters
+        suction = model.suction
+        gas = model.fluid.transport(suction.pressure, suction.temperature)
+        cp = model.fluid.enthalpy_pt(suction.pressure, suction.temperature)[1]
+        prandtl = gas["viscosity"] * cp / gas["conductivity"]
+        diameter = math.sqrt(4.0 * spec.suction_muffler_flow_area / math.pi)
+        flow = loads.delivered_mass_flow + loads.leakage_mass_flow
+        film = tube_film_coefficient(
+            flow, diameter, gas["viscosity"], gas["conductivity"], prandtl,
+            _film_factor(spec.suction_pulsation_factor),
+        )  # fmt: skip
+        conductances = list(self.parameters.conductances)
+        for name, area in areas.items():
+            if not math.isnan(area):
+                i = LINK_NAMES.index(name)
+                conductances[i] = series_conductance(film * area, conductances[i])
+        return replace(self.parameters, conductances=tuple(conductances))
 
     def _solve_and_apply(self, model: CoupledModel, response: CycleResponse) -> float:
         """Solve with the cycle's ``response``, give the cylinder the new boundary; the
@@ -254,7 +298,8 @@ class ThermalCoupling:
                 abs(pressures.node[GP_SM] - old.pressures.node[GP_SM]) / pressures.node[GP_SM],
                 abs(pressures.node[GP_DC] - old.pressures.node[GP_DC]) / pressures.node[GP_DC],
             )
-        self.applied = AppliedNetwork(solution, solution.loads, pressures)
+        parameters = self.network_parameters(model, response.loads)
+        self.applied = AppliedNetwork(solution, solution.loads, pressures, parameters)
         return change
 
     def update(
@@ -321,6 +366,33 @@ class ThermalCoupling:
         motor, friction = self._losses(model, None, 1.0 / freq, m * (h_dis - s.enthalpy))
         loads = NetworkLoads(m, 0.0, 0.0, 0.0, m * h_dis, 0.0, 0.0, motor, friction)
         self._solve_and_apply(model, CycleResponse(loads, m, s, s))
+
+
+def _film_factor(pulsation_factor: float) -> float:
+    """The film's quasi-steady pulse factor for a tube whose mean(v^2)/mean(v)^2 is
+    ``pulsation_factor``: 1 for a smoothed flow, :func:`half_sine_film_factor` for a
+    half-sine draw, linear in between."""
+    share = (pulsation_factor - 1.0) / (HALF_SINE_VELOCITY_SQUARE_FACTOR - 1.0)
+    return 1.0 + min(max(share, 0.0), 1.0) * (half_sine_film_factor() - 1.0)
+
+
+def _tube_drop(
+    fluid: Any,
+    plenum: PlenumState,
+    mass_flow: float,
+    minor_loss: float,
+    flow_area: float,
+    length: float,
+    pulsation_factor: float,
+) -> float:
+    """Mean pressure drop of a muffler tube [Pa] with the gas of ``plenum``."""
+    if minor_loss == 0.0 and length == 0.0:
+        return 0.0
+    viscosity = fluid.transport(plenum.pressure, plenum.temperature)["viscosity"]
+    diameter = math.sqrt(4.0 * flow_area / math.pi)
+    return tube_pressure_drop(
+        mass_flow, plenum.density, viscosity, diameter, length, minor_loss, pulsation_factor
+    )
 
 
 def _apply(model: CoupledModel, solution: NetworkSolution, pressures: NetworkPressures) -> None:

@@ -8,7 +8,7 @@ from typing import TYPE_CHECKING, Any
 
 from recipsim.report.figure_kit import fewer_ticks, new_figure
 from recipsim.report.figure_names import TITLE_Y
-from recipsim.results.loss_breakdown import LOSS_COLUMNS
+from recipsim.results.loss_breakdown import COP_COST_COLUMNS, LOSS_COLUMNS
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
@@ -27,7 +27,8 @@ _LABELS = {
 
 def plot_loss_breakdown(row: Mapping[str, Any], ax: Any = None, title: str = "") -> Figure:
     """Horizontal waterfall of the loss chain of one summary row [W]: the electrical
-    input on top, each loss as a bar stepping down (its share of the input written
+    input on top (the shaft's, so labelled, when the case has no motor model), each
+    loss as a bar stepping down (its share of the input and the COP it costs written
     beside it), the isentropic power of the delivered gas at the bottom."""
     if ax is None:
         fig = new_figure(figsize=(6.4, 4.4), layout="constrained")
@@ -35,7 +36,10 @@ def plot_loss_breakdown(row: Mapping[str, Any], ax: Any = None, title: str = "")
     else:
         fig = ax.figure
     total = float(row["motor_electrical_power [W]"])
-    labels, lefts, widths, colours = ["electrical input"], [0.0], [total], ["tab:blue"]
+    electrical = row.get("motor", "lossless") != "lossless" or float(row["loss_motor [W]"]) > 0
+    top = "electrical input" if electrical else "shaft input (no motor model)"
+    labels, lefts, widths, colours = [top], [0.0], [total], ["tab:blue"]
+    costs: list[float] = [float("nan")]
     level = total
     for column in LOSS_COLUMNS:
         loss = float(row[column])
@@ -44,19 +48,23 @@ def plot_loss_breakdown(row: Mapping[str, Any], ax: Any = None, title: str = "")
         lefts.append(level)
         widths.append(loss)
         colours.append("tab:red" if loss >= 0.0 else "tab:green")
+        costs.append(float(row.get(COP_COST_COLUMNS[column], float("nan"))))
+    costs.append(float("nan"))
     labels.append("isentropic, delivered gas")
     lefts.append(0.0)
     widths.append(float(row["isentropic_power [W]"]))
     colours.append("tab:blue")
     y = list(range(len(labels)))[::-1]
     ax.barh(y, widths, left=lefts, color=colours)
-    for yi, left, width in zip(y, lefts, widths, strict=True):
-        ax.text(max(left, left + width) + 0.01 * total, yi, f"{width:.1f} W ({width / total:.0%})",
-                va="center", fontsize=8)  # fmt: skip
+    for yi, left, width, cost in zip(y, lefts, widths, costs, strict=True):
+        text = f"{width:.1f} W ({width / total:.0%})"
+        if cost == cost:  # not NaN: the COP this loss costs
+            text += f", COP -{cost:.3f}"
+        ax.text(max(left, left + width) + 0.01 * total, yi, text, va="center", fontsize=8)
     ax.set_yticks(y, labels)
-    ax.set_xlim(0.0, 1.25 * total)
+    ax.set_xlim(0.0, 1.45 * total)
     ax.set_xlabel("power [W]")
     fewer_ticks(ax, y=False)
-    ax.set_title(title or "where the electrical power goes", fontsize=9, y=TITLE_Y)
+    ax.set_title(title or f"where the {top.split()[0]} power goes", fontsize=9, y=TITLE_Y)
     ax.grid(True, axis="x", alpha=0.3)
     return fig

@@ -162,7 +162,8 @@ def _relative_given(key: str, given: Mapping[str, Any]) -> bool:
 def _geometry(case: Case) -> dict[str, Any]:
     """Geometry with the clearance as a volume and the liner length resolved."""
     g = case.geometry
-    values = {k: getattr(g, k) for k in GEOMETRY_SPEC if k != "clearance_ratio"}
+    kept = ("bore", "stroke", "connecting_rod_length", "clearance_volume", "liner_length")
+    values = {k: getattr(g, k) for k in kept}
     return _declared(values, "geometry", GEOMETRY_SPEC)
 
 

@@ -16,7 +16,9 @@ Summary columns (units in the names; ``reports/README.md`` documents them):
   ``motor_loss_power [W]`` (electrical - shaft) and its split
   ``motor_<loss>_loss_power [W]`` (main and auxiliary winding copper, rotor copper, core,
   stray, windage), ``motor_current [A]``, ``motor_speed_at_load [rpm]``.
-  ``options.motor = "lossless"``: electrical = shaft power, efficiency 1, no losses.
+  ``options.motor = "lossless"``: electrical = shaft power, efficiency 1, no losses,
+  except under the induction-motor drive, whose rotor copper loss (air-gap less shaft
+  power) is then the motor's loss and is in the electrical power and the COP.
   ``"equivalent_circuit"``: the circuit at the load torque ``T = P_shaft / omega_mean``
   (:func:`recipsim.physics.motor_circuit.motor_operating_point_at_torque`); its losses
   at that point are added to the cycle's shaft power. At constant speed the cycle runs
@@ -102,20 +104,25 @@ def friction_columns(case: Case, cycle: CycleColumns) -> dict[str, float]:
     return {"friction_power [W]": 0.0}
 
 
-def _lossless(shaft_power: float) -> dict[str, float]:
+def _lossless(shaft_power: float, rotor_loss: float = 0.0) -> dict[str, float]:
+    """A motor whose only loss is the dynamic drive's rotor copper (0 for other drives)."""
+    electrical = shaft_power + rotor_loss
     row = {
-        "motor_electrical_power [W]": shaft_power,
-        "motor_efficiency [-]": 1.0,
+        "motor_electrical_power [W]": electrical,
+        "motor_efficiency [-]": shaft_power / electrical if electrical > 0.0 else 1.0,
         "motor_power_factor [-]": math.nan,
-        "motor_loss_power [W]": 0.0,
+        "motor_loss_power [W]": rotor_loss,
     }
     row.update(dict.fromkeys(MOTOR_LOSSES, 0.0))
+    row["motor_rotor_copper_loss_power [W]"] = rotor_loss
     row["motor_current [A]"] = math.nan
     row["motor_speed_at_load [rpm]"] = math.nan
     return row
 
 
-def motor_columns(case: Case, shaft_power: float, mean_speed: float) -> dict[str, float]:
+def motor_columns(
+    case: Case, shaft_power: float, mean_speed: float, rotor_loss: float = math.nan
+) -> dict[str, float]:
     """Electrical power, efficiency, power factor and losses at the cycle's load.
 
     Parameters
@@ -126,6 +133,10 @@ def motor_columns(case: Case, shaft_power: float, mean_speed: float) -> dict[str
         Mean power the shaft takes [W].
     mean_speed : float
         Mean crank speed [rad/s] (one revolution over its duration).
+    rotor_loss : float
+        Rotor copper loss of the induction-motor drive integrated with the motion [W]
+        (NaN for other drives): with ``options.motor = "lossless"`` it is the motor's
+        only loss, so that every electrical COP counts it.
     """
     try:
         point = motor_point(case, shaft_power, mean_speed)
@@ -133,7 +144,7 @@ def motor_columns(case: Case, shaft_power: float, mean_speed: float) -> dict[str
         warnings.warn(f"{case.name}: {exc}", stacklevel=2)
         return {k: math.nan for k in _lossless(shaft_power)}
     if point is None:
-        return _lossless(shaft_power)
+        return _lossless(shaft_power, 0.0 if math.isnan(rotor_loss) else rotor_loss)
     # the circuit's own input less output: its losses at this load, added to the cycle's
     # shaft power (the same as the circuit's input when it turns at the cycle's speed)
     electrical = shaft_power + (point.electrical_power - point.shaft_power)
@@ -150,7 +161,7 @@ def motor_columns(case: Case, shaft_power: float, mean_speed: float) -> dict[str
 
 
 def loss_columns(
-    case: Case, cycle: CycleColumns, drive_power: float, freq: float
+    case: Case, cycle: CycleColumns, drive_power: float, freq: float, rotor_loss: float = math.nan
 ) -> dict[str, Any]:
     """The case's options, friction and motor columns, and ``shaft_power [W]``.
 
@@ -165,6 +176,8 @@ def loss_columns(
         mean friction).
     freq : float
         Revolutions per second [1/s].
+    rotor_loss : float
+        The induction-motor drive's rotor copper loss [W] (NaN for other drives).
     """
     row: dict[str, Any] = {
         "standard": case.operating_point.standard,
@@ -175,5 +188,5 @@ def loss_columns(
     row.update(friction_columns(case, cycle))
     shaft = drive_power + (row["friction_power [W]"] if case.options.friction == "mean" else 0.0)
     row["shaft_power [W]"] = shaft
-    row.update(motor_columns(case, shaft, 2.0 * math.pi * freq))
+    row.update(motor_columns(case, shaft, 2.0 * math.pi * freq, rotor_loss))
     return row

@@ -29,6 +29,23 @@ They add up to ``motor_electrical_power [W]`` by construction (the last loss is 
 remainder); the test of the decomposition is that the remainder vanishes where it must
 (ideal valves, adiabatic cylinder, no leakage: the ideal isentropic cycle) and that each
 named term matches its own definition.
+
+The suction side also costs capacity, which the power terms do not show: gas drawn
+hotter or at a lower pressure is less dense, so the same swept volume delivers less.
+Capacity losses [W] (at the rating enthalpies of the cooling capacity ``Q``):
+
+- ``capacity_loss_suction_heating [W]``: ``Q (rho(p_in, T_in) / rho(p_in, T_cyl) - 1)``,
+  the capacity the cylinder would deliver if it drew gas at the compressor inlet's
+  temperature instead of the cylinder inlet's, at the same volumetric efficiency;
+- ``capacity_loss_mufflers [W]``: the same for the suction muffler's pressure drop,
+  ``Q_heated (rho(p_in, T_cyl) / rho(p_plenum, T_cyl) - 1)``;
+- ``capacity_loss_leakage [W]``: the leaked mass flow at the capacity's enthalpy
+  difference.
+
+``cop_<loss> [-]`` is what each loss costs in COP: the COP gained by removing that loss
+alone, ``(Q + dQ) / (W - L) - Q / W`` with ``W`` the electrical power, ``L`` the power
+term and ``dQ`` the capacity loss (0 for the losses that cost power only). The costs do
+not add up exactly to the ideal machine's COP (they are taken one at a time).
 """
 
 from __future__ import annotations
@@ -57,6 +74,15 @@ LOSS_COLUMNS = (
     "loss_cylinder_heat_and_other [W]",
 )
 
+
+#: Capacity each suction-side loss costs [W].
+CAPACITY_LOSS_COLUMNS = {
+    "loss_suction_heating [W]": "capacity_loss_suction_heating [W]",
+    "loss_mufflers [W]": "capacity_loss_mufflers [W]",
+    "loss_leakage [W]": "capacity_loss_leakage [W]",
+}
+#: COP each loss costs, removed alone [-].
+COP_COST_COLUMNS = {c: f"cop_{c.removesuffix(' [W]')} [-]" for c in LOSS_COLUMNS}
 
 _SIDES = ("suction", "discharge")
 
@@ -100,7 +126,8 @@ def loss_breakdown(
     """
     model = None if solution is None else solution.model
     if model is None or not model.has_gas:
-        return dict.fromkeys(LOSS_COLUMNS, math.nan)
+        names = (*LOSS_COLUMNS, *CAPACITY_LOSS_COLUMNS.values(), *COP_COST_COLUMNS.values())
+        return dict.fromkeys(names, math.nan)
     op = model.case.operating_point
     freq = row["mean_crank_speed [rpm]"] / 60.0
     if model.free_speed:
@@ -136,4 +163,35 @@ def loss_breakdown(
     out["loss_cylinder_heat_and_other [W]"] = (
         row["indicated_power [W]"] - row["isentropic_power [W]"] - named
     )
+    rho_cyl = fluid.state_pt(op.suction_pressure, t_in)["rho"]
+    out.update(_capacity_losses(row, inlet.density, rho_cyl, model.suction.density, mdot))
+    out.update(_cop_costs(row, out))
+    return out
+
+
+def _capacity_losses(
+    row: dict[str, Any], rho_inlet: float, rho_cylinder: float, rho_plenum: float, mdot: float
+) -> dict[str, float]:
+    """Capacity lost to suction heating, the suction muffler and leakage [W] (module
+    notes); densities [kg/m3] of the gas at the compressor inlet, at the cylinder inlet's
+    temperature and the line pressure, and in the suction plenum."""
+    capacity = row["cooling_capacity [W]"]
+    per_kg = capacity / mdot if mdot > 0.0 else math.nan
+    heated_line = capacity * rho_cylinder / rho_plenum  # without the muffler's drop
+    return {
+        "capacity_loss_suction_heating [W]": heated_line * (rho_inlet / rho_cylinder - 1.0),
+        "capacity_loss_mufflers [W]": heated_line - capacity,
+        "capacity_loss_leakage [W]": row["leakage_mass_flow [kg/s]"] * per_kg,
+    }
+
+
+def _cop_costs(row: dict[str, Any], losses: dict[str, float]) -> dict[str, float]:
+    """COP each loss costs, removed alone (module notes) [-]."""
+    capacity = row["cooling_capacity [W]"]
+    power = row["motor_electrical_power [W]"]
+    cop = capacity / power
+    out = {}
+    for column, cost in COP_COST_COLUMNS.items():
+        gained = losses.get(CAPACITY_LOSS_COLUMNS.get(column, ""), 0.0)
+        out[cost] = (capacity + gained) / (power - losses[column]) - cop
     return out

@@ -185,6 +185,38 @@ SUMMARY_DOCS: tuple[ColumnDoc, ...] = (
         "loss columns add up to `motor_electrical_power`)",
     ),
     _c(
+        "capacity_loss_suction_heating [W]",
+        "cooling capacity lost to suction heating: the capacity at the cylinder-inlet "
+        "density scaled to the compressor inlet's, less the capacity (same volumetric "
+        "efficiency)",
+    ),
+    _c(
+        "capacity_loss_mufflers [W]",
+        "cooling capacity lost to the suction muffler's pressure drop (plenum density "
+        "against the line's at the cylinder-inlet temperature)",
+    ),
+    _c(
+        "capacity_loss_leakage [W]",
+        "cooling capacity of the leaked mass flow (at the capacity's enthalpy difference)",
+    ),
+    *(
+        _c(
+            f"cop_{name} [-]",
+            f"COP gained by removing `{name}` alone (and the capacity it costs, if any): "
+            "(Q + dQ) / (W - L) - Q / W with the electrical power W",
+        )
+        for name in (
+            "loss_motor",
+            "loss_mechanical",
+            "loss_suction_valve",
+            "loss_discharge_valve",
+            "loss_mufflers",
+            "loss_leakage",
+            "loss_suction_heating",
+            "loss_cylinder_heat_and_other",
+        )
+    ),  # fmt: skip
+    _c(
         "bearing_dissipation_power [W]",
         "power absorbed by the bearings, -(sum F.de/dt + T_journal w_journal + T_bushing "
         "w_bushing) averaged over the revolution: the oil films' friction and squeeze "

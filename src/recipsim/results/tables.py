@@ -218,13 +218,14 @@ def summary(
         solution, cycle, mech["mean_crank_speed [rpm]"] / 60.0
     )
     p_drive = drive_work * freq
-    losses = loss_columns(case, cycle, p_drive, freq)
+    motor = _motor_metrics(case, cycle, freq, p_drive)
+    losses = loss_columns(case, cycle, p_drive, freq, motor["motor_rotor_loss_power [W]"])
     p_shaft = losses.pop("shaft_power [W]")
     row.update(_gas_summary(solution, cycle, freq, p_shaft, losses["motor_electrical_power [W]"]))
     row.update(valve_summary(case.name, solution))
     row["shaft_power [W]"] = p_shaft
     row["bearing_dissipation_power [W]"] = bearing_loss * freq
-    row.update(_motor_metrics(case, cycle, freq, p_drive))
+    row.update(motor)
     row.update(losses)
     row.update(mech)
     row.update(film_summary(cycle))

@@ -81,7 +81,7 @@ def thermal_columns(solution: PeriodicSolution | None, case: Case) -> dict[str, 
             "suction_plenum_pressure [Pa]": pressures.suction_muffler,
             "discharge_plenum_pressure [Pa]": pressures.discharge_chamber,
             "thermal_balance_residual [-]": float(
-                np.max(node_residuals(coupling.parameters, loads, net))
+                np.max(node_residuals(used.parameters, loads, net))
             ),
             "thermal_energy_balance_residual [-]": (p_in - rise - q_shell) / p_in,
             "discharge_line_temperature [K]": float(outlet["T"]),

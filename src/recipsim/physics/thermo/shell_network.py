@@ -383,16 +383,3 @@ def solve_network(
         iterations=iterations,
         loads=now,
     )
-
-
-def muffler_pressure_drop(
-    loss_coefficient: float, mass_flow: float, density: float, flow_area: float
-) -> float:
-    """Quasi-steady pressure drop of a muffler, K rho v^2 / 2 = K mdot^2 / (2 rho A^2) [Pa].
-
-    ``loss_coefficient`` K [-] refers to the velocity in ``flow_area`` [m2]; ``mass_flow``
-    the mean flow [kg/s] (sign ignored), ``density`` the muffler gas's [kg/m3].
-    """
-    if loss_coefficient == 0.0:
-        return 0.0
-    return loss_coefficient * mass_flow * mass_flow / (2.0 * density * flow_area * flow_area)

@@ -1,0 +1,67 @@
+"""Dead volume as the metal has it: the piston-top gap times the bore area, the ports
+through the valve plate and any other recess. A bore change then changes the clearance
+ratio (the ports stay), where a clearance ratio would scale with the swept volume.
+
+A case (or an override) that gives one of ``clearance_ratio``, ``clearance_volume`` and
+``top_clearance`` replaces whichever the case it extends gave; one file giving two is
+refused, naming the key.
+"""
+
+from __future__ import annotations
+
+import math
+
+import pytest
+
+from recipsim.api import load_case
+from recipsim.errors import CaseError
+
+GAP, PLATE, OTHER = 0.1e-3, 2.5e-3, 5e-9
+
+
+def _dead(bore: float | None = None):
+    values = {
+        "geometry.top_clearance": f"{GAP * 1e3} mm",
+        "geometry.valve_plate_thickness": f"{PLATE * 1e3} mm",
+        "geometry.other_dead_volume": OTHER,
+    }
+    if bore is not None:
+        values["geometry.bore"] = f"{bore * 1e3} mm"
+    return load_case("tles5.7kk3_r600a", values)
+
+
+def test_dead_volume_is_gap_ports_and_recesses():
+    case = _dead()
+    g, v = case.geometry, case.valves
+    ports = math.pi / 4.0 * (v.suction.port_diameter**2 + v.discharge.port_diameter**2)
+    expected = GAP * g.piston_area + PLATE * ports + OTHER
+    assert g.clearance_volume == pytest.approx(expected, rel=1e-14)
+
+
+def test_a_larger_bore_has_a_smaller_clearance_ratio():
+    small, large = _dead(0.020), _dead(0.0265)
+    ratio = [c.geometry.clearance_volume / c.geometry.swept_volume for c in (small, large)]
+    ports = small.geometry.clearance_volume - GAP * small.geometry.piston_area
+    # gap/stroke stays; the ports' (and recesses') share falls with the swept volume
+    gap_share = GAP / small.geometry.stroke
+    assert ratio[0] - gap_share == pytest.approx(ports / small.geometry.swept_volume, rel=1e-12)
+    assert ratio[1] - gap_share == pytest.approx(ports / large.geometry.swept_volume, rel=1e-12)
+    assert ratio[1] < ratio[0]
+
+
+def test_a_clearance_ratio_override_replaces_the_inherited_top_clearance():
+    case = load_case(
+        "tles5.7kk3_r600a", {"geometry.top_clearance": "0.1 mm", "geometry.clearance_ratio": 0.03}
+    )
+    g = case.geometry
+    assert g.clearance_volume / g.swept_volume == pytest.approx(0.03, rel=1e-12)
+
+
+def test_two_clearances_in_one_file_are_refused(tmp_path):
+    path = tmp_path / "two.toml"
+    path.write_text(
+        'extends = "tles5.7kk3_r600a"\n[geometry]\nclearance_ratio = 0.02\n'
+        'top_clearance = "0.1 mm"\n'
+    )
+    with pytest.raises(CaseError, match="geometry.clearance_ratio.*exactly one"):
+        load_case(str(path))
