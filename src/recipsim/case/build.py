@@ -225,9 +225,11 @@ STEPS: tuple[_Step, ...] = (
     ),
     _Step(
         "motor",
-        lambda s, opt: case_motor(s.raw.get("motor"), opt.drive, opt.motor, s.file),
+        lambda s, opt, geo: case_motor(
+            s.raw.get("motor"), opt.drive, opt.motor, s.file, geo.swept_volume
+        ),
         frozenset({"motor"}),
-        ("options",),
+        ("options", "geometry"),
     ),
     _Step(
         "motor_speed_check",

@@ -28,7 +28,22 @@ CURVE_SPEC: Spec = {
     "backward_field_ratio": Field(
         "dimensionless", 0.0, lo=0.0, hi=1.0, doc="0 balanced capacitor motor, 1 main winding"
     ),
-}
+    "rated_displacement": Field(
+        "m^3", None, lo=0.0, hi=0.01, open_lo=True,
+        doc="the displacement this motor is matched to: a case with another displacement "
+        "(a member of the family with another bore) gets the rated and breakdown torques, "
+        "powers and current scaled in proportion, at the same speed, efficiency and power "
+        "factor",
+    ),
+}  # fmt: skip
+#: Keys of a motor matched to a displacement that scale with it (torques, powers, current).
+DISPLACEMENT_SCALED = (
+    "rated_torque",
+    "breakdown_torque",
+    "rated_power",
+    "rated_input_power",
+    "rated_current",
+)
 #: every key of ``[motor]``: the torque curve's and the equivalent circuit's
 MOTOR_SPEC: Spec = {**CURVE_SPEC, **CIRCUIT_SPEC}
 #: keys the torque curve needs (required where it is built)
@@ -139,8 +154,26 @@ def motor_from_table(raw: Any, file: str) -> MotorSpec:
     )
 
 
+def matched_to_displacement(raw: Any, swept_volume: float | None, file: str) -> Any:
+    """The ``[motor]`` table as written, with the keys of :data:`DISPLACEMENT_SCALED`
+    scaled by ``swept_volume / rated_displacement`` (in SI) where the table gives a
+    ``rated_displacement`` and the case's swept volume [m3] is known."""
+    if raw is None or swept_volume is None:
+        return raw
+    values = read_motor_table(raw, file)
+    rated = values["rated_displacement"]
+    if rated is None:
+        return raw
+    ratio = swept_volume / rated
+    scaled = dict(raw)
+    for key in DISPLACEMENT_SCALED:
+        if values.get(key) is not None:
+            scaled[key] = values[key] * ratio
+    return scaled
+
+
 def case_motor(
-    raw: Any, drive: str, motor: str, file: str
+    raw: Any, drive: str, motor: str, file: str, swept_volume: float | None = None
 ) -> tuple[MotorSpec | None, MotorCircuit | None]:
     """The ``[motor]`` table of a case: the torque curve (required by the induction motor
     drive, built whenever its keys are there: a study may switch the drive with ``--set``)
@@ -154,12 +187,16 @@ def case_motor(
         ``options.drive`` and ``options.motor``.
     file : str
         The case file, for messages.
+    swept_volume : float, optional
+        The case's displacement [m3], for a motor matched to one
+        (:func:`matched_to_displacement`).
 
     Raises
     ------
     CaseError
         A table missing where needed, or its keys invalid.
     """
+    raw = matched_to_displacement(raw, swept_volume, file)
     if raw is None:
         if drive == "induction_motor" or motor == "equivalent_circuit":
             need = "options.drive = 'induction_motor'"

@@ -65,3 +65,23 @@ def test_two_clearances_in_one_file_are_refused(tmp_path):
     )
     with pytest.raises(CaseError, match="geometry.clearance_ratio.*exactly one"):
         load_case(str(path))
+
+
+def test_a_motor_matched_to_a_displacement_scales_with_the_bore():
+    """``motor.rated_displacement``: a member with another bore gets the torques (and the
+    circuit's rated output) in proportion to its displacement, at the same rated speed."""
+    small = load_case("tles5.7kk3_r600a")
+    large = load_case("tles5.7kk3_r600a", {"geometry.bore": "26.49 mm"})
+    ratio = large.geometry.swept_volume / small.geometry.swept_volume
+    assert ratio == pytest.approx(1.754, abs=1e-3)
+    assert large.motor.rated_torque == pytest.approx(small.motor.rated_torque * ratio, rel=1e-12)
+    assert large.motor.breakdown_torque == pytest.approx(
+        small.motor.breakdown_torque * ratio, rel=1e-12
+    )
+    assert large.motor.rated_speed == small.motor.rated_speed
+    # matched to the bore's own displacement: the torques as written
+    own = load_case(
+        "tles5.7kk3_r600a",
+        {"geometry.bore": "26.49 mm", "motor.rated_displacement": large.geometry.swept_volume},
+    )
+    assert own.motor.rated_torque == pytest.approx(small.motor.rated_torque, rel=1e-6)
