@@ -163,9 +163,7 @@ STEPS: tuple[_Step, ...] = (
     _Step(
         "geometry0",
         lambda s, valves: builders.geometry(
-            s.raw.get("geometry"),
-            s.file,
-            (valves.suction.port_diameter, valves.discharge.port_diameter),
+            s.raw.get("geometry"), s.file, valves.discharge.port_diameter
         ),
         frozenset({"geometry"}),
         ("valves",),

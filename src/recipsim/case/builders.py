@@ -109,17 +109,17 @@ def with_liner_length(geometry: Geometry, mechanism: MechanismSpec) -> Geometry:
     )
 
 
-def geometry(
-    raw: dict[str, Any] | None, file: str, port_diameters: tuple[float, float]
-) -> Geometry:
+def geometry(raw: dict[str, Any] | None, file: str, discharge_port_diameter: float) -> Geometry:
     """``[geometry]`` [m, m3]: one of clearance ratio, clearance volume and top clearance,
     a rod longer than the crank radius; the liner's length stays None where not given
     (:func:`with_liner_length`).
 
     With ``top_clearance`` the dead volume is built as the metal has it: the gap times
-    the bore area, the suction and discharge ports through the valve plate
-    (``port_diameters`` [m], ``valve_plate_thickness`` long) and ``other_dead_volume``,
-    so a change of bore changes the clearance ratio.
+    the bore area, the discharge port through the valve plate (``discharge_port_diameter``
+    [m], ``valve_plate_thickness`` long: its reed sits on the far side of the plate; the
+    suction port lies upstream of its reed and is not dead volume) and
+    ``other_dead_volume`` (reed recesses, the gasket's crevice), so a change of bore changes
+    the clearance ratio.
     """
     g = read_table(raw, GEOMETRY_SPEC, file, "geometry")
     area = math.pi * g["bore"] ** 2 / 4.0
@@ -132,8 +132,8 @@ def geometry(
             "give exactly one of clearance_ratio, clearance_volume and top_clearance",
         )
     if g["top_clearance"] is not None:
-        ports = sum(math.pi * d * d / 4.0 for d in port_diameters)
-        vc = g["top_clearance"] * area + g["valve_plate_thickness"] * ports
+        port = math.pi * discharge_port_diameter**2 / 4.0
+        vc = g["top_clearance"] * area + g["valve_plate_thickness"] * port
         vc += g["other_dead_volume"]
     elif g["clearance_volume"] is not None:
         vc = g["clearance_volume"]

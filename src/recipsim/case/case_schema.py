@@ -87,8 +87,8 @@ GEOMETRY_SPEC: Spec = {
         0.0,
         lo=0.0,
         hi=0.05,
-        doc="length of the suction and discharge ports through the valve plate (with "
-        "top_clearance: their volume is dead volume)",
+        doc="length of the discharge port through the valve plate (with top_clearance: "
+        "its volume is dead volume; the suction port lies upstream of its reed)",
     ),
     "other_dead_volume": Field(
         "m^3",

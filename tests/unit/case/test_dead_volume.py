@@ -2,6 +2,9 @@
 through the valve plate and any other recess. A bore change then changes the clearance
 ratio (the ports stay), where a clearance ratio would scale with the swept volume.
 
+The suction port lies upstream of its reed (the reed closes it from the cylinder's side),
+so only the discharge port is dead volume.
+
 A case (or an override) that gives one of ``clearance_ratio``, ``clearance_volume`` and
 ``top_clearance`` replaces whichever the case it extends gave; one file giving two is
 refused, naming the key.
@@ -33,8 +36,8 @@ def _dead(bore: float | None = None):
 def test_dead_volume_is_gap_ports_and_recesses():
     case = _dead()
     g, v = case.geometry, case.valves
-    ports = math.pi / 4.0 * (v.suction.port_diameter**2 + v.discharge.port_diameter**2)
-    expected = GAP * g.piston_area + PLATE * ports + OTHER
+    port = math.pi / 4.0 * v.discharge.port_diameter**2
+    expected = GAP * g.piston_area + PLATE * port + OTHER
     assert g.clearance_volume == pytest.approx(expected, rel=1e-14)
 
 
