@@ -190,6 +190,7 @@ TOP_KEYS = {
     "motor",
     "oil",
     "thermal",
+    "friction",
 }
 
 
