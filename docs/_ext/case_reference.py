@@ -92,6 +92,7 @@ def tables() -> list[tuple[str, str, list[list[str]]]]:
     from recipsim.case.mechanism import PISTON_BEARING_KEYS
     from recipsim.case.motor import MOTOR_SPEC
     from recipsim.case.envelope_table import ENVELOPE_SPEC
+    from recipsim.case.friction import FRICTION_SPEC
     from recipsim.case.refrigerant import LIMITS_SPEC, RATING_POINT_SPEC, REFRIGERANT_SPEC
     from recipsim.case.thermal import THERMAL_SPEC
     from recipsim.studies.check.expectations import EXPECTATION_SPEC, MINIMUM_SPEC
@@ -128,6 +129,12 @@ def tables() -> list[tuple[str, str, list[list[str]]]]:
             'Used with ``options.thermal = "network"`` (:mod:`recipsim.case.thermal`: '
             "what each default conductance stands for).",
             THERMAL_SPEC,
+        ),
+        (
+            "[friction]",
+            'Used with ``options.friction = "mean"`` (:mod:`recipsim.case.friction`: '
+            "the household compressor each default describes).",
+            FRICTION_SPEC,
         ),
         (
             "[pressure_curve]",

@@ -106,3 +106,23 @@ def test_tles_loss_shares_against_the_literature(catalogue):
         if "COP [-]" in point.targets:
             share = row["isentropic_power [W]"] / row["motor_electrical_power [W]"]
             assert 0.39 <= share <= 0.53, point.label
+
+
+def test_tles_mechanical_loss_is_its_whole_mean_friction(catalogue):
+    """On the rigid crank the shaft's work beyond the gas's is the mean friction, every
+    term of it: the breakdown's mechanical loss equals ``friction_power`` (1e-6 of it:
+    the drive's work and the indicated power are two quadratures of the same cycle), the
+    sum of the journals (the small-end pin among them), the skirt, the thrust bearing and
+    the oil pump, taken at the network's oil temperature."""
+    for point, row in catalogue:
+        terms = [
+            row[c] for c in row.index if c.startswith(("friction_power_", "piston_friction_power"))
+        ]
+        assert row["friction_power [W]"] == pytest.approx(sum(terms), rel=1e-15)
+        assert row["friction_power_thrust [W]"] > 0.0 and row["friction_power_pin [W]"] > 0.0
+        assert row["loss_mechanical [W]"] == pytest.approx(row["friction_power [W]"], rel=1e-6), (
+            point.label
+        )
+        assert row["friction_film_temperature [K]"] == pytest.approx(
+            row["node_temperature_oil [K]"], abs=0.05
+        ), point.label

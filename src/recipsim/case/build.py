@@ -27,6 +27,7 @@ from recipsim.case.consistency import (
     check_solver,
     check_supported,
 )
+from recipsim.case.friction import parse_friction
 from recipsim.case.mechanism import MechanismSpec, mechanism_from_dict
 from recipsim.case.motor import case_motor, check_motor_speed
 from recipsim.case.motor_losses import friction_option
@@ -236,6 +237,11 @@ STEPS: tuple[_Step, ...] = (
         kept=False,
     ),
     _Step("thermal", lambda s: parse_thermal(s.raw.get("thermal"), s.file), frozenset({"thermal"})),
+    _Step(
+        "friction",
+        lambda s: parse_friction(s.raw.get("friction"), s.file),
+        frozenset({"friction"}),
+    ),
     _Step(
         "shell_check",
         lambda s, op, opt: check_shell_pressure(op, opt, s.file),

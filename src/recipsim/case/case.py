@@ -12,6 +12,7 @@ from dataclasses import dataclass, field, replace
 from typing import Any
 
 from recipsim.case.build import case_sections, derived_sections
+from recipsim.case.friction import FrictionSpec
 from recipsim.case.mechanism import MechanismSpec
 from recipsim.case.overrides import (
     apply_overrides,
@@ -57,6 +58,8 @@ class Case:
     #: equivalent circuit of the motor (``options.motor = "equivalent_circuit"``)
     motor_circuit: MotorCircuit | None = None
     thermal: ThermalSpec = field(default_factory=lambda: parse_thermal(None, ""))
+    #: the friction sources beside the journals and the piston (``[friction]``)
+    friction: FrictionSpec = field(default_factory=FrictionSpec)
     raw: dict[str, Any] = field(default_factory=dict, repr=False, compare=False)
     source_text: str = field(default="", repr=False, compare=False)
     #: the ``KEY=VALUE`` overrides applied on top of the file, in order

@@ -34,7 +34,8 @@ OPTION_SPEC: Spec = {
     "friction": Choice(
         ("off", "mean", "films"),
         None,
-        "mechanical friction: none, mean Petroff journals and viscous skirt, or the oil films "
+        "mechanical friction: none, mean (Petroff journals, viscous skirt, thrust bearing, oil "
+        "pump: [friction]), or the oil films "
         "(default: films where a bearing runs on one, else off)",
     ),
     "motor": Choice(
@@ -236,6 +237,7 @@ TOP_KEYS = {
     "motor",
     "oil",
     "thermal",
+    "friction",
 }
 
 

@@ -9,7 +9,14 @@
   (list), ``density``: an oil of your own, fitted exactly through the points;
 - ``film_temperature``: the film temperature of every lubricated bearing that does not
   give its own (default 60 C: a household compressor's oil runs at 50-70 C at the
-  rating points; the films run a few kelvin above the sump).
+  rating points; the films run a few kelvin above the sump). With ``options.thermal =
+  "network"`` the mean friction (``options.friction = "mean"``) takes every film at the
+  network's oil node temperature instead;
+- ``dissolved_refrigerant_fraction``, ``molar_mass``: refrigerant dissolved in the oil
+  (a mass fraction, default 0) and the oil's molar mass, which lower the mean friction's
+  film viscosity by the logarithmic mixing rule in mole fractions
+  (:func:`recipsim.physics.lubricant.diluted_viscosity`); the fraction is given, not
+  computed from a solubility law (none for R600a in a mineral oil is implemented here).
 
 Per lubricated bearing (``[bearings.<name>]``): ``diameter`` (journals; the piston's is
 the bore), ``length`` (journals; the piston film runs between the ``piston_top`` and
@@ -29,7 +36,13 @@ from recipsim.case.schema import Described, DescribedSpec
 from recipsim.case.table_reader import TableReader
 from recipsim.case.units import to_si
 from recipsim.errors import CaseError
-from recipsim.physics.lubricant import DEFAULT_OIL, fit_vogel, fit_walther, spindle_oil
+from recipsim.physics.lubricant import (
+    DEFAULT_OIL,
+    MINERAL_OIL_MOLAR_MASS,
+    fit_vogel,
+    fit_walther,
+    spindle_oil,
+)
 from recipsim.physics.mechanics.journal import (
     DEFAULT_CONTACT_FILM,
     DEFAULT_CONTACT_STIFFNESS,
@@ -103,11 +116,24 @@ OIL_SPEC: DescribedSpec = {
     ),
     "film_temperature": Described(
         "K", "200 K < value < 500 K", "60 degC",
-        doc="film temperature of every lubricated bearing that gives none",
+        doc="film temperature of every lubricated bearing that gives none (with "
+        'options.thermal = "network", the mean friction takes the oil node\'s instead)',
         lo=200.0, hi=500.0, open_lo=True, open_hi=True,
+    ),
+    "dissolved_refrigerant_fraction": Described(
+        "dimensionless", "0 ... 0.5", "0 (no dilution)",
+        doc="mass fraction of refrigerant dissolved in the oil of the mean friction's films "
+        "(mixing rule in recipsim.physics.lubricant.diluted_viscosity)",
+        lo=0.0, hi=0.5,
+    ),
+    "molar_mass": Described(
+        "kg/mol", "0.1 ... 2", "0.30 kg/mol (a light mineral oil)",
+        doc="the oil's mean molar mass, for the dilution's mole fractions",
+        lo=0.1, hi=2.0,
     ),
 }  # fmt: skip
 _OIL_KEYS = tuple(OIL_SPEC)
+_DILUTION_KEYS = ("dissolved_refrigerant_fraction", "molar_mass")
 FILM_KEYS = tuple(FILM_SPEC)
 
 
@@ -121,10 +147,16 @@ class OilSpec:
         Density and the fitted viscosity-temperature law.
     film_temperature : float
         Default film temperature of the lubricated bearings [K].
+    dissolved_refrigerant_fraction : float
+        Mass fraction of refrigerant in the oil of the mean friction's films [-].
+    molar_mass : float
+        The oil's mean molar mass [kg/mol].
     """
 
     oil: Any
     film_temperature: float
+    dissolved_refrigerant_fraction: float = 0.0
+    molar_mass: float = MINERAL_OIL_MOLAR_MASS
 
     def viscosity(self, temperature: float) -> float:
         """Dynamic viscosity [Pa s] at ``temperature`` [K]."""
@@ -183,12 +215,16 @@ def parse_oil(data: Any, file: str) -> OilSpec:
     t = TableReader({} if data is None else data, file, "oil")
     t.check_keys(_OIL_KEYS)
     temperature = t.described(OIL_SPEC, "film_temperature", default=DEFAULT_FILM_TEMPERATURE)
+    dilution = (
+        t.described(OIL_SPEC, "dissolved_refrigerant_fraction", default=0.0),
+        t.described(OIL_SPEC, "molar_mass", default=MINERAL_OIL_MOLAR_MASS),
+    )
     if "law" not in t.data:
         name = t.choice("name", _OIL_NAMES, "iso_vg10")
-        extra = set(t.data) - {"name", "film_temperature"}
+        extra = set(t.data) - {"name", "film_temperature", *_DILUTION_KEYS}
         if extra:
             raise CaseError(file, t.key(sorted(extra)[0]), "needs oil.law (vogel or walther)")
-        return OilSpec(_named_oil(name), temperature)
+        return OilSpec(_named_oil(name), temperature, *dilution)
 
     law = t.choice("law", ("vogel", "walther"))
     label = str(t.data.get("name", "oil of the case"))
@@ -213,7 +249,7 @@ def parse_oil(data: Any, file: str) -> OilSpec:
             )  # fmt: skip
     except ValueError as exc:
         raise CaseError(file, t.key(key), str(exc)) from None
-    return OilSpec(oil, temperature)
+    return OilSpec(oil, temperature, *dilution)
 
 
 def parse_film(

@@ -29,7 +29,7 @@ from recipsim.model.cylinder_parameters import (
     cylinder_parameters,
     property_callback,
 )
-from recipsim.model.loss_sources import NetworkLossSources, constant_speed_mean_friction
+from recipsim.model.loss_sources import NetworkLossSources
 from recipsim.model.mechanism_parameters import bearing_tables, mechanism_parameters
 from recipsim.model.pinned import pinned_torque_profile
 from recipsim.model.plenum import PlenumState, isentropic_state, plenum_state
@@ -133,8 +133,7 @@ def _attach_network(model: Model, case: Case, fluid: AnyFluid, suction: PlenumSt
     """
     work = model.for_solve()  # the predictor moves the plena like a solve
     thermal = ThermalCoupling(case)
-    friction = constant_speed_mean_friction(case) if case.options.friction == "mean" else 0.0
-    thermal.loss_sources = NetworkLossSources(friction)
+    thermal.loss_sources = NetworkLossSources(case)
     work.thermal = thermal
     thermal.predict(work)
     y0, scale = _initial_gas_state(case, fluid, work.suction)

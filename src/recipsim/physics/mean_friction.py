@@ -21,6 +21,8 @@ and a contact share that no source gives for these bearings.
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from recipsim.physics.mechanics.journal import couette_torque
@@ -130,3 +132,98 @@ def time_mean(values: np.ndarray, crank_speed: np.ndarray) -> float:
     """
     weights = 1.0 / np.asarray(crank_speed)
     return float(np.sum(np.asarray(values) * weights) / np.sum(weights))
+
+
+def thrust_collar_torque(
+    viscosity: float,
+    inner_diameter: float,
+    outer_diameter: float,
+    film_thickness: float,
+    speed: np.ndarray,
+) -> np.ndarray:
+    """Viscous torque of a flat annular thrust collar on a parallel film [N m] (>= 0 for
+    ``speed`` > 0).
+
+    Couette flow across a film of uniform thickness ``h`` between a collar turning at
+    ``omega`` and its stationary seat: the shear stress ``mu omega r / h`` at radius
+    ``r``, integrated over the annulus, gives the thrust-face analogue of Petroff's law
+    ``T = pi mu omega (R_o^4 - R_i^4) / (2 h)`` (Hamrock, Schmid & Jacobson,
+    *Fundamentals of Fluid Film Lubrication*, 2nd ed., the viscous friction of a
+    parallel-surface thrust bearing; the same integral as the flat collar's friction
+    torque of machine design with the shear ``mu u / h`` in place of Coulomb friction).
+    The film thickness is given: a parallel film carries its load by no wedge (the
+    thermal wedge and the surface texture do, Nagata et al. 2013), so the load does not
+    enter.
+
+    Parameters
+    ----------
+    viscosity : float
+        Oil dynamic viscosity [Pa s].
+    inner_diameter, outer_diameter : float
+        Diameters of the annulus [m], inner < outer.
+    film_thickness : float
+        Axial film thickness [m] (> 0).
+    speed : ndarray
+        Spin rate of the collar relative to its seat [rad/s].
+
+    Raises
+    ------
+    ValueError
+        A film thickness that is not positive.
+    """
+    if not film_thickness > 0.0:
+        raise ValueError(f"thrust film thickness {film_thickness!r} m: must be > 0")
+    r_o, r_i = 0.5 * outer_diameter, 0.5 * inner_diameter
+    return math.pi * viscosity * np.asarray(speed) * (r_o**4 - r_i**4) / (2.0 * film_thickness)
+
+
+def thrust_ball_torque(friction_coefficient: float, load: float, pitch_diameter: float) -> float:
+    """Frictional moment of a thrust ball bearing at constant friction coefficient [N m]:
+    ``M = mu F d / 2`` (SKF, *Rolling bearings* catalogue, "Estimating the frictional
+    moment": ``mu`` about 0.0013 for thrust ball bearings under normal conditions, ``d``
+    the bore diameter; here the pitch diameter of the ball track).
+
+    Parameters
+    ----------
+    friction_coefficient : float
+        Constant friction coefficient of the bearing [-].
+    load : float
+        Axial load [N].
+    pitch_diameter : float
+        Diameter of the ball track [m].
+    """
+    return 0.5 * friction_coefficient * load * pitch_diameter
+
+
+def oil_pump_power(
+    density: float, flow: float, speed: np.ndarray, outlet_radius: float, lift: float
+) -> np.ndarray:
+    """Power the crankshaft gives the oil it pumps [W]: Euler's pump equation for the
+    centrifugal pump of the shaft's eccentric bore plus the lift of the helical groove.
+
+    The oil enters the pick-up tube on the axis without swirl and leaves the shaft
+    co-rotating at ``outlet_radius``: Euler's turbomachinery equation gives the shaft
+    power ``rho Q u c_u = rho Q omega^2 r^2`` (the centrifugal head ``omega^2 r^2 / 2``
+    and as much again of swirl, which the oil dissipates as it leaves); the helical groove
+    then lifts it by ``lift`` against gravity, ``rho Q g H`` (a viscous drag pump: the
+    groove's shear beyond this work is in the journal's Petroff term). The pump's two
+    stages are those of Posch et al. (2015, IOP Conf. Ser.: Mater. Sci. Eng. 90 012028,
+    a Secop household compressor: pick-up tube and eccentric bore, then a helical groove)
+    and Alves, Barbosa & Prata (2012, Purdue ICEC paper 2045, the eccentric-tube
+    centrifugal pump).
+
+    Parameters
+    ----------
+    density : float
+        Oil density [kg/m3].
+    flow : float
+        Volume flow of oil the pump delivers [m3/s].
+    speed : ndarray
+        Shaft speed [rad/s] at each sample.
+    outlet_radius : float
+        Radius at which the oil leaves the centrifugal stage [m].
+    lift : float
+        Height from the sump's surface to where the groove delivers the oil [m].
+    """
+    omega = np.asarray(speed)
+    return density * flow * (omega**2 * outlet_radius**2 + 9.80665 * lift)

@@ -41,7 +41,12 @@ import numpy as np
 from recipsim.case.case import Case
 from recipsim.case.rating import SATURATED_LIQUID_BAND
 from recipsim.case.sections import OperatingPoint
-from recipsim.model.loss_sources import mean_friction_powers, motor_point
+from recipsim.model.loss_sources import (
+    film_viscosity,
+    friction_film_temperature,
+    mean_friction_powers,
+    motor_point,
+)
 from recipsim.physics.mean_friction import time_mean
 from recipsim.results.sampled import CycleColumns
 
@@ -82,23 +87,37 @@ def _film_friction(cycle: CycleColumns) -> float:
     return sum(time_mean(cycle[c], speed) for c in names)
 
 
-def mean_friction_columns(case: Case, cycle: CycleColumns) -> dict[str, float]:
-    """Petroff journals and the viscous skirt over the cycle's samples [W] (time means,
-    :func:`recipsim.model.loss_sources.mean_friction_powers`)."""
+def mean_friction_columns(
+    case: Case, cycle: CycleColumns, oil_temperature: float | None = None
+) -> dict[str, float]:
+    """Petroff journals, the viscous skirt, the thrust bearing and the oil pump over the
+    cycle's samples [W] (time means, :func:`recipsim.model.loss_sources.
+    mean_friction_powers`), the films at ``oil_temperature`` [K] (None: their fixed film
+    temperatures)."""
     return mean_friction_powers(
         case,
         np.radians(cycle["crank_angle [deg]"]),
         cycle["crank_speed [rad/s]"],
         cycle["piston_displacement [m]"],
         cycle["piston_velocity [m/s]"],
+        oil_temperature,
     )
 
 
-def friction_columns(case: Case, cycle: CycleColumns) -> dict[str, float]:
-    """``friction_power [W]`` (and, for ``mean``, per bearing) of ``options.friction``."""
+def friction_columns(
+    case: Case, cycle: CycleColumns, oil_temperature: float | None = None
+) -> dict[str, float]:
+    """``friction_power [W]`` (and, for ``mean``, per source, with the film temperature
+    and viscosity used) of ``options.friction``; ``oil_temperature`` [K]: the thermal
+    network's oil node temperature the friction was taken at (None: the fixed film
+    temperatures)."""
     option = case.options.friction
     if option == "mean":
-        return mean_friction_columns(case, cycle)
+        row = mean_friction_columns(case, cycle, oil_temperature)
+        t = friction_film_temperature(case, oil_temperature)
+        row["friction_film_temperature [K]"] = t
+        row["friction_film_viscosity [Pa*s]"] = film_viscosity(case, t)
+        return row
     if option == "films":
         return {"friction_power [W]": _film_friction(cycle)}
     return {"friction_power [W]": 0.0}
@@ -161,7 +180,12 @@ def motor_columns(
 
 
 def loss_columns(
-    case: Case, cycle: CycleColumns, drive_power: float, freq: float, rotor_loss: float = math.nan
+    case: Case,
+    cycle: CycleColumns,
+    drive_power: float,
+    freq: float,
+    oil_temperature: float | None = None,
+    rotor_loss: float = math.nan,
 ) -> dict[str, Any]:
     """The case's options, friction and motor columns, and ``shaft_power [W]``.
 
@@ -176,6 +200,9 @@ def loss_columns(
         mean friction).
     freq : float
         Revolutions per second [1/s].
+    oil_temperature : float or None
+        The films' temperature of the ``mean`` friction [K] (the thermal network's oil
+        node, as the network took it); None: the fixed film temperatures.
     rotor_loss : float
         The induction-motor drive's rotor copper loss [W] (NaN for other drives).
     """
@@ -185,7 +212,7 @@ def loss_columns(
         "friction": case.options.friction,
         "motor": case.options.motor,
     }
-    row.update(friction_columns(case, cycle))
+    row.update(friction_columns(case, cycle, oil_temperature))
     shaft = drive_power + (row["friction_power [W]"] if case.options.friction == "mean" else 0.0)
     row["shaft_power [W]"] = shaft
     row.update(motor_columns(case, shaft, 2.0 * math.pi * freq, rotor_loss))

@@ -117,7 +117,8 @@ SUMMARY_DOCS: tuple[ColumnDoc, ...] = (
     _c(
         "friction_power [W]",
         "mechanical friction of the bearings and the piston: 0 for `off`; for `mean` the sum "
-        "of the Petroff journals and the viscous skirt below (added to the shaft power); for "
+        "of the Petroff journals, the viscous skirt, the thrust bearing and the oil pump "
+        "below (added to the shaft power; a heat source of the thermal network); for "
         "`films` the sum of the films' `friction_power_<name>` and `piston_friction_power` "
         "(already in the shaft power)",
     ),
@@ -262,6 +263,29 @@ SUMMARY_DOCS: tuple[ColumnDoc, ...] = (
         '`options.friction = "mean"`, the concentric skirt\'s mu pi D L v^2 / delta (L: '
         "piston length inside the bore, delta: the piston film's or else the leakage radial "
         "clearance)",
+    ),
+    _c(
+        "friction_power_thrust [W]",
+        '`options.friction = "mean"`: the thrust bearing carrying the rotor and crankshaft '
+        "(`[friction]`): a flat collar's viscous torque pi mu w (R_o^4 - R_i^4) / (2 h) "
+        "times w, or a ball bearing's mu F d / 2 times w; absent with `thrust_bearing = "
+        '"none"`',
+    ),
+    _c(
+        "friction_power_oil_pump [W]",
+        '`options.friction = "mean"`: the power the shaft gives the oil it pumps, '
+        "rho Q (w^2 r^2 + g H) (Euler's pump equation for the centrifugal stage, the "
+        "helical groove's lift; `[friction]`)",
+    ),
+    _c(
+        "friction_film_temperature [K]",
+        '`options.friction = "mean"`: the oil temperature the films are taken at, the '
+        'thermal network\'s oil node (`options.thermal = "network"`) or `oil.film_temperature`',
+    ),
+    _c(
+        "friction_film_viscosity [Pa*s]",
+        "the oil's dynamic viscosity at that temperature (its Walther or Vogel law), "
+        "diluted by `oil.dissolved_refrigerant_fraction`",
     ),
     _c(
         "motor_input_power [W]",

@@ -33,6 +33,7 @@ import pandas as pd
 
 from recipsim.case.load import Case
 from recipsim.model.build import scenes
+from recipsim.model.loss_sources import friction_oil_temperature
 from recipsim.model.plenum import isentropic_state
 from recipsim.results.bearings import film_summary, mechanism_summary
 from recipsim.results.cycle import (  # re-exported (__all__): the cycle table is in .cycle
@@ -219,7 +220,9 @@ def summary(
     )
     p_drive = drive_work * freq
     motor = _motor_metrics(case, cycle, freq, p_drive)
-    losses = loss_columns(case, cycle, p_drive, freq, motor["motor_rotor_loss_power [W]"])
+    rotor_loss = motor["motor_rotor_loss_power [W]"]
+    oil = friction_oil_temperature(model)
+    losses = loss_columns(case, cycle, p_drive, freq, oil, rotor_loss)
     p_shaft = losses.pop("shaft_power [W]")
     row.update(_gas_summary(solution, cycle, freq, p_shaft, losses["motor_electrical_power [W]"]))
     row.update(valve_summary(case.name, solution))

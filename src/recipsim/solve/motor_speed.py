@@ -22,7 +22,11 @@ from dataclasses import dataclass
 from recipsim.case.case import Case
 from recipsim.errors import SolverError
 from recipsim.model.build import Model, WorkingModel
-from recipsim.model.loss_sources import constant_speed_mean_friction, revolution_shaft_power
+from recipsim.model.loss_sources import (
+    constant_speed_mean_friction,
+    friction_oil_temperature,
+    revolution_shaft_power,
+)
 from recipsim.physics.motor_circuit import motor_operating_point_at_torque
 from recipsim.solve.drive import build_model_for
 from recipsim.solve.periodic import PeriodicSolution, solve_periodic
@@ -71,7 +75,10 @@ def motor_speed_at_load(model: Model, solution: PeriodicSolution) -> float:
     circuit = case.motor_circuit
     assert circuit is not None
     rev = solution.final
-    friction = constant_speed_mean_friction(case) if case.options.friction == "mean" else 0.0
+    friction = 0.0
+    if case.options.friction == "mean":  # the films at the oil temperature the cycle ran with
+        oil = friction_oil_temperature(solution.model)
+        friction = constant_speed_mean_friction(case, oil_temperature=oil)
     shaft, _ = revolution_shaft_power(model, rev.y_end, rev.duration, friction)
     omega = 2.0 * math.pi / rev.duration
     try:
