@@ -265,18 +265,7 @@ def fit_parameters(
     r = f(result.x)
     if np.any(r == FAILED_RESIDUAL):
         raise CalibrationError("a calibration point does not run at the fitted values")
-    jac = forward_jacobian(f, result.x, upper)
-    # a parameter pushed onto a bound where it no longer acts (a loss coefficient driven
-    # to its floor) is reported there (at_bound, its interval unbounded), not refused
-    dead = _on_bound(result.x, lower, upper) & (np.abs(jac).max(axis=0) * STEP <= MIN_INFLUENCE)
-    live = [p for p, d in zip(parameters, dead, strict=True) if not d]
-    if live:  # at the optimum too: effects may align there
-        check_identifiable(jac[:, ~dead], live)
-    std_res = _std(jac, r, f.sigma, len(parameters))
-    std_by = [tuple(math.inf if d else v for v, d in zip(s, dead, strict=True)) for s in std_res]
-    check_determined(
-        live, [max(a, b) if b == b else a for a, b, d in zip(*std_by, dead, strict=True) if not d]
-    )
+    std_by = _confidence(f, result.x, r, upper, parameters)
     return FitResult(
         parameters=tuple(parameters),
         values=tuple(p.from_x(v) for p, v in zip(parameters, result.x, strict=True)),
@@ -288,10 +277,28 @@ def fit_parameters(
     )
 
 
-def _on_bound(x: np.ndarray, lower: np.ndarray, upper: np.ndarray) -> np.ndarray:
-    """Which fitted variables ended on a bound, to the fit's ``xtol`` (1e-4 of the range)."""
-    tol = 1e-4 * (upper - lower)
-    return np.asarray((x - lower <= tol) | (upper - x <= tol))
+def _confidence(
+    f: Residuals, x: np.ndarray, r: np.ndarray, upper: np.ndarray, parameters: Sequence[Parameter]
+) -> list[tuple[float, ...]]:
+    """The standard deviations (:func:`_std`) at the optimum ``x``, after the checks of
+    identifiability and determination there.
+
+    A parameter that stopped acting on the way to the optimum (a loss coefficient driven
+    towards its floor, where a 1 % change moves nothing) is reported with an unbounded
+    interval (infinite standard deviations), not refused after the whole fit: the start
+    had its influence.
+    """
+    jac = forward_jacobian(f, x, upper)
+    dead = np.abs(jac).max(axis=0) * STEP <= MIN_INFLUENCE
+    live = [p for p, d in zip(parameters, dead, strict=True) if not d]
+    if live:  # at the optimum too: effects may align there
+        check_identifiable(jac[:, ~dead], live)
+    std_res = _std(jac, r, f.sigma, len(parameters))
+    std_by = [tuple(math.inf if d else v for v, d in zip(s, dead, strict=True)) for s in std_res]
+    check_determined(
+        live, [max(a, b) if b == b else a for a, b, d in zip(*std_by, dead, strict=True) if not d]
+    )
+    return std_by
 
 
 def _std(

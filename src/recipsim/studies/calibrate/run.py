@@ -121,10 +121,13 @@ def calibrate_case(
     CalibrationError
         An ill-posed problem (see :mod:`.fit`).
     """
+    groups, chosen = _member_groups(case, data, members, points, targets, ignore)
     specs = [parse_parameter(text, case) for text in parameters]
     if len({p.key for p in specs}) < len(specs):
         raise CalibrationError("a parameter is named twice")
-    groups, chosen = _member_groups(case, data, members, points, targets, ignore, specs)
+    for member, member_base, measured, used in groups:
+        own = [p for p in measured if p.row in used]
+        _check_points(member_base, own, chosen, specs, str(member.data))
     fitting = [(c, p) for _, c, measured, used in groups for p in measured if p.row in used]
     fit = fit_parameters(
         case, [p for _, p in fitting], chosen, specs, simulate, cases=[c for c, _ in fitting]
@@ -158,10 +161,9 @@ def _member_groups(
     points: Sequence[int] | None,
     targets: Sequence[str] | None,
     ignore: Sequence[str],
-    specs: Sequence[Parameter],
 ) -> tuple[list[_Group], list[str]]:
     """Every member (the family case's data first) with its case, its measured points
-    and the rows it fits on, checked; and the targets of all of them."""
+    and the rows it fits on; and the targets of all of them."""
     family = [Member(find_data_file(data), points=tuple(points) if points else None)]
     family += as_members([*members, family[0]])[:-1]  # refuses a member repeating the data
     groups: list[_Group] = []
@@ -175,8 +177,6 @@ def _member_groups(
         if unknown:
             raise CalibrationError(f"--points {unknown}: {member.name} has rows {sorted(rows)}")
         member_base = member_case(case, member) if member is not family[0] else case
-        fitting = [p for p in measured if p.row in used]
-        _check_points(member_base, fitting, own, specs, str(member.data))
         groups.append((member, member_base, measured, used))
     return groups, chosen
 
