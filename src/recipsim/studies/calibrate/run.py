@@ -126,8 +126,9 @@ def calibrate_case(
     if len({p.key for p in specs}) < len(specs):
         raise CalibrationError("a parameter is named twice")
     for member, member_base, measured, used in groups:
-        own = [p for p in measured if p.row in used]
-        _check_points(member_base, own, chosen, specs, str(member.data))
+        _check_points(
+            member_base, [p for p in measured if p.row in used], chosen, specs, str(member.data)
+        )
     fitting = [(c, p) for _, c, measured, used in groups for p in measured if p.row in used]
     fit = fit_parameters(
         case, [p for _, p in fitting], chosen, specs, simulate, cases=[c for c, _ in fitting]
