@@ -79,11 +79,9 @@ def _with_plausible(meaning: str, field: Any) -> str:
         return meaning
     low, high = field.plausible
     unit = "" if field.unit == "dimensionless" else f" {_unit(field.unit)}"
-    when = f" (with ``{field.plausible_when[0]} = {field.plausible_when[1]}``)"
-    note = (
-        f"Plausible {low:.3g} to {high:.3g}{unit}"
-        f"{when if field.plausible_when else ''}: {field.plausible_source}."
-    )
+    condition = field.plausible_when
+    when = f" (with ``{condition[0]} = {condition[1]}``)" if condition else ""
+    note = f"Plausible {low:.3g} to {high:.3g}{unit}{when}: {field.plausible_source}."
     return f"{meaning}. {note}" if meaning else note
 
 

@@ -90,8 +90,8 @@ THERMAL_SPEC: Spec = {
     ),
     "suction_muffler_loss_coefficient": Field(
         "dimensionless", 0.0, lo=0.0, hi=1000.0, doc="K of dp = K rho v^2 / 2 (0: no drop)",
-        plausible=(0.5, 10.0), plausible_source="a tube's entry 0.5 and exit 1.0 (Idelchik), "
-        "a few tubes in series, times 2-3 for the pulsating flow's mean v^2",
+        plausible=(0.5, 5.0), plausible_source="a tube's entry 0.5 and exit 1.0 (Idelchik) "
+        "and a few tubes or bends in series; not the pulsation's factor on the mean v^2",
     ),
     "suction_muffler_flow_area": Field(
         "m^2", 3.0e-5, lo=0.0, hi=0.01, open_lo=True, doc="area of v (6.2 mm tube)"
