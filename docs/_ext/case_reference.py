@@ -58,6 +58,7 @@ def declared_rows(table: str, spec: Any) -> list[list[str]]:
         if isinstance(field, Field):
             allowed = field.allowed() + (", whole number" if field.integer else "")
             unit = _unit(field.unit)
+            meaning = _with_plausible(meaning, field)
         elif isinstance(field, Choice):
             allowed = ", ".join(f"``{c}``" for c in field.choices)
             unit = "-"
@@ -70,6 +71,18 @@ def declared_rows(table: str, spec: Any) -> list[list[str]]:
         required = "yes" if field.default is REQUIRED else "no"
         rows.append([f"``{key}``", unit, _default(field, REQUIRED), allowed, required, meaning])
     return rows
+
+
+def _with_plausible(meaning: str, field: Any) -> str:
+    """The meaning, followed by the key's plausible range for a calibration and its source."""
+    if field.plausible is None:
+        return meaning
+    low, high = field.plausible
+    unit = "" if field.unit == "dimensionless" else f" {_unit(field.unit)}"
+    condition = field.plausible_when
+    when = f" (with ``{condition[0]} = {condition[1]}``)" if condition else ""
+    note = f"Plausible {low:.3g} to {high:.3g}{unit}{when}: {field.plausible_source}."
+    return f"{meaning}. {note}" if meaning else note
 
 
 def described_rows(table: str, spec: Any, keys: tuple[str, ...] | None = None) -> list[list[str]]:

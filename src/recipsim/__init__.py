@@ -19,6 +19,7 @@ use_recipsim_numba_cache()
 
 from recipsim.api import (  # noqa: E402
     Case,
+    Member,
     Result,
     calibrate,
     cases,
@@ -32,6 +33,7 @@ from recipsim.errors import CaseError, SolverError  # noqa: E402
 __all__ = [
     "Case",
     "CaseError",
+    "Member",
     "Result",
     "SolverError",
     "__version__",

@@ -37,6 +37,7 @@ from recipsim.report.startup_plot import plot_startup
 from recipsim.results.case_run import CaseRun
 from recipsim.results.startup import startup_table
 from recipsim.solve.periodic import PeriodicSolution
+from recipsim.studies.calibrate.family import Member
 from recipsim.studies.calibrate.report import write_calibration
 from recipsim.studies.calibrate.run import calibrate_case
 from recipsim.studies.compare import case_labels, comparison_table
@@ -46,7 +47,8 @@ from recipsim.studies.sweep.spec import DEFAULT_MAX_POINTS, SweepSpec
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
 
-__all__ = ["Case", "Result", "calibrate", "cases", "compare", "load_case", "simulate", "sweep"]
+__all__ = ["Case", "Member", "Result", "calibrate", "cases", "compare", "load_case"]
+__all__ += ["simulate", "sweep"]
 
 
 @dataclass(frozen=True)
@@ -267,8 +269,10 @@ def calibrate(
     points: Sequence[int] | None = None,
     targets: Sequence[str] | None = None,
     directory: str | Path | None = None,
+    members: Sequence[str | Member] = (),
 ) -> Any:
-    """Fit uncertain parameters of ``case`` to measured points: ``recipsim calibrate``.
+    """Fit uncertain parameters of ``case`` to measured points: ``recipsim calibrate``
+    (of one compressor, or of several of a family at once with ``members``).
 
     Parameters
     ----------
@@ -276,7 +280,8 @@ def calibrate(
         The case to calibrate.
     data : str or Path
         CSV of measured points: inputs ``<key> [<unit>]`` (operating-point keys, or any
-        dotted key), an optional ``standard``, and the targets (docs/calibration.md).
+        dotted key), an optional ``standard``, and the targets (docs/calibration.md); or
+        a shipped catalogue's file name (``"danfoss_tles5.7kk.3_r600a.csv"``).
     parameters : sequence of str
         ``KEY=LOWER:UPPER`` (bounds bare in SI or with units), or ``KEY`` for a tenth to
         ten times the case's value.
@@ -287,13 +292,17 @@ def calibrate(
     directory : str or Path, optional
         Write the result there (replaced whole): ``parameters.csv``, ``points.csv``,
         ``calibration.json``, the calibrated ``case.toml``.
+    members : sequence of str or Member
+        The family's other compressors, fitted with ``case`` (shared parameters, one fit):
+        ``Member(data, bore="26.49 mm")`` (``case`` with another bore), ``Member(data,
+        case="other")`` or ``"DATA:bore=26.49mm"``; ``points`` applies unless it has own.
 
     Returns
     -------
     Calibration
         ``.calibrated`` (the case with the fitted values), ``.parameters`` (fitted
-        values, standard deviations, 95 % intervals) and ``.points`` (measured,
-        predicted and error per point) as DataFrames.
+        values, 95 % intervals, plausible ranges, verdicts) and ``.points`` (member,
+        measured, predicted and error per point) as DataFrames.
 
     Raises
     ------
@@ -302,7 +311,7 @@ def calibrate(
         influence, or parameters whose effects cannot be told apart.
     """
     _check_case(case, "calibrate", "case")
-    result = calibrate_case(case, data, parameters, points, targets)
+    result = calibrate_case(case, data, parameters, points, targets, members=members)
     if directory is not None:
         write_calibration(result, directory)
     return result

@@ -35,6 +35,15 @@ class Field:
         One line for error messages and documentation.
     integer : bool
         The value must be a whole number.
+    plausible : (float, float) or None
+        Physically plausible range (SI, inside ``lo``-``hi``) of a key that a user may
+        calibrate (``recipsim calibrate`` judges a fitted value against it); None: not
+        declared.
+    plausible_source : str
+        Where the plausible range comes from (a publication, a stated estimate).
+    plausible_when : (str, str) or None
+        ``(dotted option key, value)``: the range holds only for that option (a
+        correlation's constant); None: always.
     """
 
     unit: str
@@ -45,6 +54,9 @@ class Field:
     open_hi: bool = False
     doc: str = ""
     integer: bool = False
+    plausible: tuple[float, float] | None = None
+    plausible_source: str = ""
+    plausible_when: tuple[str, str] | None = None
 
     def allowed(self) -> str:
         unit = "" if self.unit == "dimensionless" else f" {self.unit}"

@@ -61,16 +61,23 @@ DEFAULT_SHELL_AMBIENT = 1.5
 
 THERMAL_SPEC: Spec = {
     **{
-        f"ua_{name}": Field(_UA, value, lo=0.0, hi=1000.0, doc=doc)
+        f"ua_{name}": Field(
+            _UA, value, lo=0.0, hi=1000.0, doc=doc, plausible=(0.3 * value, 3.0 * value),
+            plausible_source=f"0.3-3x the default, an estimate: {doc}",
+        )
         for name, (value, doc) in DEFAULT_CONDUCTANCES.items()
     },
     "ua_shell_ambient": Field(
         _UA, DEFAULT_SHELL_AMBIENT, lo=0.0, hi=1000.0, open_lo=True,
         doc="natural convection and radiation in still air, 12 W/(m2 K) x 0.12 m2",
+        plausible=(0.3 * DEFAULT_SHELL_AMBIENT, 3.0 * DEFAULT_SHELL_AMBIENT),
+        plausible_source="0.3-3x the default, an estimate: 12 W/(m2 K) x 0.12 m2",
     ),
     "direct_suction_fraction": Field(
         "dimensionless", 0.5, lo=0.0, hi=1.0,
         doc="share of the inlet flow entering the suction muffler unmixed (estimate)",
+        plausible=(0.0, 1.0), plausible_source="a design choice from indirect (0) to direct "
+        "(1) suction; no narrower range is known (household compressors use all three)",
     ),
     "friction_wall_fraction": Field(
         "dimensionless", 0.3, lo=0.0, hi=1.0,
@@ -83,7 +90,9 @@ THERMAL_SPEC: Spec = {
         "W", None, lo=0.0, hi=1e5, doc="fixed friction; not set: the friction model's, else 0"
     ),
     "suction_muffler_loss_coefficient": Field(
-        "dimensionless", 0.0, lo=0.0, hi=1000.0, doc="K of dp = K rho v^2 / 2 (0: no drop)"
+        "dimensionless", 0.0, lo=0.0, hi=1000.0, doc="K of dp = K rho v^2 / 2 (0: no drop)",
+        plausible=(0.5, 5.0), plausible_source="a tube's entry 0.5 and exit 1.0 (Idelchik) "
+        "and a few tubes or bends in series; not the pulsation's factor on the mean v^2",
     ),
     "suction_muffler_flow_area": Field(
         "m^2", 3.0e-5, lo=0.0, hi=0.01, open_lo=True, doc="area of v (6.2 mm tube)"

@@ -1,11 +1,15 @@
-"""``recipsim calibrate CASE DATA.csv --parameters KEY[=LOWER:UPPER] ... [--points ROWS]``.
+"""``recipsim calibrate CASE DATA.csv --parameters KEY[=LOWER:UPPER] ... [--points ROWS]
+[--member DATA:bore=BORE ...]``.
 
 Fits a few uncertain case parameters to measured or catalogue points with bounded least
-squares (:mod:`recipsim.studies.calibrate`), prints the fitted values with their 95 %
-intervals and every point's error (the points not fitted are predictions), and writes
-``<out>/<case name>/`` (default ``--out``: ``reports/calibrate``): ``parameters.csv``,
-``points.csv``, ``calibration.json`` and the calibrated ``case.toml``. Exit status 2 for
-an invalid input or an ill-posed fit (the message says why), 1 for a failed run.
+squares (:mod:`recipsim.studies.calibrate`), of one compressor or of several of a family
+at once (``--member``: shared parameters, each member its data and case or bore), prints
+the fitted values with their 95 % intervals and their verdict against the plausible
+ranges the case keys declare, and every point's error (the points not fitted are
+predictions), and writes ``<out>/<case name>/`` (default ``--out``:
+``reports/calibrate``): ``parameters.csv``, ``points.csv``, ``calibration.json`` and the
+calibrated ``case.toml``. Exit status 2 for an invalid input or an ill-posed fit (the
+message says why), 1 for a failed run.
 """
 
 from __future__ import annotations
@@ -19,7 +23,8 @@ from recipsim.case.load import load_case
 from recipsim.cli.options import add_common_options, exit_status
 from recipsim.errors import CaseError
 from recipsim.report.case_report import report_dir
-from recipsim.studies.calibrate.fit import CalibrationError
+from recipsim.studies.calibrate.parameters import CalibrationError
+from recipsim.studies.calibrate.priors import judged
 from recipsim.studies.calibrate.report import write_calibration
 from recipsim.studies.calibrate.run import calibrate_case
 
@@ -46,7 +51,11 @@ def add_calibrate_parser(sub: Any) -> None:
         ),
     )
     p.add_argument("case", type=Path, help="case file (TOML) or a shipped case name")
-    p.add_argument("data", type=Path, help="CSV of measured points (see docs/calibration.md)")
+    p.add_argument(
+        "data",
+        type=Path,
+        help="CSV of measured points, or a shipped catalogue's file name (docs/calibration.md)",
+    )
     p.add_argument(
         "--parameters",
         nargs="+",
@@ -71,6 +80,14 @@ def add_calibrate_parser(sub: Any) -> None:
     p.add_argument(
         "--ignore", nargs="+", default=[], metavar="COLUMN", help="data columns to leave out"
     )
+    p.add_argument(
+        "--member",
+        action="append",
+        default=[],
+        metavar="DATA[:bore=BORE|:case=CASE][:points=ROWS]",
+        help="another compressor of the family, fitted together with CASE (the parameters "
+        "shared): its data file, and its bore on CASE's geometry or its own case; repeatable",
+    )
     add_common_options(
         p,
         Path("reports/calibrate"),
@@ -84,15 +101,30 @@ def _calibrate(args: argparse.Namespace) -> int:
     case = load_case(args.case, args.overrides, allow_external_paths=args.allow_external_paths)
     try:
         result = calibrate_case(
-            case, args.data, args.parameters, args.points, args.targets, args.ignore
+            case,
+            args.data,
+            args.parameters,
+            args.points,
+            args.targets,
+            args.ignore,
+            members=args.member,
         )
     except CalibrationError as exc:
         raise CaseError(str(args.data), "--parameters", str(exc)) from None
     where = write_calibration(result, report_dir(args.out, case.name, args.overrides))
-    print(result.parameters.to_string(index=False, float_format=lambda v: f"{v:.4g}"))
+    table = result.parameters.drop(columns=["plausible_source", "verdict"])
+    print(table.to_string(index=False, float_format=lambda v: f"{v:.4g}"))
+    print()
+    judged_columns = ["parameter", "fitted", "verdict", "plausible_source"]
+    for key, value, verdict, source in result.parameters[judged_columns].values:
+        print(f"{'WARNING ' if judged(verdict) else ''}{key} = {value:.4g}: {verdict}")
+        if source and judged(verdict):
+            print(f"    plausible range from: {source}")
     print()
     errors = [c for c in result.points.columns if c.startswith("error ")]
-    columns = ["row", "point", "used_in_fit", *errors]
+    columns = ["member", "row", "point", "used_in_fit", *errors]
+    if not args.member:
+        columns.remove("member")
     print(result.points[columns].to_string(index=False, float_format=lambda v: f"{v:+.3f}"))
     worst = max((abs(v) for c in errors for v in result.points[c] if math.isfinite(v)), default=0.0)
     print(f"\nlargest error {worst:.1%}; {result.fit.evaluations} parameter sets run -> {where}")

@@ -19,16 +19,21 @@ Every value keeps its printed resolution: a catalogue rounds its figures (capaci
 from __future__ import annotations
 
 import csv
+import difflib
 import io
 import math
 import re
 from collections.abc import Sequence
 from dataclasses import dataclass, field
+from importlib import resources
 from pathlib import Path
 from typing import Any
 
 from recipsim.case.files import read_input_text
 from recipsim.errors import CaseError
+
+#: The package whose folder holds the shipped catalogues (``src/recipsim/data/catalogue``).
+CATALOGUE_PACKAGE = "recipsim.data.catalogue"
 
 #: Largest data file read [bytes]: a catalogue's table is a few kilobytes.
 MAX_DATA_BYTES = 1_000_000
@@ -96,6 +101,38 @@ def _input_value(text: str, unit: str, file: str, where: str) -> Any:
     return f"{text.strip()} {unit}"
 
 
+def shipped_catalogues() -> dict[str, Path]:
+    """The shipped catalogues, file name to path (``danfoss_tles5.7kk.3_r600a.csv``)."""
+    entries = resources.files(CATALOGUE_PACKAGE).iterdir()  # a namespace package's folder
+    return {e.name: Path(str(e)) for e in sorted(entries, key=str) if e.name.endswith(".csv")}
+
+
+def find_data_file(path: str | Path) -> Path:
+    """The data file ``path`` names: the file itself where it exists, else, for a bare
+    file name (with or without ``.csv``), the shipped catalogue of that name.
+
+    Raises
+    ------
+    CaseError
+        Neither: one line naming the shipped catalogues (and the closest name).
+    """
+    given = Path(path)
+    if given.exists() or given.name != str(path):
+        return given
+    shipped = shipped_catalogues()
+    for name in (given.name, f"{given.name}.csv"):
+        if name in shipped:
+            return shipped[name]
+    close = difflib.get_close_matches(given.name, list(shipped), n=1)
+    hint = f"; did you mean {close[0]!r}?" if close else ""
+    raise CaseError(
+        str(path),
+        "",
+        f"no such calibration data file (not a file here, nor a shipped catalogue: "
+        f"{', '.join(shipped)}){hint}",
+    )
+
+
 def read_points(
     path: str | Path, targets: Sequence[str] | None = None, ignore: Sequence[str] = ()
 ) -> tuple[list[MeasuredPoint], tuple[str, ...]]:
@@ -104,7 +141,8 @@ def read_points(
     Parameters
     ----------
     path : str or Path
-        CSV file (header row, one operating point per row).
+        CSV file (header row, one operating point per row), or the file name of a
+        shipped catalogue (:func:`find_data_file`).
     targets : sequence of str, optional
         Target columns (summary names with units). Default: :data:`DEFAULT_TARGETS`
         present in the file.
@@ -122,8 +160,9 @@ def read_points(
     CaseError
         Naming the file, the column (or row and column) and what is expected.
     """
+    path = find_data_file(path)
     file = str(path)
-    text = read_input_text(Path(path), "calibration data", MAX_DATA_BYTES)
+    text = read_input_text(path, "calibration data", MAX_DATA_BYTES)
     try:
         rows = list(csv.reader(io.StringIO(text.removeprefix("\ufeff"), newline="")))
     except csv.Error as exc:  # a field over csv's size limit, a stray NUL

@@ -23,16 +23,15 @@ two is reported, as a 95 % interval.
 from __future__ import annotations
 
 import math
-import re
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
 import numpy as np
 
 from recipsim.case.case import Case
-from recipsim.case.units import _registry
-from recipsim.errors import CaseError, RecipsimError
+from recipsim.errors import RecipsimError
 from recipsim.studies.calibrate.data import MeasuredPoint
+from recipsim.studies.calibrate.parameters import CalibrationError, Parameter
 from recipsim.studies.point_warnings import kept_warnings
 
 #: Relative step of the finite-difference Jacobian (of the parameter or of its range).
@@ -47,112 +46,6 @@ MAX_DECADES = 1.0
 SOLVER_OVERRIDES = {"solver.cycle_tolerance": 1e-6, "solver.max_revolutions": 400}
 #: Residual of a point whose run failed: far from any fit, so the fit steers away.
 FAILED_RESIDUAL = 10.0
-
-
-class CalibrationError(RecipsimError):
-    """An ill-posed or failed calibration (the message says why)."""
-
-
-@dataclass(frozen=True)
-class Parameter:
-    """A case value to fit, in SI.
-
-    Attributes
-    ----------
-    key : str
-        Dotted case key (``"heat_transfer.coefficient"``).
-    lower, upper : float
-        Bounds [SI unit of the key].
-    initial : float
-        Starting value (the case's own, else the bounds' geometric or plain mean).
-    """
-
-    key: str
-    lower: float
-    upper: float
-    initial: float
-
-    @property
-    def logarithmic(self) -> bool:
-        """Fitted in its logarithm (positive bounds)."""
-        return self.lower > 0.0
-
-    def to_x(self, value: float) -> float:
-        return math.log(value) if self.logarithmic else (value - self.lower) / self.span
-
-    def from_x(self, x: float) -> float:
-        return math.exp(x) if self.logarithmic else self.lower + x * self.span
-
-    @property
-    def span(self) -> float:
-        return self.upper - self.lower
-
-
-def _si(text: str, where: str) -> float:
-    """A bound or value as written (bare number in SI, or a quantity with its unit)."""
-    text = text.strip()
-    try:
-        return float(text)
-    except ValueError:
-        pass
-    try:
-        quantity = _registry().Quantity(text).to_base_units()
-        return float(quantity.magnitude)
-    except Exception:  # pint raises several unrelated types for bad strings
-        raise CalibrationError(f"{where}: cannot read {text!r} as a number or quantity") from None
-
-
-def case_value(case: Case, key: str) -> float | None:
-    """The case's own value of a dotted key, in SI (None when the file leaves it to its
-    default or it is not a number)."""
-    node: object = case.raw
-    for part in key.split("."):
-        if not isinstance(node, dict) or part not in node:
-            return None
-        node = node[part]
-    if isinstance(node, bool) or not isinstance(node, int | float | str):
-        return None
-    try:
-        return _si(str(node), key)
-    except CalibrationError:
-        return None
-
-
-def parse_parameter(text: str, case: Case) -> Parameter:
-    """``KEY`` or ``KEY=LOWER:UPPER`` (bounds bare in SI or with units, e.g.
-    ``thermal.shell_ua=0.5:10`` or ``valves.discharge.preload=0 N:0.5 N``).
-
-    Without bounds the case's value must be positive; the bounds are then a tenth and
-    ten times it.
-    """
-    key, _, bounds = text.partition("=")
-    key = key.strip()
-    if not re.fullmatch(r"[A-Za-z_]\w*(\.[A-Za-z_]\w*)+", key):
-        raise CalibrationError(f"--parameters {text!r}: expected a dotted case key")
-    value = case_value(case, key)
-    if bounds:
-        low_text, sep, high_text = bounds.partition(":")
-        if not sep:
-            raise CalibrationError(f"--parameters {text!r}: bounds are written LOWER:UPPER")
-        lower, upper = _si(low_text, key), _si(high_text, key)
-        if not (math.isfinite(lower) and math.isfinite(upper)):
-            raise CalibrationError(f"{key}: bounds must be finite numbers ({lower:g}:{upper:g})")
-        if not lower < upper:
-            raise CalibrationError(f"{key}: lower bound {lower:g} is not below {upper:g}")
-    elif value is not None and value > 0.0:
-        lower, upper = 0.1 * value, 10.0 * value
-    else:
-        raise CalibrationError(
-            f"{key}: the case has no positive value to start from ({value}); give bounds "
-            f"as {key}=LOWER:UPPER"
-        )
-    if value is None or not lower <= value <= upper:
-        value = math.sqrt(lower * upper) if lower > 0.0 else 0.5 * (lower + upper)
-    try:  # a key the case does not have, or a value it refuses, named before any fit
-        case.with_({key: value})
-    except CaseError as exc:
-        raise CalibrationError(f"--parameters {text!r}: {exc.message}") from None
-    return Parameter(key, lower, upper, value)
 
 
 @dataclass(frozen=True)
@@ -187,7 +80,8 @@ class Residuals:
     variables ``x`` (cached by ``x``: the Jacobian's base point is not run twice).
 
     ``sigma`` is each residual's standard deviation from the data's printed resolution
-    (relative); ``evaluations`` counts the parameter sets run.
+    (relative); ``evaluations`` counts the parameter sets run. ``cases``, one per point,
+    runs each point on its own case (the members of a family); default ``case`` for all.
     """
 
     def __init__(
@@ -197,8 +91,10 @@ class Residuals:
         targets: Sequence[str],
         parameters: Sequence[Parameter],
         simulate: Callable[[Case], dict[str, float]],
+        cases: Sequence[Case] | None = None,
     ) -> None:
         self.case, self.points, self.targets = case, points, targets
+        self.cases = list(cases) if cases is not None else [case] * len(points)
         self.parameters, self.simulate = parameters, simulate
         self.sigma = np.array(
             [
@@ -219,8 +115,8 @@ class Residuals:
         if key not in self._cache:
             fitted = {p.key: p.from_x(v) for p, v in zip(self.parameters, key, strict=True)}
             out = []
-            for point in self.points:
-                row = _run_point(self.case, point, fitted, self.simulate)
+            for case, point in zip(self.cases, self.points, strict=True):
+                row = _run_point(case, point, fitted, self.simulate)
                 for t in self.targets:
                     if t in point.targets:
                         predicted = row.get(t, math.nan) if row is not None else math.nan
@@ -243,15 +139,20 @@ def _run_point(
         return None
 
 
-def forward_jacobian(f: Callable[[np.ndarray], np.ndarray], x: np.ndarray) -> np.ndarray:
+def forward_jacobian(
+    f: Callable[[np.ndarray], np.ndarray], x: np.ndarray, upper: np.ndarray | None = None
+) -> np.ndarray:
     """Forward differences with the fixed step :data:`STEP` in the fitted variables
-    (the log for logarithmic parameters: a 1 % change; else 1 % of the range)."""
+    (the log for logarithmic parameters: a 1 % change; else 1 % of the range); a
+    backward step where the forward one would pass ``upper`` (a value the case may
+    refuse, such as a fraction above 1)."""
     f0 = f(x)
     jac = np.empty((f0.size, x.size))
     for j in range(x.size):
+        h = -STEP if upper is not None and x[j] + STEP > upper[j] else STEP
         step = np.array(x, dtype=float)
-        step[j] += STEP
-        jac[:, j] = (f(step) - f0) / STEP
+        step[j] += h
+        jac[:, j] = (f(step) - f0) / h
     return jac
 
 
@@ -305,6 +206,7 @@ def fit_parameters(
     parameters: Sequence[Parameter],
     simulate: Callable[[Case], dict[str, float]],
     max_evaluations: int = 60,
+    cases: Sequence[Case] | None = None,
 ) -> FitResult:
     """Fit ``parameters`` so the simulated ``targets`` match the measured ones.
 
@@ -322,6 +224,9 @@ def fit_parameters(
         ``Case -> summary row`` (:func:`recipsim.simulate`'s summary as a dict).
     max_evaluations : int
         Largest number of least-squares iterations' function evaluations.
+    cases : sequence of Case, optional
+        One per point: the case each point runs on (a family's members); default
+        ``case``. The residuals of every member are stacked in one fit.
 
     Returns
     -------
@@ -339,18 +244,18 @@ def fit_parameters(
             f"{len(parameters)} parameters cannot be fitted to {n_data} measured values: "
             "fit fewer parameters or use more points"
         )
-    f = Residuals(case, points, targets, parameters, simulate)
+    f = Residuals(case, points, targets, parameters, simulate, cases)
     lower = np.array([p.to_x(p.lower) for p in parameters])
     upper = np.array([p.to_x(p.upper) for p in parameters])
     x0 = np.array([p.to_x(p.initial) for p in parameters])
     x0 = np.clip(x0, lower + 1e-6 * (upper - lower), upper - 1e-6 * (upper - lower))
-    check_identifiable(forward_jacobian(f, x0), parameters)
+    check_identifiable(forward_jacobian(f, x0, upper), parameters)
     from scipy.optimize import least_squares  # a heavy import, needed only to fit
 
     result = least_squares(
         f,
         x0,
-        jac=lambda x: forward_jacobian(f, x),
+        jac=lambda x: forward_jacobian(f, x, upper),
         bounds=(lower, upper),
         method="trf",
         xtol=1e-4,
@@ -360,21 +265,40 @@ def fit_parameters(
     r = f(result.x)
     if np.any(r == FAILED_RESIDUAL):
         raise CalibrationError("a calibration point does not run at the fitted values")
-    jac = forward_jacobian(f, result.x)
-    check_identifiable(jac, parameters)  # at the optimum too: effects may align there
-    std_res = _std(jac, r, f.sigma, len(parameters))
-    check_determined(
-        parameters, [max(a, b) if b == b else a for a, b in zip(*std_res, strict=True)]
-    )
+    std_by = _confidence(f, result.x, r, upper, parameters)
     return FitResult(
         parameters=tuple(parameters),
         values=tuple(p.from_x(v) for p, v in zip(parameters, result.x, strict=True)),
-        std_resolution=std_res[0],
-        std_residual=std_res[1],
+        std_resolution=std_by[0],
+        std_residual=std_by[1],
         residuals=tuple(float(v) for v in r),
         evaluations=f.evaluations,
         message=str(result.message),
     )
+
+
+def _confidence(
+    f: Residuals, x: np.ndarray, r: np.ndarray, upper: np.ndarray, parameters: Sequence[Parameter]
+) -> list[tuple[float, ...]]:
+    """The standard deviations (:func:`_std`) at the optimum ``x``, after the checks of
+    identifiability and determination there.
+
+    A parameter that stopped acting on the way to the optimum (a loss coefficient driven
+    towards its floor, where a 1 % change moves nothing) is reported with an unbounded
+    interval (infinite standard deviations), not refused after the whole fit: the start
+    had its influence.
+    """
+    jac = forward_jacobian(f, x, upper)
+    dead = np.abs(jac).max(axis=0) * STEP <= MIN_INFLUENCE
+    live = [p for p, d in zip(parameters, dead, strict=True) if not d]
+    if live:  # at the optimum too: effects may align there
+        check_identifiable(jac[:, ~dead], live)
+    std_res = _std(jac, r, f.sigma, len(parameters))
+    std_by = [tuple(math.inf if d else v for v, d in zip(s, dead, strict=True)) for s in std_res]
+    check_determined(
+        live, [max(a, b) if b == b else a for a, b, d in zip(*std_by, dead, strict=True) if not d]
+    )
+    return std_by
 
 
 def _std(

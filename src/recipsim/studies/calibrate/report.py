@@ -23,21 +23,34 @@ def write_calibration(calibration: Calibration, out_dir: str | Path) -> Path:
     target = Path(out_dir)
     text, files = resolved_case(calibration.calibrated)
     fit = calibration.fit
+    against = (
+        ", ".join(Path(d).name for _, _, d in calibration.members) or Path(calibration.data).name
+    )
+    table = calibration.parameters
+    verdicts = dict(zip(table["parameter"], table["verdict"], strict=True))
     header = [
-        f"# Calibrated by `recipsim calibrate` against {Path(calibration.data).name}:",
+        f"# Calibrated by `recipsim calibrate` against {against}:",
     ] + [
-        f"#   {p.key} = {v:.6g} (from {p.initial:.6g}, bounds {p.lower:g}..{p.upper:g})"
+        f"#   {p.key} = {v:.6g} (from {p.initial:.6g}, bounds {p.lower:g}..{p.upper:g}; "
+        f"{verdicts.get(p.key, '')})"
         for p, v in zip(fit.parameters, fit.values, strict=True)
     ]
     meta = {
         "case": calibration.case.path,
         "overrides": list(calibration.case.overrides),
         "data": calibration.data,
+        "members": {name: data for name, _, data in calibration.members},
         "fit_message": fit.message,
         "evaluations": fit.evaluations,
         "residuals": [_finite(r) for r in fit.residuals],
         "parameters": {
-            p.key: {"fitted": v, "initial": p.initial, "lower": p.lower, "upper": p.upper}
+            p.key: {
+                "fitted": v,
+                "initial": p.initial,
+                "lower": p.lower,
+                "upper": p.upper,
+                "verdict": verdicts.get(p.key, ""),
+            }
             for p, v in zip(fit.parameters, fit.values, strict=True)
         },
     }

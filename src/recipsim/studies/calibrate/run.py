@@ -17,14 +17,11 @@ from recipsim.errors import CaseError, RecipsimError
 from recipsim.pipeline import simulate_case
 from recipsim.results.column_docs import documented
 from recipsim.results.summary_docs import STARTUP_SUMMARY_DOCS, SUMMARY_DOCS
-from recipsim.studies.calibrate.data import MeasuredPoint, read_points
-from recipsim.studies.calibrate.fit import (
-    CalibrationError,
-    FitResult,
-    Parameter,
-    fit_parameters,
-    parse_parameter,
-)
+from recipsim.studies.calibrate.data import MeasuredPoint, find_data_file, read_points
+from recipsim.studies.calibrate.family import Member, as_members, member_case
+from recipsim.studies.calibrate.fit import FitResult, fit_parameters
+from recipsim.studies.calibrate.parameters import CalibrationError, Parameter, parse_parameter
+from recipsim.studies.calibrate.priors import prior_of, verdict
 from recipsim.studies.point_warnings import kept_warnings
 
 #: A fitted value this close (relative) to a bound ended on it: the fit's ``xtol``.
@@ -45,15 +42,19 @@ class Calibration:
         Fitted values, standard deviations, residuals.
     parameters : pandas.DataFrame
         One row per parameter: ``parameter``, ``initial``, ``lower``, ``upper``,
-        ``fitted``, ``std_from_resolution [-]``, ``std_from_residuals [-]`` (relative for
-        logarithmic parameters), ``ci95_low``, ``ci95_high`` (SI).
+        ``fitted``, ``at_bound``, ``std_from_resolution [-]``, ``std_from_residuals [-]``
+        (relative for logarithmic parameters), ``ci95_low``, ``ci95_high`` (SI), and its
+        prior: ``plausible_low``, ``plausible_high`` (SI; empty where none is declared),
+        ``plausible_source`` and ``verdict`` (:func:`.priors.verdict`).
     points : pandas.DataFrame
-        One row per data row: ``row``, ``point``, ``used_in_fit``, ``status``,
-        ``warnings`` (those the calibrated case's solve at the point logged, joined by
-        ``"; "``), and per target ``measured <t>``, ``predicted <t>``, ``error <name>
-        [-]``.
+        One row per data row of every member: ``member`` (its data file's stem),
+        ``row``, ``point``, ``used_in_fit``, ``status``, ``warnings`` (those the
+        calibrated case's solve at the point logged, joined by ``"; "``), and per target
+        ``measured <t>``, ``predicted <t>``, ``error <name> [-]``.
     data : str
-        The data file.
+        The family case's data file.
+    members : tuple of (str, Case, str)
+        Every member as (name, calibrated case, data file), the family case's first.
     """
 
     case: Case
@@ -62,6 +63,7 @@ class Calibration:
     parameters: pd.DataFrame
     points: pd.DataFrame
     data: str
+    members: tuple[tuple[str, Case, str], ...] = ()
 
 
 def _summary_row(case: Case) -> dict[str, Any]:
@@ -80,19 +82,23 @@ def calibrate_case(
     targets: Sequence[str] | None = None,
     ignore: Sequence[str] = (),
     simulate: Callable[[Case], dict[str, Any]] = _summary_row,
+    members: Sequence[Member | str] = (),
 ) -> Calibration:
-    """Fit ``parameters`` of ``case`` to the measured points of ``data``.
+    """Fit ``parameters`` of ``case`` to the measured points of ``data`` (and of the
+    family's other ``members``: one fit, the parameters shared, the residuals stacked).
 
     Parameters
     ----------
     case : Case
         The case to calibrate.
     data : str or Path
-        CSV of measured points (:mod:`recipsim.studies.calibrate.data`).
+        CSV of measured points (:mod:`recipsim.studies.calibrate.data`), or a shipped
+        catalogue's file name.
     parameters : sequence of str
-        ``KEY`` or ``KEY=LOWER:UPPER`` (:func:`.fit.parse_parameter`).
+        ``KEY`` or ``KEY=LOWER:UPPER`` (:func:`.parameters.parse_parameter`).
     points : sequence of int, optional
-        Data rows (1-based) to fit on; the others are predicted only. Default: all.
+        Data rows (1-based) to fit on, in every member that does not name its own; the
+        others are predicted only. Default: all.
     targets : sequence of str, optional
         Target columns; default ``cooling_capacity [W]`` and ``COP [-]``.
     ignore : sequence of str
@@ -100,6 +106,9 @@ def calibrate_case(
     simulate : callable
         ``Case -> summary row``; raises :class:`~recipsim.errors.RecipsimError` for a
         failed or non-converged run.
+    members : sequence of Member or str
+        The family's other compressors (:class:`.family.Member`, or its command-line
+        form ``"DATA:bore=26.49mm"``), each with its own data file and case or bore.
 
     Returns
     -------
@@ -108,32 +117,69 @@ def calibrate_case(
     Raises
     ------
     CaseError
-        An invalid data file or case key.
+        An invalid data file, member or case key.
     CalibrationError
         An ill-posed problem (see :mod:`.fit`).
     """
-    measured, chosen = read_points(data, targets, ignore)
-    rows = {p.row for p in measured}
-    used = set(points) if points else rows
-    unknown = sorted(used - rows)
-    if unknown:
-        raise CalibrationError(f"--points {unknown}: the data file has rows {sorted(rows)}")
+    groups, chosen = _member_groups(case, data, members, points, targets, ignore)
     specs = [parse_parameter(text, case) for text in parameters]
     if len({p.key for p in specs}) < len(specs):
         raise CalibrationError("a parameter is named twice")
-    fitting = [p for p in measured if p.row in used]
-    _check_points(case, fitting, chosen, specs, str(data))
-    fit = fit_parameters(case, fitting, chosen, specs, simulate)
-    calibrated = case.with_({p.key: v for p, v in zip(specs, fit.values, strict=True)})
-    table = _parameter_table(fit)
+    for member, member_base, measured, used in groups:
+        _check_points(
+            member_base, [p for p in measured if p.row in used], chosen, specs, str(member.data)
+        )
+    fitting = [(c, p) for _, c, measured, used in groups for p in measured if p.row in used]
+    fit = fit_parameters(
+        case, [p for _, p in fitting], chosen, specs, simulate, cases=[c for c, _ in fitting]
+    )
+    fitted = {p.key: v for p, v in zip(specs, fit.values, strict=True)}
+    tables, calibrated = [], []
+    for member, member_base, measured, used in groups:
+        own = member_base.with_(fitted)
+        calibrated.append((member.name, own, str(find_data_file(member.data))))
+        table = _point_table(own, measured, used, chosen, simulate)
+        table.insert(0, "member", member.name)
+        tables.append(table)
     return Calibration(
         case,
-        calibrated,
+        calibrated[0][1],
         fit,
-        table,
-        _point_table(calibrated, measured, used, chosen, simulate),
-        str(data),
+        _parameter_table(fit, case),
+        pd.concat(tables, ignore_index=True),
+        calibrated[0][2],
+        tuple(calibrated),
     )
+
+
+_Group = tuple[Member, Case, list[MeasuredPoint], set[int]]
+
+
+def _member_groups(
+    case: Case,
+    data: str | Path,
+    members: Sequence[Member | str],
+    points: Sequence[int] | None,
+    targets: Sequence[str] | None,
+    ignore: Sequence[str],
+) -> tuple[list[_Group], list[str]]:
+    """Every member (the family case's data first) with its case, its measured points
+    and the rows it fits on; and the targets of all of them."""
+    family = [Member(find_data_file(data), points=tuple(points) if points else None)]
+    family += as_members([*members, family[0]])[:-1]  # refuses a member repeating the data
+    groups: list[_Group] = []
+    chosen: list[str] = []
+    for member in family:
+        measured, own = read_points(find_data_file(member.data), targets, ignore)
+        chosen += [t for t in own if t not in chosen]
+        rows = {p.row for p in measured}
+        used = set(member.points or points or rows)
+        unknown = sorted(used - rows)
+        if unknown:
+            raise CalibrationError(f"--points {unknown}: {member.name} has rows {sorted(rows)}")
+        member_base = member_case(case, member) if member is not family[0] else case
+        groups.append((member, member_base, measured, used))
+    return groups, chosen
 
 
 #: The columns a summary row can hold (the targets a fit can compare).
@@ -179,11 +225,12 @@ def _at_bound(value: float, lower: float, upper: float) -> bool:
     )
 
 
-def _parameter_table(fit: FitResult) -> pd.DataFrame:
+def _parameter_table(fit: FitResult, case: Case) -> pd.DataFrame:
     rows = []
     for p, value, a, b, (low, high) in zip(
         fit.parameters, fit.values, fit.std_resolution, fit.std_residual, fit.ci95, strict=True
     ):
+        bound = _at_bound(value, p.lower, p.upper)
         rows.append(
             {
                 "parameter": p.key,
@@ -191,14 +238,28 @@ def _parameter_table(fit: FitResult) -> pd.DataFrame:
                 "lower": p.lower,
                 "upper": p.upper,
                 "fitted": value,
-                "at_bound": _at_bound(value, p.lower, p.upper),
+                "at_bound": bound,
                 "std_from_resolution [-]": a,
                 "std_from_residuals [-]": b,
                 "ci95_low": low,
                 "ci95_high": high,
+                **_prior_columns(case, p.key, value, (low, high), bound),
             }
         )
     return pd.DataFrame(rows)
+
+
+def _prior_columns(
+    case: Case, key: str, value: float, interval: tuple[float, float], at_bound: bool
+) -> dict[str, Any]:
+    """The plausible range of ``key`` with its source, and the verdict on the fit."""
+    prior = prior_of(case, key)
+    return {
+        "plausible_low": prior.lower if prior else math.nan,
+        "plausible_high": prior.upper if prior else math.nan,
+        "plausible_source": prior.source if prior else "",
+        "verdict": verdict(value, interval, prior, at_bound),
+    }
 
 
 def _point_table(

@@ -19,7 +19,7 @@ from recipsim.case.load import load_case
 from recipsim.cli.main import main
 from recipsim.errors import CaseError
 from recipsim.studies.calibrate.data import printed_resolution, read_points
-from recipsim.studies.calibrate.fit import CalibrationError, parse_parameter
+from recipsim.studies.calibrate.parameters import CalibrationError, parse_parameter
 from recipsim.studies.calibrate.run import _at_bound, calibrate_case
 
 CATALOGUE = Path(__file__).parents[4] / "src/recipsim/data/catalogue/danfoss_tles5.7kk.3_r600a.csv"

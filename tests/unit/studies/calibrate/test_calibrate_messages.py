@@ -74,7 +74,7 @@ def test_a_parameter_the_data_cannot_determine_is_refused_after_the_fit(tmp_path
     so the fit is refused rather than reported with an interval over decades."""
     import math
 
-    from recipsim.studies.calibrate.fit import case_value
+    from recipsim.studies.calibrate.parameters import case_value
 
     def weak(case) -> dict[str, float]:
         preload = case_value(case, "valves.suction.preload")
