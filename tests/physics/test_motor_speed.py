@@ -21,7 +21,11 @@ import pytest
 
 from recipsim.api import load_case
 from recipsim.errors import CaseError
-from recipsim.model.loss_sources import constant_speed_mean_friction, revolution_shaft_power
+from recipsim.model.loss_sources import (
+    constant_speed_mean_friction,
+    friction_oil_temperature,
+    revolution_shaft_power,
+)
 from recipsim.physics.motor_circuit import motor_operating_point_at_torque
 from recipsim.pipeline import simulate_case
 from recipsim.solve.drive import build_model_for
@@ -48,7 +52,10 @@ def test_speed_is_the_circuits_speed_at_the_cycles_load(by_evaporating):
         case, solution = found.case, found.solution
         model = build_model_for(case)  # the same case: model.case and layouts for the totals
         rev = solution.final
-        friction = constant_speed_mean_friction(case)
+        # the mean friction with its films at the oil temperature the cycle ran with
+        oil = friction_oil_temperature(solution.model)
+        assert oil is not None
+        friction = constant_speed_mean_friction(case, oil_temperature=oil)
         shaft, _ = revolution_shaft_power(model, rev.y_end, rev.duration, friction)
         omega = 2.0 * math.pi / rev.duration
         assert omega == pytest.approx(case.operating_point.shaft_speed, rel=1e-9)
