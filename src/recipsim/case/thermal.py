@@ -108,11 +108,17 @@ THERMAL_SPEC: Spec = {
         "m^2", None, lo=0.0, hi=1.0, open_lo=True,
         doc="wetted area of the muffler's inside; its link to the shell gas is then this "
         "film (Dittus-Boelter, pulsating) in series with ua_suction_muffler_shell_gas",
+        plausible=(2e-3, 2e-2),
+        plausible_source="the chambers and tubes of a household suction muffler, 20-200 cm2 "
+        "(an engineering estimate)",
     ),
     "suction_passage_gas_side_area": Field(
         "m^2", None, lo=0.0, hi=1.0, open_lo=True,
         doc="wetted area of the suction passage in the head and plate; its link to the "
         "cylinder wall is then this film in series with ua_suction_muffler_cylinder_wall",
+        plausible=(5e-4, 3e-3),
+        plausible_source="the suction passage in the head and the valve plate of a 5-10 cm3 "
+        "compressor, 5-30 cm2 (an engineering estimate)",
     ),
     "discharge_muffler_loss_coefficient": Field(
         "dimensionless", 0.0, lo=0.0, hi=1000.0, doc="K of dp = K rho v^2 / 2 (0: no drop)"

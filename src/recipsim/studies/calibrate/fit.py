@@ -152,7 +152,17 @@ def forward_jacobian(
         h = -STEP if upper is not None and x[j] + STEP > upper[j] else STEP
         step = np.array(x, dtype=float)
         step[j] += h
-        jac[:, j] = (f(step) - f0) / h
+        moved = f(step)
+        failed = (moved == FAILED_RESIDUAL) & (f0 != FAILED_RESIDUAL)
+        if np.any(failed):  # a point that fails a step away: the other side, or stop
+            step[j] = x[j] - h
+            moved, h = f(step), -h
+            if np.any((moved == FAILED_RESIDUAL) & (f0 != FAILED_RESIDUAL)):
+                raise CalibrationError(
+                    f"parameter {j + 1}: a calibration point fails a {STEP:.0%} step away "
+                    "from the current values on either side; narrow the bounds"
+                )
+        jac[:, j] = (moved - f0) / h
     return jac
 
 
