@@ -11,8 +11,22 @@ ROOT = Path(__file__).resolve().parents[1]
 CASES = ROOT / "cases"
 #: The shipped refrigerant files.
 REFRIGERANTS = ROOT / "refrigerants"
-REFERENCE = CASES / "reference_r134a_lbp.toml"
+#: The reference compressor as an ideal machine (adiabatic, no leakage, friction or motor
+#: losses): the ideal-cycle, closure and pinned-number tests run it.
+REFERENCE = CASES / "reference_r134a_lbp_ideal.toml"
+#: The reference compressor with every loss on (motor, friction, shell, leakage, heat).
+REFERENCE_REAL = CASES / "reference_r134a_lbp.toml"
 ALL_CASES = sorted(CASES.glob("*.toml"))
+#: Overrides that take a real case (``reference_r134a_lbp`` and the cases extending it) to
+#: the ideal machine of ``reference_r134a_lbp_ideal``; no-ops on an ideal case.
+LOSSES_OFF = [
+    "options.motor=lossless",
+    "options.friction=off",
+    "options.thermal=fixed_wall",
+    "options.speed=case",
+    "options.heat_transfer=adiabatic",
+    "options.leakage=none",
+]
 
 
 def _options(path: Path) -> dict:

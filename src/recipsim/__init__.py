@@ -4,7 +4,7 @@ The CoolProp real-gas cylinder model and the crank train are solved together, st
 by step, with a compiled integrator. The public API (:mod:`recipsim.api`)::
 
     import recipsim
-    case = recipsim.load_case("reference_r134a_lbp", {"operating_point.shaft_speed": "3000 rpm"})
+    case = recipsim.load_case("reference_r134a_lbp", {"operating_point.standard": "EN12900"})
     result = recipsim.simulate(case)
     result.summary["COP [-]"], result.plot_pv(), result.write("reports/run")
 """

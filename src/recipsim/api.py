@@ -1,7 +1,7 @@
 """The public API: load a case, change it, simulate it, look at and write the result.
 
 >>> import recipsim
->>> case = recipsim.load_case("reference_r134a_lbp", {"operating_point.shaft_speed": "3000 rpm"})
+>>> case = recipsim.load_case("reference_r134a_lbp", {"operating_point.standard": "EN12900"})
 >>> result = recipsim.simulate(case.with_(solver__rtol=1e-7))
 >>> result.summary["COP [-]"]                                   # doctest: +SKIP
 >>> ax = result.plot_pv()                                       # doctest: +SKIP

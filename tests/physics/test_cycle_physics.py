@@ -4,10 +4,11 @@ import math
 
 import pytest
 
-from helpers import REFERENCE, SHIPPED, solve_case
+from helpers import LOSSES_OFF, REFERENCE, SHIPPED, solve_case
 from recipsim.physics.thermo import cylinder as cyl
 
 IDEAL = [
+    *LOSSES_OFF,  # the real cases (motor, friction, shell, ...) as ideal machines
     "options.valves=ideal",
     "options.heat_transfer=adiabatic",
     "options.leakage=none",

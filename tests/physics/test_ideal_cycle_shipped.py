@@ -11,10 +11,12 @@ round-off (1e-16 s) and was carried over as the next first step.
 
 import pytest
 
-from helpers import SHIPPED, solve_case
+from helpers import LOSSES_OFF, SHIPPED, solve_case
 from recipsim.physics.thermo import cylinder as cyl
 
-LOSSLESS = ["options.valves=ideal", "options.heat_transfer=adiabatic", "options.leakage=none"]
+#: lossless valves on the ideal machine (LOSSES_OFF: the real cases' motor, friction, shell,
+#: heat transfer and leakage off)
+LOSSLESS = [*LOSSES_OFF, "options.valves=ideal"]
 SETTINGS = [
     ("dopri5_stiff", "table"),
     ("dopri5_stiff", "heos"),

@@ -83,4 +83,4 @@ def test_summary_reports_the_speed_it_ran_at(tles):
 
 def test_motor_slip_needs_the_equivalent_circuit():
     with pytest.raises(CaseError, match="options.speed"):
-        load_case("reference_r134a_lbp", {"options.speed": "motor_slip"})
+        load_case("reference_r134a_lbp_ideal", {"options.speed": "motor_slip"})

@@ -26,6 +26,10 @@ from recipsim.physics.thermo.shell_network import (
 from recipsim.pipeline import simulate_case
 
 T_AMB = 305.35
+#: The reference compressor with R600a as the ideal machine (what ``r600a_lbp`` was before
+#: it became the real compressor): each test switches on only the parts it studies.
+R600A_IDEAL = "reference_r134a_lbp_ideal"
+R600A = {"refrigerant": "R600a"}
 P_SUC, P_DIS = 62938.6, 762002.4  # R600a at -23.3 C / 54.4 C [Pa]
 PRESSURES = NetworkPressures(P_SUC, 305.35, (P_SUC, P_SUC, P_DIS, P_DIS))
 
@@ -99,8 +103,9 @@ def test_no_internal_conductance_is_the_adiabatic_limit(isobutane):
 @pytest.fixture(scope="module")
 def network_run():
     case = recipsim.load_case(
-        "r600a_lbp",
+        R600A_IDEAL,
         {
+            **R600A,
             "options.thermal": "network",
             "thermal.motor_loss_power": "20 W",
             "thermal.friction_power": "8 W",
@@ -142,7 +147,7 @@ def test_whole_compressor_energy_closes(network_run):
 def test_fixed_wall_ignores_the_network_table_bit_for_bit():
     """``fixed_wall`` (the default) reproduces today's results: a [thermal] table with
     every value changed changes nothing; the cylinder inlet is the line state."""
-    base = recipsim.load_case("r600a_lbp")
+    base = recipsim.load_case(R600A_IDEAL, R600A)
     other = base.with_(
         {
             "options.thermal": "fixed_wall",
@@ -172,8 +177,9 @@ def test_suction_heating_rises_as_evaporation_falls():
     heating = []
     for t_evap in ("-30 degC", "-25 degC", "-10 degC"):
         case = recipsim.load_case(
-            "r600a_lbp",
+            R600A_IDEAL,
             {
+                **R600A,
                 "options.thermal": "network",
                 "operating_point.evaporating_temperature": t_evap,
                 "thermal.motor_loss_power": "20 W",
@@ -193,8 +199,9 @@ def test_muffler_pressure_drops_move_the_plenums():
     1e-3 of the drop asserted."""
     k_s, k_d = 2.0, 2.0
     case = recipsim.load_case(
-        "r600a_lbp",
+        R600A_IDEAL,
         {
+            **R600A,
             "options.thermal": "network",
             "thermal.suction_muffler_loss_coefficient": k_s,
             "thermal.discharge_muffler_loss_coefficient": k_d,
@@ -221,14 +228,15 @@ def test_muffler_pressure_drops_move_the_plenums():
 
 def test_thermal_table_errors_name_file_key_and_range():
     with pytest.raises(CaseError, match=r"thermal\.ua_motor_shell.*unknown key"):
-        recipsim.load_case("r600a_lbp", {"thermal.ua_motor_shell": 1.0})
+        recipsim.load_case(R600A_IDEAL, {**R600A, "thermal.ua_motor_shell": 1.0})
     with pytest.raises(
         CaseError, match=r"thermal\.direct_suction_fraction.*out of range.*\[0, 1\]"
     ):
-        recipsim.load_case("r600a_lbp", {"thermal.direct_suction_fraction": 1.5})
+        recipsim.load_case(R600A_IDEAL, {**R600A, "thermal.direct_suction_fraction": 1.5})
     with pytest.raises(CaseError, match=r"shell_pressure.*low-side shell"):
         recipsim.load_case(
-            "r600a_lbp", {"options.thermal": "network", "operating_point.shell_pressure": "5 bar"}
+            R600A_IDEAL,
+            {**R600A, "options.thermal": "network", "operating_point.shell_pressure": "5 bar"},
         )
 
 

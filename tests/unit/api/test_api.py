@@ -17,7 +17,9 @@ FAST = {"solver.max_revolutions": 3, "solver.min_revolutions": 1, "solver.cycle_
 
 
 def test_round_trip_by_name_equals_the_command_line(tmp_path, capsys):
-    case = recipsim.load_case("reference_r134a_lbp", {"operating_point.shaft_speed": "3000 rpm"})
+    case = recipsim.load_case(
+        "reference_r134a_lbp_ideal", {"operating_point.shaft_speed": "3000 rpm"}
+    )
     case = case.with_(FAST)
     assert case.path == str(REFERENCE)
     assert case.operating_point.shaft_speed == pytest.approx(3000 * 2 * 3.141592653589793 / 60)
@@ -34,8 +36,8 @@ def test_round_trip_by_name_equals_the_command_line(tmp_path, capsys):
     sets = ['operating_point.shaft_speed="3000 rpm"'] + [f"{k}={v}" for k, v in FAST.items()]
     argv = ["run", str(REFERENCE), "--out", str(tmp_path / "cli"), "--no-plots", "--quiet"]
     assert main([*argv, *[a for s in sets for a in ("--set", s)]]) == 0
-    (written,) = (tmp_path / "cli").iterdir()  # reference_r134a_lbp+<digest of the --set>
-    assert written.name.startswith("reference_r134a_lbp+")
+    (written,) = (tmp_path / "cli").iterdir()  # reference_r134a_lbp_ideal+<digest of the --set>
+    assert written.name.startswith("reference_r134a_lbp_ideal+")
     cli = pd.read_csv(written / "summary.csv")
     api = pd.read_csv(report / "summary.csv")
     for column in ("COP [-]", "cooling_capacity [W]", "shaft_power [W]", "revolutions [-]"):
@@ -45,7 +47,7 @@ def test_round_trip_by_name_equals_the_command_line(tmp_path, capsys):
 
 
 def test_with_validates_like_the_file_and_keeps_cases_immutable():
-    case = recipsim.load_case("reference_r134a_lbp")
+    case = recipsim.load_case("reference_r134a_lbp_ideal")
     with pytest.raises(recipsim.CaseError) as api:
         case.with_(solver__rtol=-1)
     with pytest.raises(recipsim.CaseError) as cli:
@@ -68,24 +70,24 @@ def test_an_unknown_name_is_a_clear_error():
 
 def test_a_shipped_name_wins_over_a_local_folder_of_that_name(tmp_path, monkeypatch):
     """Running from a folder that holds a report directory named like the case."""
-    (tmp_path / "reference_r134a_lbp").mkdir()
+    (tmp_path / "reference_r134a_lbp_ideal").mkdir()
     monkeypatch.chdir(tmp_path)
-    assert recipsim.load_case("reference_r134a_lbp").path == str(REFERENCE)
+    assert recipsim.load_case("reference_r134a_lbp_ideal").path == str(REFERENCE)
     local = tmp_path / "mine.toml"
-    local.write_text('extends = "reference_r134a_lbp"\nname = "mine"\n')
+    local.write_text('extends = "reference_r134a_lbp_ideal"\nname = "mine"\n')
     assert recipsim.load_case("mine.toml").name == "mine"  # a local file is itself
 
 
 def test_sweep_and_compare_through_the_api_match_the_engine(tmp_path):
     """``recipsim.sweep`` runs the sweep engine on a grid built in Python (resumable in a
     directory); ``recipsim.compare`` gives the comparison table of two results."""
-    case = recipsim.load_case("reference_r134a_lbp", FAST)
+    case = recipsim.load_case("reference_r134a_lbp_ideal", FAST)
     axes = {"operating_point.evaporating_temperature": ["-30 degC", "-20 degC"]}
     table = recipsim.sweep(case, axes, directory=tmp_path)
     assert list(table["status"]) == ["ok", "ok"]
     capacity = table["cooling_capacity [W]"].to_numpy()
     assert capacity[1] > capacity[0]  # capacity rises with evaporating temperature
-    assert (tmp_path / "reference_r134a_lbp_sweep" / "summary.csv").is_file()
+    assert (tmp_path / "reference_r134a_lbp_ideal_sweep" / "summary.csv").is_file()
     again = recipsim.sweep(case, axes, directory=tmp_path)  # resumed: nothing recomputed
     pd.testing.assert_frame_equal(table, again)
     single = recipsim.simulate(case.with_({"operating_point.evaporating_temperature": "-20 degC"}))

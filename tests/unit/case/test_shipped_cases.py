@@ -15,7 +15,7 @@ from pathlib import Path
 import pytest
 
 import recipsim
-from helpers import CASES, REFERENCE, REFRIGERANTS
+from helpers import CASES, REFERENCE, REFERENCE_REAL, REFRIGERANTS
 from recipsim.case.files import case_dirs, find_case_file, shipped_dir
 from recipsim.case.load import load_case
 from recipsim.case.shipped import describe, shipped_cases
@@ -37,7 +37,7 @@ def _shipped_files() -> dict[str, set[str]]:
 def test_shipped_folders_are_the_top_level_folders_of_the_source_tree():
     assert shipped_dir("cases") == CASES
     assert shipped_dir("refrigerants") == REFRIGERANTS
-    assert load_case("reference_r134a_lbp").path == str(REFERENCE)
+    assert load_case("reference_r134a_lbp").path == str(REFERENCE_REAL)
 
 
 def test_a_local_case_shadows_the_shipped_case_of_the_same_name(tmp_path, monkeypatch):
@@ -140,7 +140,7 @@ def test_shipped_cases_lists_every_shipped_file_with_its_description():
         assert case.path.is_file() and case.path.is_relative_to(CASES)
         assert case.description and "\n" not in case.description, case.name
     reference = next(c for c in listed if c.name == "reference_r134a_lbp")
-    assert reference.description == load_case(REFERENCE).description
+    assert reference.description == load_case(REFERENCE_REAL).description
     assert [c.kind for c in shipped_cases(("sweep",))] == ["sweep"] * len(expected["sweep"])
     with pytest.raises(ValueError, match="unknown kind"):
         shipped_cases(("sweeps",))

@@ -47,7 +47,7 @@ def test_a_case_name_that_is_not_a_plain_file_name_is_refused(box, capsys, name)
     status = run(box, REFERENCE, "--set", f"name={name}")
     err = one_line_error(capsys)
     assert status == 2 and "name" in err and "plain file name" in err
-    in_file = box.case(f'extends = "reference_r134a_lbp"\nname = {name}\n')
+    in_file = box.case(f'extends = "reference_r134a_lbp_ideal"\nname = {name}\n')
     assert run(box, in_file) == 2
     one_line_error(capsys)
     assert box.unchanged()
@@ -55,14 +55,14 @@ def test_a_case_name_that_is_not_a_plain_file_name_is_refused(box, capsys, name)
 
 
 def test_a_case_named_like_its_unsafe_file_gets_a_safe_default_name(box, capsys):
-    path = box.case('extends = "reference_r134a_lbp"\n', name="my case (v2).toml")
+    path = box.case('extends = "reference_r134a_lbp_ideal"\n', name="my case (v2).toml")
     assert run(box, path, *BOUNDS_ARGS)
     assert (box.out / report_name("my_case__v2_", BOUNDS) / MARKER).is_file()
     assert box.unchanged()
 
 
 def test_run_refuses_to_replace_a_directory_it_did_not_write(box, capsys):
-    mine = box.out / "reference_r134a_lbp"
+    mine = box.out / "reference_r134a_lbp_ideal"
     mine.mkdir()
     (mine / "thesis.tex").write_text("precious")
     assert run(box, REFERENCE) == 2
@@ -83,7 +83,7 @@ def test_paper_and_compare_refuse_unsafe_names(box, capsys):
     paper = box.case('extends = "paper_tabulated"\nname = ""\n', name="p.toml")
     assert main(["paper", str(paper), "--no-plots"]) == 2
     one_line_error(capsys)
-    bad = box.case('extends = "reference_r134a_lbp"\nname = "../escape"\n', name="c.toml")
+    bad = box.case('extends = "reference_r134a_lbp_ideal"\nname = "../escape"\n', name="c.toml")
     assert main(["compare", str(REFERENCE), str(bad), "--out", str(box.out / "c"), *FAST]) == 2
     one_line_error(capsys)
     assert box.unchanged()
@@ -98,7 +98,7 @@ def test_a_report_replaces_its_previous_self_and_cleans_leftovers(box, capsys):
     marker, one whose process still runs."""
     dead = _dead_pid()
     host = socket.gethostname()
-    name = report_name("reference_r134a_lbp", BOUNDS)
+    name = report_name("reference_r134a_lbp_ideal", BOUNDS)
     stale = box.out / f".{name}.tmp-{host}-{dead}-7"
     live = box.out / f".{name}.tmp-{host}-{os.getpid()}-8"
     old = box.out / f".{name}.old-{dead}-1700000000000000000"
@@ -177,7 +177,7 @@ def test_files_that_are_not_utf8_are_refused(box, capsys, what):
     elif what == "refrigerant":
         (box.inputs / "refrigerants").mkdir()
         (box.inputs / "refrigerants" / "Rbad.toml").write_bytes(garbage)
-        case = box.case('extends = "reference_r134a_lbp"\nrefrigerant = "Rbad"\n')
+        case = box.case('extends = "reference_r134a_lbp_ideal"\nrefrigerant = "Rbad"\n')
     else:
         (box.inputs / "curve.csv").write_bytes(garbage)
         case = box.case('extends = "paper_tabulated"\n[pressure_curve]\nfile = "curve.csv"\n')
@@ -196,7 +196,7 @@ def test_deep_toml_and_deep_or_circular_extends_are_refused(box, capsys):
     for i in range(30):
         parent = f'extends = "chain{i + 1}.toml"\n' if i < 29 else 'extends = "reference"\n'
         box.case(parent, f"chain{i}.toml")
-    box.case('extends = "reference_r134a_lbp"\n', "reference.toml")
+    box.case('extends = "reference_r134a_lbp_ideal"\n', "reference.toml")
     assert run(box, box.inputs / "chain0.toml") == 2
     assert "chain of extends deeper" in one_line_error(capsys)
     box.case('extends = "loop_b.toml"\n', "loop_a.toml")
@@ -252,7 +252,7 @@ def test_a_refrigerant_file_with_malformed_rating_points_is_a_message(box, capsy
     (box.inputs / "refrigerants" / "Rodd.toml").write_text(
         'name = "Rodd"\ncoolprop_name = "R134a"\nrating_points = 5\n'
     )
-    case = box.case('extends = "reference_r134a_lbp"\nrefrigerant = "Rodd"\n')
+    case = box.case('extends = "reference_r134a_lbp_ideal"\nrefrigerant = "Rodd"\n')
     assert run(box, case) == 2
     assert "rating_points" in one_line_error(capsys)
 
@@ -263,7 +263,7 @@ def test_a_refrigerant_file_with_malformed_rating_points_is_a_message(box, capsy
 def test_paths_outside_the_case_directory_need_the_opt_in(box, capsys):
     sub = box.inputs / "sub"
     sub.mkdir()
-    (box.inputs / "base.toml").write_text('extends = "reference_r134a_lbp"\n')
+    (box.inputs / "base.toml").write_text('extends = "reference_r134a_lbp_ideal"\n')
     child = sub / "child.toml"
     child.write_text('extends = "../base.toml"\nname = "child"\n')
     assert run(box, child) == 2
@@ -303,7 +303,7 @@ def test_run_exits_1_when_the_case_does_not_converge_and_keeps_the_report(box, c
     err = one_line_error(capsys)
     assert status == 1 and "did not reach its periodic state in 2 revolutions" in err
     sets = ["solver.max_revolutions=2", "solver.min_revolutions=1", "solver.cycle_tolerance=1e-12"]
-    summary = pd.read_csv(box.out / report_name("reference_r134a_lbp", sets) / "summary.csv")
+    summary = pd.read_csv(box.out / report_name("reference_r134a_lbp_ideal", sets) / "summary.csv")
     assert not bool(summary["converged [-]"].iloc[0])
 
 
@@ -311,7 +311,7 @@ def test_a_full_disk_is_one_line_exit_1_and_the_previous_report_survives(box, ca
     fast = BOUNDS_ARGS
     run(box, REFERENCE, *fast)
     capsys.readouterr()
-    report = box.out / report_name("reference_r134a_lbp", BOUNDS)
+    report = box.out / report_name("reference_r134a_lbp_ideal", BOUNDS)
     before = (report / "summary.csv").read_bytes()
 
     def full(*args, **kwargs):

@@ -60,10 +60,10 @@ def test_run_keeps_runs_with_different_overrides_apart(tmp_path):
     assert main(["run", str(REFERENCE), "--out", str(out), *QUIET, *_sets(slow)]) == 0
     assert main(["run", str(REFERENCE), "--out", str(out), *QUIET, *_sets(fast)]) == 0
     names = sorted(p.name for p in out.iterdir())
-    assert names == sorted([report_name("reference_r134a_lbp", s) for s in (slow, fast)])
+    assert names == sorted([report_name("reference_r134a_lbp_ideal", s) for s in (slow, fast)])
     speeds = {n: pd.read_csv(out / n / "summary.csv")["shaft_speed [rpm]"].iloc[0] for n in names}
     assert sorted(round(v) for v in speeds.values()) == [2900, 3500]
-    slow_dir = out / report_name("reference_r134a_lbp", slow)
+    slow_dir = out / report_name("reference_r134a_lbp_ideal", slow)
     (slow_dir / "mine.txt").write_text("left by an earlier report")
     again = ["run", str(REFERENCE), "--out", str(out), *QUIET, *_sets(list(reversed(slow)))]
     assert main(again) == 0
@@ -106,7 +106,7 @@ def test_check_writes_below_out(tmp_path):
     """``check``: ``<out>/<folder name>/check.csv``, in a directory marked as recipsim's."""
     cases = tmp_path / "mycases"
     cases.mkdir()
-    (cases / "one.toml").write_text('extends = "reference_r134a_lbp"\n')
+    (cases / "one.toml").write_text('extends = "reference_r134a_lbp_ideal"\n')
     (cases / "expectations.toml").write_text('[cases.one]\nexpected = "converged"\n')
     out = tmp_path / "checks"
     assert main(["check", str(cases), "--fast", "--out", str(out), "--quiet"]) in (0, 1)

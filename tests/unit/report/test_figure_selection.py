@@ -27,7 +27,7 @@ def test_run_draws_only_the_figures_asked_for(tmp_path: Path) -> None:
         ["run", str(REFERENCE), "--out", str(tmp_path), "--plots", "p_V,torque", "--quiet"]
     )
     assert status == 0
-    report = tmp_path / "reference_r134a_lbp"
+    report = tmp_path / "reference_r134a_lbp_ideal"
     assert sorted(p.name for p in report.glob("*.png")) == ["p_V.png", "torque.png"]
     assert (report / "summary.csv").is_file()
 

@@ -54,7 +54,7 @@ CYCLE_REQUIRED = [
 def report(tmp_path_factory):
     out = tmp_path_factory.mktemp("reports")
     assert main(["run", str(REFERENCE), "--out", str(out), "--quiet"]) == 0
-    return out / "reference_r134a_lbp"
+    return out / "reference_r134a_lbp_ideal"
 
 
 def test_report_files(report):

@@ -70,7 +70,7 @@ class CubicMap:
 
 @pytest.fixture()
 def model():
-    case = load_case("reference_r134a_lbp", {"solver.max_revolutions": 400})
+    case = load_case("reference_r134a_lbp_ideal", {"solver.max_revolutions": 400})
     return build_model(case).for_solve()  # the fake integrator runs it directly
 
 
@@ -107,7 +107,8 @@ def test_revolution_iteration_alone_needs_many_more_revolutions():
     runs = []
     for hand_over in (False, True):
         case = load_case(
-            "reference_r134a_lbp", {"solver.max_revolutions": 400, "solver.cycle_tolerance": 1e-8}
+            "reference_r134a_lbp_ideal",
+            {"solver.max_revolutions": 400, "solver.cycle_tolerance": 1e-8},
         )
         model = build_model(case).for_solve()
         fake = CubicMap(model)

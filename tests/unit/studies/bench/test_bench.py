@@ -114,7 +114,7 @@ def test_quick_bench_writes_every_column(tmp_path):
     """``recipsim bench --quick`` on the cylinder case: one row per rung, every column."""
     out = tmp_path / "bench"
     assert main(["bench", str(REFERENCE), "--quick", "--repeats", "1", "--out", str(out)]) == 0
-    out = out / "reference_r134a_lbp"  # --out is the parent of <case>/
+    out = out / "reference_r134a_lbp_ideal"  # --out is the parent of <case>/
     frame = pd.read_csv(out / "work_precision.csv")
     quantities = ["discharge_mass_flow", "indicated_power", "COP"] + [
         f"bearing_{kind}_{b}" for b in BEARINGS for kind in ("rms", "max")

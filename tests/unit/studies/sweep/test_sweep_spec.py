@@ -69,7 +69,9 @@ operating_point.evaporating_temperature = 248.15
 
 def test_same_case_same_id_whatever_the_sweep(tmp_path):
     a = write(tmp_path, '[axes]\nrefrigerant = ["R600a", "R134a"]\n', "a.toml")
-    b = write(tmp_path, '[set]\nrefrigerant = "R134a"\n[[points]]\nname = "reference_r134a_lbp"\n')
+    b = write(
+        tmp_path, '[set]\nrefrigerant = "R134a"\n[[points]]\nname = "reference_r134a_lbp_ideal"\n'
+    )
     ids_a = {p.columns["refrigerant"]: p.point_id for p in plan_sweep(load_sweep(a))}
     (only,) = plan_sweep(load_sweep(b))
     assert only.point_id == ids_a["R134a"]
