@@ -19,11 +19,14 @@ use_recipsim_numba_cache()
 
 from recipsim.api import (  # noqa: E402
     Case,
+    Rating,
     Result,
     calibrate,
     cases,
     compare,
     load_case,
+    rate,
+    read_coefficients,
     simulate,
     sweep,
 )
@@ -32,6 +35,7 @@ from recipsim.errors import CaseError, SolverError  # noqa: E402
 __all__ = [
     "Case",
     "CaseError",
+    "Rating",
     "Result",
     "SolverError",
     "__version__",
@@ -39,6 +43,8 @@ __all__ = [
     "cases",
     "compare",
     "load_case",
+    "rate",
+    "read_coefficients",
     "simulate",
     "sweep",
 ]
