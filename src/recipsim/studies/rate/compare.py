@@ -107,6 +107,8 @@ def catalogue_table(
                 note = "outside the polynomial's range (not extrapolated), or not fitted"
             else:
                 note = ""
+            if target not in point.targets:
+                note = "; ".join(n for n in ("published as capacity / COP", note) if n)
             error_model = (model - published) / published
             error_poly = (poly - published) / published
             out.append(
@@ -129,6 +131,22 @@ def catalogue_table(
                 }
             )
     return pd.DataFrame(out)
+
+
+def catalogue_note(table: pd.DataFrame) -> str:
+    """One line: whether the polynomial's error against the catalogue is within
+    :data:`CATALOGUE_TOLERANCE` of the model's at every point it applies to."""
+    compared = table[table["polynomial_minus_model [-]"].notna()]
+    if not len(compared):
+        return "catalogue: no point at the rating's standard inside the polynomial's range"
+    worst = compared.loc[compared["polynomial_minus_model [-]"].abs().idxmax()]
+    gap = float(worst["polynomial_minus_model [-]"])
+    verdict = "within" if abs(gap) <= CATALOGUE_TOLERANCE else "NOT within"
+    return (
+        f"catalogue: the polynomial's error is {verdict} {CATALOGUE_TOLERANCE:.1%} of the "
+        f"model's at the {len(compared)} comparisons inside its range (largest "
+        f"{gap:+.2%}: row {worst['row']}, {worst['quantity']})"
+    )
 
 
 def _published(point: MeasuredPoint) -> dict[str, float]:

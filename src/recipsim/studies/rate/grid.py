@@ -13,10 +13,14 @@ numbers of the standard's unit. They are recipsim's choice, not the standards' t
 - LBP, degC: evaporating -35 to -10 C every 5 K (the range household makers print, e.g.
   the TLES5.7KK.3 brochure), condensing 35 to 65 C every 10 K;
 - MBP, degC: -20 to 5 C every 5 K, condensing 35 to 65 C every 10 K;
-- HBP, degC: -5 to 15 C every 5 K, condensing 30 to 60 C every 10 K;
-- LBP, degF: -30 to 20 F every 10 F, condensing 90 to 150 F every 20 F;
-- MBP, degF: -10 to 40 F every 10 F, condensing 90 to 150 F every 20 F;
-- HBP, degF: 20 to 55 F every 5 F, condensing 80 to 140 F every 20 F.
+- HBP, degC: -5 to 15 C every 5 K, condensing 35 to 65 C every 10 K;
+- LBP, degF: -30 to 20 F every 10 F, condensing 100 to 145 F every 15 F (130 F, the
+  ASHRAE and AHRI condensing temperature, among them);
+- MBP, degF: -10 to 40 F every 10 F, condensing 100 to 145 F every 15 F;
+- HBP, degF: 20 to 55 F every 5 F, condensing 100 to 145 F every 15 F.
+
+The condensing axes lie inside every shipped refrigerant's envelope (35 to 65 C at least),
+four values each: the fewest that determine a cubic in D.
 
 Each default is cut to the refrigerant's envelope (``[envelope]`` of its file) where one
 is documented; a grid given by the user is run as given, and its points outside the
@@ -43,10 +47,10 @@ APPLICATIONS = {"LBP": 273.15 - 15.0, "MBP": 273.15, "HBP": math.inf}
 DEFAULT_GRIDS: dict[tuple[str, str], tuple[tuple[float, float, float], ...]] = {
     ("degC", "LBP"): ((-35, -10, 5), (35, 65, 10)),
     ("degC", "MBP"): ((-20, 5, 5), (35, 65, 10)),
-    ("degC", "HBP"): ((-5, 15, 5), (30, 60, 10)),
-    ("degF", "LBP"): ((-30, 20, 10), (90, 150, 20)),
-    ("degF", "MBP"): ((-10, 40, 10), (90, 150, 20)),
-    ("degF", "HBP"): ((20, 55, 5), (80, 140, 20)),
+    ("degC", "HBP"): ((-5, 15, 5), (35, 65, 10)),
+    ("degF", "LBP"): ((-30, 20, 10), (100, 145, 15)),
+    ("degF", "MBP"): ((-10, 40, 10), (100, 145, 15)),
+    ("degF", "HBP"): ((20, 55, 5), (100, 145, 15)),
 }
 #: Most values on one axis.
 MAX_AXIS = 60

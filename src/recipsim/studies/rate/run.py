@@ -20,7 +20,12 @@ from recipsim.errors import CaseError
 from recipsim.report.figure_kit import new_figure
 from recipsim.studies.calibrate.data import MeasuredPoint
 from recipsim.studies.rate.coefficients import Polynomial, read_coefficients
-from recipsim.studies.rate.compare import catalogue_table, maker_table, read_catalogue
+from recipsim.studies.rate.compare import (
+    catalogue_note,
+    catalogue_table,
+    maker_table,
+    read_catalogue,
+)
 from recipsim.studies.rate.figures import envelope_figure, plot_quantity
 from recipsim.studies.rate.grid import RatingGrid, rating_grid
 from recipsim.studies.rate.polynomial import PolynomialFit
@@ -186,9 +191,11 @@ def rate_case(
     table = coefficients_table(grid, fits, si, sources)
     polynomials = fitted_polynomials(grid, table)
     compared = None
+    notes = _notes(grid, ratings, fits, sources.notes)
     if measured:
         extra = outcome.table.iloc[n_grid:].reset_index(drop=True)
         compared = catalogue_table(measured, extra, grid, polynomials)
+        notes.append(catalogue_note(compared))
     return Rating(
         case=case,
         grid=grid,
@@ -199,7 +206,7 @@ def rate_case(
         catalogue=compared,
         maker=maker_table(makers, grid, si) if makers else None,
         makers=makers,
-        notes=_notes(ratings, fits, sources.notes),
+        notes=notes,
         sweep=outcome,
         directory=root,
         wall_time=time.perf_counter() - start,
@@ -228,20 +235,22 @@ def _run_points(
 
 
 def _notes(
-    ratings: pd.DataFrame, fits: dict[str, PolynomialFit | str], sources: dict[str, str]
+    grid: RatingGrid,
+    ratings: pd.DataFrame,
+    fits: dict[str, PolynomialFit | str],
+    sources: dict[str, str],
 ) -> list[str]:
     """The lines a reader must see: failed points, fits beyond 1 %, quantities left out."""
     notes = [f"power input: {sources['power_input']}"]
+    unit = grid.temperature_unit
+    evap, cond = f"evaporating_temperature [{unit}]", f"condensing_temperature [{unit}]"
     failed = ratings[ratings["status"] != "ok"]
     if len(failed):
+        listed = ", ".join(
+            f"{row[evap]:g}/{row[cond]:g} {unit} {row['status']}" for _, row in failed.iterrows()
+        )
         notes.append(
-            f"{len(failed)} of {len(ratings)} points failed and are left out of the fit: "
-            + ", ".join(
-                f"{e:g}/{c:g} {row['status']}"
-                for (_, row), e, c in zip(
-                    failed.iterrows(), failed.iloc[:, 3], failed.iloc[:, 4], strict=True
-                )
-            )
+            f"{len(failed)} of {len(ratings)} points failed and are left out of the fit: {listed}"
         )
     for quantity, result in fits.items():
         if not isinstance(result, PolynomialFit):
@@ -251,7 +260,7 @@ def _notes(
             good = ratings[ratings[f"{quantity}_residual [-]"].notna()].iloc[worst]
             notes.append(
                 f"{quantity}: the polynomial misses its own grid by up to "
-                f"{result.max_rel:.2%} (at {good.iloc[3]:g}/{good.iloc[4]:g}), more than "
+                f"{result.max_rel:.2%} (at {good[evap]:g}/{good[cond]:g} {unit}), more than "
                 f"{GRID_TOLERANCE:.0%}"
             )
     return notes

@@ -40,6 +40,9 @@ from recipsim.studies.sweep.worker import OK
 
 #: Fits within this relative error at every grid point reproduce their grid [-].
 GRID_TOLERANCE = 0.01
+#: Decimals of the range of validity (in the standard's unit): a round-off of the dew point
+#: solve (1e-12) never puts a grid point outside its own polynomial's range.
+BOUND_DECIMALS = 6
 
 
 @dataclass(frozen=True)
@@ -200,8 +203,9 @@ def coefficients_table(
     not fitted), with the range of validity (the good points' bounds) and the standard's
     conditions."""
     unit = grid.temperature_unit
-    s = from_kelvin(si["S"], unit)
-    d = from_kelvin(si["D"], unit)
+    # the dew points of the grid's temperatures come back from CoolProp within 1e-12 K
+    s = np.round(from_kelvin(si["S"], unit), BOUND_DECIMALS)
+    d = np.round(from_kelvin(si["D"], unit), BOUND_DECIMALS)
     conditions = conditions_text(STANDARDS[grid.standard])
     rows = []
     for quantity, result in fits.items():
