@@ -174,3 +174,21 @@ def test_the_default_grid_is_the_applications_inside_the_envelope():
     envelope = tles.refrigerant.envelope
     assert kelvin.min() >= envelope["condensing_temperature_min"]
     assert kelvin.max() <= envelope["condensing_temperature_max"]
+
+
+def test_a_makers_coefficients_are_compared_with_the_model(rating, out, tmp_path):
+    # the rating's own coefficients as the maker's: they differ from the model by the
+    # fit's residuals, point by point
+    maker = tmp_path / "maker.csv"
+    maker.write_bytes((out / "r600a_lbp_EN12900" / "coefficients.csv").read_bytes())
+    case = recipsim.load_case("r600a_lbp")
+    again = rate_case(case, out / "r600a_lbp_EN12900", standard="EN12900",
+                      evaporating=EVAPORATING, condensing=CONDENSING, coefficients=maker,
+                      sweep_options={"progress": False, "jobs": 1})  # fmt: skip
+    capacity = again.maker[again.maker["quantity"] == "cooling_capacity"]
+    residual = again.ratings["cooling_capacity_residual [-]"].dropna().to_numpy()
+    # difference = (model - maker) / maker = -r / (1 + r) for a residual r = fit / model - 1
+    assert capacity["difference [-]"].to_numpy() == pytest.approx(
+        -residual / (1.0 + residual), abs=1e-9
+    )
+    assert set(again.maker["quantity"]) == {"cooling_capacity", "power_input", "mass_flow"}
