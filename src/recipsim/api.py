@@ -331,7 +331,7 @@ def rate(
     case : Case
         The compressor.
     standard : {"EN12900", "AHRI_540", "ASHRAE_LBP"}, optional
-        Default: the case's own, else EN12900. S and D in degC (EN 12900) or degF.
+        Default: the case's own (or its rating point's), else EN12900; S, D in degC or degF.
     evaporating, condensing : str or sequence of float, optional
         Grid axes in the standard's unit, ``"-35:-10:5"`` or ``[-35, -30, ...]``;
         default: the standard's grid for the case's application.

@@ -51,7 +51,7 @@ def add_rate_parser(sub: Any) -> None:
         "--standard",
         choices=tuple(TEMPERATURE_UNITS),
         default=None,
-        help="rating standard (default: the case's own, else EN12900); "
+        help="rating standard (default: the case's own or its rating point's, else EN12900); "
         "EN12900 in degC, AHRI_540 and ASHRAE_LBP in degF",
     )
     for axis, example in (("evaporating", "-35:-10:5"), ("condensing", "35:65:10")):

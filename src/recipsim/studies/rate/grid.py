@@ -132,11 +132,21 @@ def application_of(case: Case) -> str:
     return next(name for name, below in APPLICATIONS.items() if t_evap < below)
 
 
+#: The standard a shipped refrigerant file's rating point stands for.
+RATING_POINT_STANDARDS = {
+    "ashrae_lbp": "ASHRAE_LBP",
+    "en12900_lbp": "EN12900",
+    "ahri_ac": "AHRI_540",
+}
+
+
 def standard_of(case: Case, standard: str | None) -> str:
-    """The rating's standard: the one asked for, else the case's, else EN 12900."""
+    """The rating's standard: the one asked for, else the case's own
+    (``operating_point.standard``), else that of its rating point, else EN 12900."""
     if standard is None:
         own = case.operating_point.standard
-        return own if own in STANDARDS else "EN12900"
+        point = (case.raw.get("operating_point") or {}).get("rating_point")
+        return own if own in STANDARDS else RATING_POINT_STANDARDS.get(str(point), "EN12900")
     if standard not in TEMPERATURE_UNITS:
         raise CaseError("--standard", standard, f"one of {', '.join(TEMPERATURE_UNITS)}")
     return standard

@@ -192,3 +192,10 @@ def test_a_makers_coefficients_are_compared_with_the_model(rating, out, tmp_path
         -residual / (1.0 + residual), abs=1e-9
     )
     assert set(again.maker["quantity"]) == {"cooling_capacity", "power_input", "mass_flow"}
+
+
+def test_a_case_without_a_standard_is_rated_at_its_rating_points_standard():
+    lbp = rating_grid(recipsim.load_case("r600a_lbp"))  # rating_point = "ashrae_lbp"
+    assert (lbp.standard, lbp.temperature_unit, lbp.application) == ("ASHRAE_LBP", "degF", "LBP")
+    ac = rating_grid(recipsim.load_case("r32_ac"))  # rating_point = "ahri_ac"
+    assert (ac.standard, ac.temperature_unit, ac.application) == ("AHRI_540", "degF", "HBP")
