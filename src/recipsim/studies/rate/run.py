@@ -28,7 +28,7 @@ from recipsim.studies.rate.compare import (
 )
 from recipsim.studies.rate.figures import envelope_figure, plot_quantity
 from recipsim.studies.rate.grid import RatingGrid, rating_grid
-from recipsim.studies.rate.polynomial import PolynomialFit
+from recipsim.studies.rate.polynomial import PolynomialFit, RatingError
 from recipsim.studies.rate.tables import (
     GRID_TOLERANCE,
     add_fit_columns,
@@ -186,7 +186,12 @@ def rate_case(
     rows = outcome.table.iloc[:n_grid].reset_index(drop=True)
     sources = quantity_sources(case)
     ratings, si = ratings_table(case, grid, rows, sources)
-    fits = fit_quantities(grid, si, sources)
+    try:
+        fits = fit_quantities(grid, si, sources)
+    except RatingError as exc:
+        counts = ", ".join(f"{n} {s}" for s, n in ratings["status"].value_counts().items())
+        where = root / SWEEP_NAME / "summary.csv"
+        raise RatingError(f"{exc}; the grid's {len(ratings)} points: {counts} ({where})") from None
     add_fit_columns(ratings, grid, fits, si)
     table = coefficients_table(grid, fits, si, sources)
     polynomials = fitted_polynomials(grid, table)

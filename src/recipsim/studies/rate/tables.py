@@ -305,5 +305,6 @@ def rating_table(ratings: pd.DataFrame, grid: RatingGrid) -> pd.DataFrame:
         pivot.columns = [f"evaporating {e:g} {unit}" for e in pivot.columns]
         pivot.insert(0, "unit", published)
         pivot.insert(0, "quantity", quantity)
-        blocks.append(pivot.reset_index())
+        block = pivot.reset_index()
+        blocks.append(block[["quantity", "unit", cond, *pivot.columns[2:]]])
     return pd.concat(blocks, ignore_index=True)
