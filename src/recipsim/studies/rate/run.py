@@ -31,6 +31,7 @@ from recipsim.studies.rate.grid import RatingGrid, rating_grid
 from recipsim.studies.rate.polynomial import PolynomialFit, RatingError
 from recipsim.studies.rate.tables import (
     GRID_TOLERANCE,
+    Sources,
     add_fit_columns,
     coefficients_table,
     fit_quantities,
@@ -186,12 +187,7 @@ def rate_case(
     rows = outcome.table.iloc[:n_grid].reset_index(drop=True)
     sources = quantity_sources(case)
     ratings, si = ratings_table(case, grid, rows, sources)
-    try:
-        fits = fit_quantities(grid, si, sources)
-    except RatingError as exc:
-        counts = ", ".join(f"{n} {s}" for s, n in ratings["status"].value_counts().items())
-        where = root / SWEEP_NAME / "summary.csv"
-        raise RatingError(f"{exc}; the grid's {len(ratings)} points: {counts} ({where})") from None
+    fits = _fits(grid, ratings, si, sources, root)
     add_fit_columns(ratings, grid, fits, si)
     table = coefficients_table(grid, fits, si, sources)
     polynomials = fitted_polynomials(grid, table)
@@ -217,6 +213,22 @@ def rate_case(
         wall_time=time.perf_counter() - start,
         options={"catalogue": str(catalogue or ""), "coefficients": str(coefficients or "")},
     )
+
+
+def _fits(
+    grid: RatingGrid,
+    ratings: pd.DataFrame,
+    si: dict[str, np.ndarray],
+    sources: Sources,
+    root: Path,
+) -> dict[str, PolynomialFit | str]:
+    """:func:`.tables.fit_quantities`; a refusal says how the grid's points ended."""
+    try:
+        return fit_quantities(grid, si, sources)
+    except RatingError as exc:
+        counts = ", ".join(f"{n} {s}" for s, n in ratings["status"].value_counts().items())
+        where = root / SWEEP_NAME / "summary.csv"
+        raise RatingError(f"{exc}; the grid's {len(ratings)} points: {counts} ({where})") from None
 
 
 def _run_points(
