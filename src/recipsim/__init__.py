@@ -20,11 +20,14 @@ use_recipsim_numba_cache()
 from recipsim.api import (  # noqa: E402
     Case,
     Member,
+    Rating,
     Result,
     calibrate,
     cases,
     compare,
     load_case,
+    rate,
+    read_coefficients,
     simulate,
     sweep,
 )
@@ -34,6 +37,7 @@ __all__ = [
     "Case",
     "CaseError",
     "Member",
+    "Rating",
     "Result",
     "SolverError",
     "__version__",
@@ -41,6 +45,8 @@ __all__ = [
     "cases",
     "compare",
     "load_case",
+    "rate",
+    "read_coefficients",
     "simulate",
     "sweep",
 ]

@@ -10,6 +10,9 @@
 Everything the ``recipsim run`` command does goes through these functions. Plot methods
 draw into the Axes they are given (or a new figure's) and return the Axes; no backend
 is ever chosen.
+
+Size (over the project's 400 lines): the whole public API in one module, a function per
+study (simulate, compare, sweep, calibrate, rate), each a thin layer over its study.
 """
 
 from __future__ import annotations
@@ -20,16 +23,14 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-import numpy as np
 import pandas as pd
 
 from recipsim.case.case import Case
 from recipsim.case.load import load_case
-from recipsim.case.overrides import parse_override, toml_literal
 from recipsim.case.shipped import KIND_FOLDERS, shipped_cases_table
 from recipsim.errors import CaseError
 from recipsim.pipeline import simulate_case
-from recipsim.report.case_report import write_case_report
+from recipsim.report.case_report import report_dir, write_case_report
 from recipsim.report.loss_plot import plot_loss_breakdown
 from recipsim.report.mechanics_plots import film_bearings, plot_bearing_loads, plot_orbits
 from recipsim.report.plotting import plot_pressure, plot_pv, plot_torque, plot_valves
@@ -41,14 +42,18 @@ from recipsim.studies.calibrate.family import Member
 from recipsim.studies.calibrate.report import write_calibration
 from recipsim.studies.calibrate.run import calibrate_case
 from recipsim.studies.compare import case_labels, comparison_table
+from recipsim.studies.rate.coefficients import read_coefficients
+from recipsim.studies.rate.grid import standard_of
+from recipsim.studies.rate.report import write_rating
+from recipsim.studies.rate.run import Rating, rate_case
 from recipsim.studies.sweep.engine import run_sweep
-from recipsim.studies.sweep.spec import DEFAULT_MAX_POINTS, SweepSpec
+from recipsim.studies.sweep.spec import DEFAULT_MAX_POINTS, case_sweep_spec, checked_axes
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
 
-__all__ = ["Case", "Member", "Result", "calibrate", "cases", "compare", "load_case"]
-__all__ += ["simulate", "sweep"]
+__all__ = ["Case", "Member", "Rating", "Result", "calibrate", "cases", "compare", "load_case"]
+__all__ += ["rate", "read_coefficients", "simulate", "sweep"]
 
 
 @dataclass(frozen=True)
@@ -242,12 +247,12 @@ def sweep(
         An unknown key or a grid over the limit, before anything runs.
     """
     _check_case(case, "sweep", "case")
-    grid = _checked_axes(axes)
+    grid = checked_axes(axes)
     if jobs is not None and (isinstance(jobs, bool) or not isinstance(jobs, int) or jobs < 1):
         raise CaseError("recipsim.sweep", "jobs", f"{jobs!r}: a whole number >= 1, or None")
     sweep_name = name or f"{case.name}_sweep"
     limit = DEFAULT_MAX_POINTS if max_points is None else max_points
-    spec = _sweep_spec(case, sweep_name, grid, limit)
+    spec = case_sweep_spec(case, sweep_name, grid, max_points=limit)
     options: dict[str, Any] = {
         "jobs": jobs,
         "scheduler": scheduler,
@@ -317,26 +322,61 @@ def calibrate(
     return result
 
 
-def _sweep_spec(
-    case: Case, name: str, grid: tuple[tuple[str, tuple[Any, ...]], ...], max_points: int
-) -> SweepSpec:
-    """The sweep file that :func:`sweep` runs: the case's file and overrides, the axes."""
-    fixed = tuple((".".join(path), value) for path, value in map(parse_override, case.overrides))
-    lines = [f"name = {toml_literal(name)}", f"base = {toml_literal(case.path)}"]
-    lines += ["[set]"] + [f"{toml_key(k)} = {toml_literal(v)}" for k, v in fixed]
-    lines += ["[axes]"]
-    lines += [f"{toml_key(k)} = [{', '.join(toml_literal(v) for v in vs)}]" for k, vs in grid]
-    return SweepSpec(
-        name=name,
-        description=f"recipsim.sweep of {case.name}",
-        path=Path(case.path),
-        text="\n".join(lines) + "\n",
-        base=Path(case.path).resolve(),
-        fixed=fixed,
-        axes=grid,
-        points=(),
-        max_points=max_points,
-    )
+def rate(
+    case: Case,
+    *,
+    standard: str | None = None,
+    evaporating: Any = None,
+    condensing: Any = None,
+    catalogue: str | Path | None = None,
+    coefficients: str | Path | None = None,
+    jobs: int | None = 1,
+    scheduler: str | None = None,
+    directory: str | Path | None = None,
+    progress: bool = True,
+) -> Rating:
+    """Rate ``case`` as its maker does: ``recipsim rate`` (docs: rating).
+
+    Parameters
+    ----------
+    case : Case
+        The compressor.
+    standard : {"EN12900", "AHRI_540", "ASHRAE_LBP"}, optional
+        Default: the case's own (or its rating point's), else EN12900; S, D in degC or degF.
+    evaporating, condensing : str or sequence of float, optional
+        Grid axes in the standard's unit, ``"-35:-10:5"`` or ``[-35, -30, ...]``;
+        default: the standard's grid for the case's application.
+    catalogue, coefficients : str or Path, optional
+        A catalogue CSV to run and compare with; a maker's coefficient CSV to compare with.
+    jobs, scheduler : int or None; str, optional
+        Worker processes (1: this process; None: every CPU); a Dask scheduler.
+    directory, progress : str or Path, optional; bool
+        Parent of ``<case>_<standard>/``, where the points are kept (a rerun resumes) and
+        the files written (default: a temporary directory, not kept); a progress bar.
+
+    Returns
+    -------
+    Rating
+        ``.ratings``, ``.table``, ``.coefficients``, ``.residuals``, ``.catalogue``,
+        ``.maker`` (DataFrames), ``.notes``; ``.evaluate(quantity, t_evap_K, t_cond_K)``,
+        ``.plot(quantity)``, ``.plot_envelope()``.
+
+    Raises
+    ------
+    RatingError
+        Fewer than ten good points for capacity or power input (the message says why).
+    """
+    _check_case(case, "rate", "case")
+    name = standard_of(case, standard)
+    args = {"standard": name, "evaporating": evaporating, "condensing": condensing}
+    args |= {"catalogue": catalogue, "coefficients": coefficients}
+    args["sweep_options"] = {"jobs": jobs, "scheduler": scheduler, "progress": progress}
+    if directory is None:
+        with tempfile.TemporaryDirectory(prefix="recipsim-rate-") as tmp:
+            return rate_case(case, Path(tmp) / "rating", **args)
+    where = report_dir(Path(directory), f"{case.name}_{name}", case.overrides)
+    write_rating(rating := rate_case(case, where, **args))
+    return rating
 
 
 def _check_case(case: Any, function: str, argument: str) -> None:
@@ -347,34 +387,6 @@ def _check_case(case: Any, function: str, argument: str) -> None:
             argument,
             f"expected a Case (from recipsim.load_case), got {type(case).__name__} {case!r:.60}",
         )
-
-
-def _checked_axes(axes: Any) -> tuple[tuple[str, tuple[Any, ...]], ...]:
-    """A sweep's axes as (dotted key, values); each axis a non-empty list of numbers,
-    strings or booleans (a string is one value, never a list of characters)."""
-    if not isinstance(axes, Mapping) or not axes:
-        raise CaseError("recipsim.sweep", "axes", "a non-empty mapping of case key to values")
-    grid = []
-    for key, values in axes.items():
-        where = f"axes[{key!r}]"
-        if not isinstance(key, str) or not key:
-            raise CaseError("recipsim.sweep", where, "an axis is named by a dotted case key")
-        if isinstance(values, (str, bytes)) or not isinstance(values, Sequence):
-            raise CaseError("recipsim.sweep", where, f"a list of values, got {values!r:.60}")
-        if not values:
-            raise CaseError("recipsim.sweep", where, "an axis needs at least one value")
-        for value in values:
-            if not isinstance(value, (str, int, float, bool, np.generic)):
-                raise CaseError(
-                    "recipsim.sweep", where, f"{value!r:.60} is not a number, text or boolean"
-                )
-        grid.append((key, tuple(values)))
-    return tuple(grid)
-
-
-def toml_key(dotted: str) -> str:
-    """A dotted case key as a TOML key (each part quoted)."""
-    return ".".join(toml_literal(part) for part in dotted.split("."))
 
 
 def cases(kind: str | None = None) -> pd.DataFrame:

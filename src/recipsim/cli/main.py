@@ -31,6 +31,7 @@ from recipsim.cli.check import add_check_parser
 from recipsim.cli.compare import add_compare_parser
 from recipsim.cli.options import add_common_options, exit_status
 from recipsim.cli.paper import add_paper_parser
+from recipsim.cli.rate import add_rate_parser
 from recipsim.cli.sweep import add_sweep_parser
 from recipsim.cli.warmup import add_warmup_parser
 from recipsim.errors import CaseError
@@ -46,6 +47,7 @@ _SUBCOMMANDS = (
     add_bench_parser,
     add_check_parser,
     add_calibrate_parser,
+    add_rate_parser,
     add_warmup_parser,
     add_cases_parser,
 )

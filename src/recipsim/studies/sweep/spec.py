@@ -31,13 +31,17 @@ from __future__ import annotations
 
 import itertools
 import math
-from collections.abc import Iterator, Mapping
+from collections.abc import Iterator, Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+import numpy as np
+
 from recipsim.atomic import checked_name, name_from_stem
+from recipsim.case.case import Case
 from recipsim.case.files import find_case_file, read_toml, resolve_reference
+from recipsim.case.overrides import parse_override, toml_literal
 from recipsim.case.schema import Field, FileSpec, Text, check_keys, read_table
 from recipsim.errors import CaseError
 
@@ -301,3 +305,75 @@ def load_sweep(path: str | Path, allow_external_paths: bool = False) -> SweepSpe
         points=tuple(points),
         max_points=int(top["max_points"]),
     )
+
+
+def toml_key(dotted: str) -> str:
+    """A dotted case key as a TOML key (each part quoted)."""
+    return ".".join(toml_literal(part) for part in dotted.split("."))
+
+
+def case_sweep_spec(
+    case: Case,
+    name: str,
+    axes: tuple[tuple[str, tuple[Any, ...]], ...] = (),
+    points: tuple[Assignment, ...] = (),
+    max_points: int = DEFAULT_MAX_POINTS,
+    description: str = "",
+) -> SweepSpec:
+    """The sweep of ``case`` (its file, its overrides as ``[set]``) over ``axes`` and
+    explicit ``points``, built in Python as :func:`load_sweep` would read its file.
+
+    Parameters
+    ----------
+    case : Case
+        The base case; its overrides apply to every point.
+    name : str
+        Sweep name (its output directory's).
+    axes, points : tuple
+        As :attr:`SweepSpec.axes` and :attr:`SweepSpec.points`.
+    max_points : int
+        Refuse larger sweeps.
+    description : str
+        One line for people (default: ``recipsim.sweep of <case name>``).
+    """
+    fixed = tuple((".".join(path), value) for path, value in map(parse_override, case.overrides))
+    lines = [f"name = {toml_literal(name)}", f"base = {toml_literal(case.path)}"]
+    lines += ["[set]"] + [f"{toml_key(k)} = {toml_literal(v)}" for k, v in fixed]
+    lines += ["[axes]"]
+    lines += [f"{toml_key(k)} = [{', '.join(toml_literal(v) for v in vs)}]" for k, vs in axes]
+    for point in points:
+        lines += ["[[points]]"] + [f"{toml_key(k)} = {toml_literal(v)}" for k, v in point]
+    return SweepSpec(
+        name=name,
+        description=description or f"recipsim.sweep of {case.name}",
+        path=Path(case.path),
+        text="\n".join(lines) + "\n",
+        base=Path(case.path).resolve(),
+        fixed=fixed,
+        axes=axes,
+        points=points,
+        max_points=max_points,
+    )
+
+
+def checked_axes(axes: Any) -> tuple[tuple[str, tuple[Any, ...]], ...]:
+    """A sweep's axes as (dotted key, values); each axis a non-empty list of numbers,
+    strings or booleans (a string is one value, never a list of characters)."""
+    if not isinstance(axes, Mapping) or not axes:
+        raise CaseError("recipsim.sweep", "axes", "a non-empty mapping of case key to values")
+    grid = []
+    for key, values in axes.items():
+        where = f"axes[{key!r}]"
+        if not isinstance(key, str) or not key:
+            raise CaseError("recipsim.sweep", where, "an axis is named by a dotted case key")
+        if isinstance(values, (str, bytes)) or not isinstance(values, Sequence):
+            raise CaseError("recipsim.sweep", where, f"a list of values, got {values!r:.60}")
+        if not values:
+            raise CaseError("recipsim.sweep", where, "an axis needs at least one value")
+        for value in values:
+            if not isinstance(value, (str, int, float, bool, np.generic)):
+                raise CaseError(
+                    "recipsim.sweep", where, f"{value!r:.60} is not a number, text or boolean"
+                )
+        grid.append((key, tuple(values)))
+    return tuple(grid)
