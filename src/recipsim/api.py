@@ -20,20 +20,20 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-import numpy as np
 import pandas as pd
 
 from recipsim.case.case import Case
-from recipsim.case.load import load_case
-from recipsim.case.overrides import parse_override, toml_literal
+from recipsim.case.load import load_case as _load_case
 from recipsim.case.shipped import KIND_FOLDERS, shipped_cases_table
 from recipsim.errors import CaseError
 from recipsim.pipeline import simulate_case
+from recipsim.progress import notes_shown
 from recipsim.report.case_report import write_case_report
 from recipsim.report.loss_plot import plot_loss_breakdown
 from recipsim.report.mechanics_plots import film_bearings, plot_bearing_loads, plot_orbits
 from recipsim.report.plotting import plot_pressure, plot_pv, plot_torque, plot_valves
 from recipsim.report.startup_plot import plot_startup
+from recipsim.report.summary_text import summary_markdown, summary_text
 from recipsim.results.case_run import CaseRun
 from recipsim.results.startup import startup_table
 from recipsim.solve.periodic import PeriodicSolution
@@ -41,7 +41,8 @@ from recipsim.studies.calibrate.report import write_calibration
 from recipsim.studies.calibrate.run import calibrate_case
 from recipsim.studies.compare import case_labels, comparison_table
 from recipsim.studies.sweep.engine import run_sweep
-from recipsim.studies.sweep.spec import DEFAULT_MAX_POINTS, SweepSpec
+from recipsim.studies.sweep.grid import checked_axes, grid_spec
+from recipsim.studies.sweep.spec import DEFAULT_MAX_POINTS
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
@@ -133,6 +134,14 @@ class Result:
         return plot_startup(table, title=self.case.name).axes
 
     # ---- report -------------------------------------------------------------------------
+    def summary_text(self) -> str:
+        """The key figures for a person, in W, bar, C, kg/h and rpm, as the console
+        shows them after ``recipsim run`` (a notebook shows them as a table)."""
+        return summary_text(self._run.row)
+
+    def _repr_markdown_(self) -> str:
+        return summary_markdown(self._run.row, title=False)
+
     def write(self, directory: str | Path, plots: bool = True) -> Path:
         """Write the report (``summary.csv``, ``cycle.csv``, figures, ``case.toml``,
         ``provenance.json``) into ``directory``, atomically; a directory that recipsim
@@ -144,13 +153,58 @@ def _first_axes(fig: Any, ax: Axes | None) -> Axes:
     return ax if ax is not None else fig.axes[0]
 
 
-def simulate(case: Case) -> Result:
+def load_case(
+    path: str | Path,
+    overrides: Mapping[str, Any] | Sequence[str] | None = None,
+    *,
+    allow_external_paths: bool = False,
+    progress: bool = True,
+) -> Case:
+    """Read, override and validate a case file.
+
+    Parameters
+    ----------
+    path : str or Path
+        The TOML case file, or the name of a case (``"reference_r134a_lbp"``): the
+        working directory's ``cases/<name>.toml``, else the shipped case of that name.
+    overrides : mapping or list of str, optional
+        Dotted case keys to values (``{"operating_point.shaft_speed": "3000 rpm"}``), or
+        ``KEY=VALUE`` strings as on the command line (``--set``); validated exactly like
+        the file.
+    allow_external_paths : bool
+        Let ``extends`` and ``pressure_curve.file`` name files outside the case file's
+        directory (absolute paths, ``..``).
+    progress : bool
+        Say on standard error what takes seconds the first time (a property table built,
+        code compiled: ``recipsim: ...`` lines, through :mod:`logging`, each with the
+        time it took last time on this machine); False keeps them off. A program that
+        configures :mod:`logging` itself decides instead.
+
+    Returns
+    -------
+    Case
+
+    Raises
+    ------
+    CaseError
+        With the file, the key and what is allowed.
+    """
+    with notes_shown(progress):
+        return _load_case(path, overrides, allow_external_paths=allow_external_paths)
+
+
+def simulate(case: Case, *, progress: bool = True) -> Result:
     """Solve ``case`` to its periodic steady state.
 
     Parameters
     ----------
     case : Case
         From :func:`load_case` (and :meth:`Case.with_`).
+    progress : bool
+        Say on standard error what takes seconds the first time (a property table built,
+        code compiled: ``recipsim: ...`` lines, through :mod:`logging`, each with the
+        time it took last time on this machine); False keeps them off. A program that
+        configures :mod:`logging` itself decides instead.
 
     Returns
     -------
@@ -162,7 +216,8 @@ def simulate(case: Case) -> Result:
         Naming the crank angle and the state where the integration failed.
     """
     _check_case(case, "simulate", "case")
-    run = simulate_case(case)
+    with notes_shown(progress):
+        run = simulate_case(case)
     return Result(
         case=case,
         summary=pd.Series(run.row, name=case.name),
@@ -174,8 +229,9 @@ def simulate(case: Case) -> Result:
     )
 
 
-def compare(a: Case | Result, b: Case | Result) -> pd.DataFrame:
-    """Compare two cases (simulated here if they are not results yet).
+def compare(a: Case | Result, b: Case | Result, *, progress: bool = True) -> pd.DataFrame:
+    """Compare two cases (simulated here if they are not results yet; ``progress`` as
+    in :func:`simulate`).
 
     Returns
     -------
@@ -185,7 +241,7 @@ def compare(a: Case | Result, b: Case | Result) -> pd.DataFrame:
         it, suffixed ``_a``/``_b`` when the names are equal); ``difference`` (B - A) and
         ``relative_difference [-]``.
     """
-    results = [r if isinstance(r, Result) else simulate(r) for r in (a, b)]
+    results = [r if isinstance(r, Result) else simulate(r, progress=progress) for r in (a, b)]
     labels = case_labels(results[0].case.name, results[1].case.name)
     return comparison_table(results[0]._run.row, results[1]._run.row, *labels)
 
@@ -226,8 +282,9 @@ def sweep(
     max_points : int, optional
         Refuse larger grids (default 100 000).
     progress : bool
-        Show a progress bar (a widget in a notebook, a bar in a terminal, nothing when
-        the output is a file).
+        Show a progress bar (``tqdm.auto``: a widget in a notebook with ipywidgets, else
+        a text bar on standard error, in a notebook or a terminal; nothing when standard
+        error is a file) and the notes of :func:`simulate`; False: neither.
 
     Returns
     -------
@@ -240,12 +297,12 @@ def sweep(
         An unknown key or a grid over the limit, before anything runs.
     """
     _check_case(case, "sweep", "case")
-    grid = _checked_axes(axes)
+    grid = checked_axes(axes)
     if jobs is not None and (isinstance(jobs, bool) or not isinstance(jobs, int) or jobs < 1):
         raise CaseError("recipsim.sweep", "jobs", f"{jobs!r}: a whole number >= 1, or None")
     sweep_name = name or f"{case.name}_sweep"
     limit = DEFAULT_MAX_POINTS if max_points is None else max_points
-    spec = _sweep_spec(case, sweep_name, grid, limit)
+    spec = grid_spec(case, sweep_name, grid, limit)
     options: dict[str, Any] = {
         "jobs": jobs,
         "scheduler": scheduler,
@@ -253,10 +310,8 @@ def sweep(
         "allow_external_paths": case.allow_external_paths,
         "progress": progress,
     }
-    if directory is not None:
-        return run_sweep(spec, out=Path(directory), **options).table
-    with tempfile.TemporaryDirectory(prefix="recipsim-sweep-") as tmp:
-        return run_sweep(spec, out=Path(tmp), **options).table
+    with notes_shown(progress), tempfile.TemporaryDirectory(prefix="recipsim-sweep-") as tmp:
+        return run_sweep(spec, out=Path(directory or tmp), **options).table
 
 
 def calibrate(
@@ -267,8 +322,10 @@ def calibrate(
     points: Sequence[int] | None = None,
     targets: Sequence[str] | None = None,
     directory: str | Path | None = None,
+    progress: bool = True,
 ) -> Any:
-    """Fit uncertain parameters of ``case`` to measured points: ``recipsim calibrate``.
+    """Fit uncertain parameters of ``case`` to measured points: ``recipsim calibrate``
+    (``progress`` as in :func:`simulate`).
 
     Parameters
     ----------
@@ -302,32 +359,11 @@ def calibrate(
         influence, or parameters whose effects cannot be told apart.
     """
     _check_case(case, "calibrate", "case")
-    result = calibrate_case(case, data, parameters, points, targets)
+    with notes_shown(progress):
+        result = calibrate_case(case, data, parameters, points, targets)
     if directory is not None:
         write_calibration(result, directory)
     return result
-
-
-def _sweep_spec(
-    case: Case, name: str, grid: tuple[tuple[str, tuple[Any, ...]], ...], max_points: int
-) -> SweepSpec:
-    """The sweep file that :func:`sweep` runs: the case's file and overrides, the axes."""
-    fixed = tuple((".".join(path), value) for path, value in map(parse_override, case.overrides))
-    lines = [f"name = {toml_literal(name)}", f"base = {toml_literal(case.path)}"]
-    lines += ["[set]"] + [f"{toml_key(k)} = {toml_literal(v)}" for k, v in fixed]
-    lines += ["[axes]"]
-    lines += [f"{toml_key(k)} = [{', '.join(toml_literal(v) for v in vs)}]" for k, vs in grid]
-    return SweepSpec(
-        name=name,
-        description=f"recipsim.sweep of {case.name}",
-        path=Path(case.path),
-        text="\n".join(lines) + "\n",
-        base=Path(case.path).resolve(),
-        fixed=fixed,
-        axes=grid,
-        points=(),
-        max_points=max_points,
-    )
 
 
 def _check_case(case: Any, function: str, argument: str) -> None:
@@ -338,34 +374,6 @@ def _check_case(case: Any, function: str, argument: str) -> None:
             argument,
             f"expected a Case (from recipsim.load_case), got {type(case).__name__} {case!r:.60}",
         )
-
-
-def _checked_axes(axes: Any) -> tuple[tuple[str, tuple[Any, ...]], ...]:
-    """A sweep's axes as (dotted key, values); each axis a non-empty list of numbers,
-    strings or booleans (a string is one value, never a list of characters)."""
-    if not isinstance(axes, Mapping) or not axes:
-        raise CaseError("recipsim.sweep", "axes", "a non-empty mapping of case key to values")
-    grid = []
-    for key, values in axes.items():
-        where = f"axes[{key!r}]"
-        if not isinstance(key, str) or not key:
-            raise CaseError("recipsim.sweep", where, "an axis is named by a dotted case key")
-        if isinstance(values, (str, bytes)) or not isinstance(values, Sequence):
-            raise CaseError("recipsim.sweep", where, f"a list of values, got {values!r:.60}")
-        if not values:
-            raise CaseError("recipsim.sweep", where, "an axis needs at least one value")
-        for value in values:
-            if not isinstance(value, (str, int, float, bool, np.generic)):
-                raise CaseError(
-                    "recipsim.sweep", where, f"{value!r:.60} is not a number, text or boolean"
-                )
-        grid.append((key, tuple(values)))
-    return tuple(grid)
-
-
-def toml_key(dotted: str) -> str:
-    """A dotted case key as a TOML key (each part quoted)."""
-    return ".".join(toml_literal(part) for part in dotted.split("."))
 
 
 def cases(kind: str | None = None) -> pd.DataFrame:

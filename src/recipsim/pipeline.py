@@ -15,12 +15,10 @@ case through these functions:
 
 from __future__ import annotations
 
-import logging
 from collections.abc import Collection, Sequence
 from pathlib import Path
 from typing import Any
 
-from recipsim.cache_dirs import numba_cache_lacks
 from recipsim.case.case import Case
 from recipsim.case.envelope import check_envelope
 from recipsim.case.load import load_case
@@ -32,16 +30,6 @@ from recipsim.solve.motor_speed import solve_at_motor_speed
 from recipsim.solve.periodic import PeriodicSolution, check_step_budget, solve_periodic
 from recipsim.solve.scene_entries import entry_name
 from recipsim.solve.startup import StartupRun, solve_from_rest
-
-logger = logging.getLogger("recipsim")
-
-#: The compiled integrators this process has run (compiled, or loaded from numba's
-#: cache): their first-run note is not looked for again.
-_COMPILED: set[str] = set()
-
-#: What compiling a scene's solver takes on a first run (the estimate printed before it
-#: starts; see ``benchmarks/time_to_answer.py --first-run`` to measure it).
-COMPILE_ESTIMATE = "about 10 s on a small machine"
 
 
 def solve_case(case: Case) -> tuple[Case, PeriodicSolution | None, StartupRun | None]:
@@ -69,10 +57,6 @@ def solve_case(case: Case) -> tuple[Case, PeriodicSolution | None, StartupRun | 
     entry = entry_name(case.options, case.solver)
     if entry is not None:
         check_step_budget(case.solver)  # before anything is compiled or integrated
-    if entry is not None and entry not in _COMPILED and numba_cache_lacks("integrator", entry):
-        logger.info(
-            "compiling the solver for this scene (once per installation, %s)", COMPILE_ESTIMATE
-        )
     check_envelope(case)
     if case.options.pressure == "tabulated" and case.options.mechanics == "pinned":
         return case, None, None
@@ -90,8 +74,6 @@ def solve_case(case: Case) -> tuple[Case, PeriodicSolution | None, StartupRun | 
         model = build_model_for(case)
     with explained("integrating the periodic state"):
         solution = solve_periodic(model)
-    if entry is not None:
-        _COMPILED.add(entry)
     return case, solution, None
 
 
