@@ -35,7 +35,7 @@ from pathlib import Path
 from typing import Any
 
 from recipsim.atomic import atomic_file
-from recipsim.cache_dirs import cache_dir
+from recipsim.cache_dirs import cache_dir, private_dir
 
 logger = logging.getLogger("recipsim")
 
@@ -93,7 +93,7 @@ def record_duration(key: str, seconds: float) -> None:
         text = json.dumps(durations, indent=1, sort_keys=True)
         try:
             path = durations_file()
-            path.parent.mkdir(parents=True, exist_ok=True, mode=0o700)
+            private_dir(path.parent)
             with atomic_file(path) as handle:
                 handle.write(text)
         except OSError:
