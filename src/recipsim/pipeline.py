@@ -22,6 +22,7 @@ from typing import Any
 from recipsim.case.case import Case
 from recipsim.case.envelope import check_envelope
 from recipsim.case.load import load_case
+from recipsim.progress import logger
 from recipsim.report.case_report import report_dir, write_case_report
 from recipsim.results.case_run import CaseRun, case_run, summary_only
 from recipsim.results.outcome import explained
@@ -151,5 +152,7 @@ def run_case(
     case = load_case(path, list(overrides), allow_external_paths=allow_external_paths)
     target = report_dir(out, case.name, case.overrides)
     run = simulate_case(case, argv)
+    if plots:  # drawing the figures is the largest part of a warm run (seconds)
+        logger.info("drawing the report's figures into %s", target)
     write_case_report(run, target, list(overrides), plots)
     return run, target

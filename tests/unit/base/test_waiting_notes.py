@@ -135,3 +135,16 @@ def test_api_notes_show_unless_silenced_or_logging_is_configured(monkeypatch, ca
     with progress.notes_shown(True):
         logger.info("step three")  # the program's own logging decides: WARNING and up
     assert capsys.readouterr().err == ""
+
+
+def test_a_run_says_it_draws_the_figures_and_not_without_them(tmp_path, caplog):
+    """Drawing the figures takes seconds of a warm run: a note before it, none with
+    ``--no-plots``."""
+    from recipsim.pipeline import run_case
+
+    caplog.set_level(logging.INFO, logger="recipsim")
+    case = "reference_r134a_lbp"
+    run_case(case, ["solver.max_revolutions=2"], tmp_path, plots=False)
+    assert not any("figures" in message for message in caplog.messages)
+    _, target = run_case(case, ["solver.max_revolutions=2"], tmp_path, plots=("p_V",))
+    assert f"drawing the report's figures into {target}" in caplog.messages
