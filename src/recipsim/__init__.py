@@ -12,10 +12,13 @@ by step, with a compiled integrator. The public API (:mod:`recipsim.api`)::
 from __future__ import annotations
 
 from recipsim.cache_dirs import use_recipsim_numba_cache
+from recipsim.progress import watch_compilations
 from recipsim.version import __version__
 
-# before any of recipsim's functions is compiled (see recipsim.cache_dirs)
+# before any of recipsim's functions is compiled (see recipsim.cache_dirs and
+# recipsim.progress: each compilation is announced and timed)
 use_recipsim_numba_cache()
+watch_compilations()
 
 from recipsim.api import (  # noqa: E402
     Case,

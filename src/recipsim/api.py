@@ -26,15 +26,17 @@ from typing import TYPE_CHECKING, Any
 import pandas as pd
 
 from recipsim.case.case import Case
-from recipsim.case.load import load_case
+from recipsim.case.load import load_case as _load_case
 from recipsim.case.shipped import KIND_FOLDERS, shipped_cases_table
 from recipsim.errors import CaseError
 from recipsim.pipeline import simulate_case
+from recipsim.progress import notes_shown
 from recipsim.report.case_report import report_dir, write_case_report
 from recipsim.report.loss_plot import plot_loss_breakdown
 from recipsim.report.mechanics_plots import film_bearings, plot_bearing_loads, plot_orbits
 from recipsim.report.plotting import plot_pressure, plot_pv, plot_torque, plot_valves
 from recipsim.report.startup_plot import plot_startup
+from recipsim.report.summary_text import summary_markdown, summary_text
 from recipsim.results.case_run import CaseRun
 from recipsim.results.startup import startup_table
 from recipsim.solve.periodic import PeriodicSolution
@@ -140,6 +142,14 @@ class Result:
         return plot_startup(table, title=self.case.name).axes
 
     # ---- report -------------------------------------------------------------------------
+    def summary_text(self) -> str:
+        """The key figures for a person, in W, bar, C, kg/h and rpm, as the console
+        shows them after ``recipsim run`` (a notebook shows them as a table)."""
+        return summary_text(self._run.row)
+
+    def _repr_markdown_(self) -> str:
+        return summary_markdown(self._run.row, title=False)
+
     def write(self, directory: str | Path, plots: bool = True) -> Path:
         """Write the report (``summary.csv``, ``cycle.csv``, figures, ``case.toml``,
         ``provenance.json``) into ``directory``, atomically; a directory that recipsim
@@ -151,13 +161,58 @@ def _first_axes(fig: Any, ax: Axes | None) -> Axes:
     return ax if ax is not None else fig.axes[0]
 
 
-def simulate(case: Case) -> Result:
+def load_case(
+    path: str | Path,
+    overrides: Mapping[str, Any] | Sequence[str] | None = None,
+    *,
+    allow_external_paths: bool = False,
+    progress: bool = True,
+) -> Case:
+    """Read, override and validate a case file.
+
+    Parameters
+    ----------
+    path : str or Path
+        The TOML case file, or the name of a case (``"reference_r134a_lbp"``): the
+        working directory's ``cases/<name>.toml``, else the shipped case of that name.
+    overrides : mapping or list of str, optional
+        Dotted case keys to values (``{"operating_point.shaft_speed": "3000 rpm"}``), or
+        ``KEY=VALUE`` strings as on the command line (``--set``); validated exactly like
+        the file.
+    allow_external_paths : bool
+        Let ``extends`` and ``pressure_curve.file`` name files outside the case file's
+        directory (absolute paths, ``..``).
+    progress : bool
+        Say on standard error what takes seconds the first time (a property table built,
+        code compiled: ``recipsim: ...`` lines, through :mod:`logging`, each with the
+        time it took last time on this machine); False keeps them off. A program that
+        configures :mod:`logging` itself decides instead.
+
+    Returns
+    -------
+    Case
+
+    Raises
+    ------
+    CaseError
+        With the file, the key and what is allowed.
+    """
+    with notes_shown(progress):
+        return _load_case(path, overrides, allow_external_paths=allow_external_paths)
+
+
+def simulate(case: Case, *, progress: bool = True) -> Result:
     """Solve ``case`` to its periodic steady state.
 
     Parameters
     ----------
     case : Case
         From :func:`load_case` (and :meth:`Case.with_`).
+    progress : bool
+        Say on standard error what takes seconds the first time (a property table built,
+        code compiled: ``recipsim: ...`` lines, through :mod:`logging`, each with the
+        time it took last time on this machine); False keeps them off. A program that
+        configures :mod:`logging` itself decides instead.
 
     Returns
     -------
@@ -169,7 +224,8 @@ def simulate(case: Case) -> Result:
         Naming the crank angle and the state where the integration failed.
     """
     _check_case(case, "simulate", "case")
-    run = simulate_case(case)
+    with notes_shown(progress):
+        run = simulate_case(case)
     return Result(
         case=case,
         summary=pd.Series(run.row, name=case.name),
@@ -181,8 +237,9 @@ def simulate(case: Case) -> Result:
     )
 
 
-def compare(a: Case | Result, b: Case | Result) -> pd.DataFrame:
-    """Compare two cases (simulated here if they are not results yet).
+def compare(a: Case | Result, b: Case | Result, *, progress: bool = True) -> pd.DataFrame:
+    """Compare two cases (simulated here if they are not results yet; ``progress`` as
+    in :func:`simulate`).
 
     Returns
     -------
@@ -192,7 +249,7 @@ def compare(a: Case | Result, b: Case | Result) -> pd.DataFrame:
         it, suffixed ``_a``/``_b`` when the names are equal); ``difference`` (B - A) and
         ``relative_difference [-]``.
     """
-    results = [r if isinstance(r, Result) else simulate(r) for r in (a, b)]
+    results = [r if isinstance(r, Result) else simulate(r, progress=progress) for r in (a, b)]
     labels = case_labels(results[0].case.name, results[1].case.name)
     return comparison_table(results[0]._run.row, results[1]._run.row, *labels)
 
@@ -233,8 +290,9 @@ def sweep(
     max_points : int, optional
         Refuse larger grids (default 100 000).
     progress : bool
-        Show a progress bar (a widget in a notebook, a bar in a terminal, nothing when
-        the output is a file).
+        Show a progress bar (``tqdm.auto``: a widget in a notebook with ipywidgets, else
+        a text bar on standard error, in a notebook or a terminal; nothing when standard
+        error is a file) and the notes of :func:`simulate`; False: neither.
 
     Returns
     -------
@@ -260,10 +318,8 @@ def sweep(
         "allow_external_paths": case.allow_external_paths,
         "progress": progress,
     }
-    if directory is not None:
-        return run_sweep(spec, out=Path(directory), **options).table
-    with tempfile.TemporaryDirectory(prefix="recipsim-sweep-") as tmp:
-        return run_sweep(spec, out=Path(tmp), **options).table
+    with notes_shown(progress), tempfile.TemporaryDirectory(prefix="recipsim-sweep-") as tmp:
+        return run_sweep(spec, out=Path(directory or tmp), **options).table
 
 
 def calibrate(
@@ -275,9 +331,11 @@ def calibrate(
     targets: Sequence[str] | None = None,
     directory: str | Path | None = None,
     members: Sequence[str | Member] = (),
+    progress: bool = True,
 ) -> Any:
     """Fit uncertain parameters of ``case`` to measured points: ``recipsim calibrate``
-    (of one compressor, or of several of a family at once with ``members``).
+    (of one compressor, or of several of a family at once with ``members``; ``progress``
+    as in :func:`simulate`).
 
     Parameters
     ----------
@@ -316,7 +374,8 @@ def calibrate(
         influence, or parameters whose effects cannot be told apart.
     """
     _check_case(case, "calibrate", "case")
-    result = calibrate_case(case, data, parameters, points, targets, members=members)
+    with notes_shown(progress):
+        result = calibrate_case(case, data, parameters, points, targets, members=members)
     if directory is not None:
         write_calibration(result, directory)
     return result
@@ -371,12 +430,13 @@ def rate(
     args = {"standard": name, "evaporating": evaporating, "condensing": condensing}
     args |= {"catalogue": catalogue, "coefficients": coefficients}
     args["sweep_options"] = {"jobs": jobs, "scheduler": scheduler, "progress": progress}
-    if directory is None:
-        with tempfile.TemporaryDirectory(prefix="recipsim-rate-") as tmp:
-            return rate_case(case, Path(tmp) / "rating", **args)
-    where = report_dir(Path(directory), f"{case.name}_{name}", case.overrides)
-    write_rating(rating := rate_case(case, where, **args))
-    return rating
+    with notes_shown(progress):
+        if directory is None:
+            with tempfile.TemporaryDirectory(prefix="recipsim-rate-") as tmp:
+                return rate_case(case, Path(tmp) / "rating", **args)
+        where = report_dir(Path(directory), f"{case.name}_{name}", case.overrides)
+        write_rating(rating := rate_case(case, where, **args))
+        return rating
 
 
 def _check_case(case: Any, function: str, argument: str) -> None:

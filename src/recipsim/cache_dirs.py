@@ -57,17 +57,6 @@ def numba_cache_path() -> Path:
     return Path(base) / f"recipsim-{compiled_sources_digest()}"
 
 
-def numba_cache_lacks(module: str, function: str | None = None) -> bool:
-    """Whether numba's cache for this version of the compiled sources holds nothing yet of
-    ``module`` (e.g. ``"integrator"``: the first run then compiles the solver), or of its
-    ``function`` if given (``"integrate_coupled"``: each scene compiles on its own)."""
-    if os.environ.get("NUMBA_DISABLE_JIT") == "1":
-        return False
-    path = numba_cache_path()
-    pattern = f"{module}.{function}-*.nbi" if function else f"{module}.*.nbi"
-    return not path.is_dir() or next(path.rglob(pattern), None) is None
-
-
 def use_recipsim_numba_cache() -> None:
     """Have numba keep the cache of recipsim's compiled functions in
     :func:`numba_cache_path` (created private); other functions keep numba's own rules.

@@ -15,15 +15,14 @@ case through these functions:
 
 from __future__ import annotations
 
-import logging
 from collections.abc import Collection, Sequence
 from pathlib import Path
 from typing import Any
 
-from recipsim.cache_dirs import numba_cache_lacks
 from recipsim.case.case import Case
 from recipsim.case.envelope import check_envelope
 from recipsim.case.load import load_case
+from recipsim.progress import logger
 from recipsim.report.case_report import report_dir, write_case_report
 from recipsim.results.case_run import CaseRun, case_run, summary_only
 from recipsim.results.outcome import explained
@@ -32,16 +31,6 @@ from recipsim.solve.motor_speed import solve_at_motor_speed
 from recipsim.solve.periodic import PeriodicSolution, check_step_budget, solve_periodic
 from recipsim.solve.scene_entries import entry_name
 from recipsim.solve.startup import StartupRun, solve_from_rest
-
-logger = logging.getLogger("recipsim")
-
-#: The compiled integrators this process has run (compiled, or loaded from numba's
-#: cache): their first-run note is not looked for again.
-_COMPILED: set[str] = set()
-
-#: What compiling a scene's solver takes on a first run (the estimate printed before it
-#: starts; see ``benchmarks/time_to_answer.py --first-run`` to measure it).
-COMPILE_ESTIMATE = "about 10 s on a small machine"
 
 
 def solve_case(case: Case) -> tuple[Case, PeriodicSolution | None, StartupRun | None]:
@@ -69,10 +58,6 @@ def solve_case(case: Case) -> tuple[Case, PeriodicSolution | None, StartupRun | 
     entry = entry_name(case.options, case.solver)
     if entry is not None:
         check_step_budget(case.solver)  # before anything is compiled or integrated
-    if entry is not None and entry not in _COMPILED and numba_cache_lacks("integrator", entry):
-        logger.info(
-            "compiling the solver for this scene (once per installation, %s)", COMPILE_ESTIMATE
-        )
     check_envelope(case)
     if case.options.pressure == "tabulated" and case.options.mechanics == "pinned":
         return case, None, None
@@ -90,8 +75,6 @@ def solve_case(case: Case) -> tuple[Case, PeriodicSolution | None, StartupRun | 
         model = build_model_for(case)
     with explained("integrating the periodic state"):
         solution = solve_periodic(model)
-    if entry is not None:
-        _COMPILED.add(entry)
     return case, solution, None
 
 
@@ -169,5 +152,7 @@ def run_case(
     case = load_case(path, list(overrides), allow_external_paths=allow_external_paths)
     target = report_dir(out, case.name, case.overrides)
     run = simulate_case(case, argv)
+    if plots:  # drawing the figures is the largest part of a warm run (seconds)
+        logger.info("drawing the report's figures into %s", target)
     write_case_report(run, target, list(overrides), plots)
     return run, target

@@ -1,9 +1,12 @@
 """The documentation site builds in strict mode (every Sphinx warning is an error) and
 holds what a user navigates by: every ``docs/*.md`` page, the API reference and the
-case-file reference generated from the schema (every declared key of every table)."""
+case-file reference generated from the schema (every declared key of every table), the
+gallery's figures and the example notebooks with their outputs (both executed by myst-nb
+while the site is built: a cell that fails fails the build)."""
 
 from __future__ import annotations
 
+import re
 import subprocess
 import sys
 
@@ -15,6 +18,7 @@ DOCS = ROOT / "docs"
 
 pytest.importorskip("sphinx", reason="the docs extra (pip install -e '.[docs]')")
 pytest.importorskip("myst_parser")
+pytest.importorskip("myst_nb")
 pytest.importorskip("numpydoc")
 
 
@@ -24,7 +28,7 @@ def site(tmp_path_factory):
     doctrees = tmp_path_factory.mktemp("doctrees")
     cmd = [sys.executable, "-m", "sphinx", "-W", "--keep-going", "-q", "-b", "html"]
     cmd += ["-d", str(doctrees), str(DOCS), str(out)]
-    done = subprocess.run(cmd, capture_output=True, text=True, timeout=300)
+    done = subprocess.run(cmd, capture_output=True, text=True, timeout=1200)
     assert done.returncode == 0, done.stdout[-3000:] + done.stderr[-3000:]
     return out
 
@@ -99,3 +103,42 @@ def test_api_reference_documents_the_public_names(site):
     for name in ("load_case", "simulate", "sweep", "compare", "Case", "Result", "CaseError"):
         assert f"recipsim.{name}" in html, name
     assert name in recipsim.__all__
+
+
+def _images(html: str) -> list[str]:
+    """The inline images of a page (the executed cells' figures, base64 PNGs or files)."""
+    return re.findall(r'<img [^>]*src="([^"]+)"', html)
+
+
+def test_the_gallery_shows_the_shipped_cases_figures(site):
+    html = (site / "gallery.html").read_text()
+    for title in (
+        "Indicator diagram (p-V)",
+        "Pressure against crank angle (p-theta)",
+        "Torque",
+        "Bearing orbits",
+        "An operating map",
+        "Where the power goes",
+        "Coupled against tabulated",
+    ):
+        assert title in html, title
+    # p-V (reference; every shipped gas case), p-theta, torque, two orbit figures, two
+    # maps, the losses, pressure and orbits coupled against tabulated
+    images = _images(html)
+    assert len(images) >= 11, images
+    for source in images:
+        if not source.startswith("data:"):
+            assert (site / source).is_file() and (site / source).stat().st_size > 10_000
+    assert re.search(r"<td>(<p>)?cooling capacity", html)  # a result's summary, as a table
+
+
+def test_the_example_notebooks_are_pages_with_their_outputs(site):
+    index = (site / "index.html").read_text()
+    for notebook in sorted((ROOT / "examples").glob("*.ipynb")):
+        page = site / "examples" / f"{notebook.stem}.html"
+        assert page.is_file(), notebook.name
+        assert f'href="examples/{notebook.stem}.html"' in index
+        html = page.read_text()
+        assert "cell_output" in html, notebook.name  # executed: every page shows results
+    plots = (site / "examples" / "03_pv_and_bearing_plots.html").read_text()
+    assert len(_images(plots)) >= 3

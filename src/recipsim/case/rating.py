@@ -36,6 +36,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from recipsim.case.schema import Choice, Field, Spec
+from recipsim.case.units import correctly_rounded
 from recipsim.errors import CaseError
 
 _PREFIX = "operating_point"
@@ -66,7 +67,8 @@ class RatingStandard:
 
 
 def _kelvin(celsius: float) -> float:
-    return celsius + 273.15
+    """``celsius`` [C] in K, as a case file's ``"... degC"`` converts (no float noise)."""
+    return correctly_rounded(celsius, 273.15, 274.15, celsius + 273.15)
 
 
 STANDARDS: dict[str, RatingStandard] = {

@@ -14,6 +14,7 @@ would take 1 Hz for 1 rad/s, since the radian is dimensionless.
 from __future__ import annotations
 
 import math
+from decimal import Decimal
 from functools import lru_cache
 from typing import Any
 
@@ -21,6 +22,10 @@ import pint
 
 from recipsim.cache_dirs import cache_dir, trusted_cache
 from recipsim.errors import CaseError
+
+#: Significant digits of a decimal number that a float holds exactly (a conversion's
+#: decimal result this short is a round number, :func:`correctly_rounded`).
+_SHORT_DECIMAL = 15
 
 
 @lru_cache(maxsize=1)
@@ -91,11 +96,41 @@ def _convert(value: str, unit: str) -> float | str:
             return float(q)
         if unit == "rad/s" and _frequency_without_angle(q):
             return float(q.to("1/s").magnitude) * 2.0 * math.pi  # revolutions per second
-        return float(q.to(unit).magnitude)
+        computed = float(q.to(unit).magnitude)
     except Exception as exc:  # pint raises several unrelated types
         if isinstance(exc, OverflowError) or "digits" in str(exc):
             return f"{value!r}: the number is too large for a float"
         return f"{value!r} has the wrong dimension: expected a quantity in {unit}"
+    try:  # the unit's SI values at 0 and 1: the conversion, affine
+        zero, one = (float(ureg.Quantity(m, q.units).to(unit).magnitude) for m in (0, 1))
+    except Exception:  # pint raises several types: the value as pint converted it
+        return computed
+    return correctly_rounded(float(q.magnitude), zero, one, computed)
+
+
+def correctly_rounded(magnitude: float, zero: float, one: float, computed: float) -> float:
+    """``magnitude`` in a unit whose SI values at 0 and 1 are ``zero`` and ``one``,
+    without the float noise of the conversion where the input is a round number.
+
+    The conversion is done again in decimal arithmetic, on the number as written (its
+    shortest repr) and on the unit's factor and offset as defined (pint's floats read
+    to 15 significant digits), and rounded once to a float; that value is taken where it
+    is a short decimal (15 significant digits or fewer) within two units in the last
+    place of ``computed``, the float conversion: -23.3 degC is 249.85 K, where the float
+    sum ``-23.3 + 273.15`` gives 249.84999999999997 (neither addend is a float, and the
+    sum rounds once more); 22 mm is 0.022 m. Elsewhere (an irrational factor, as from
+    rpm to rad/s, or a number written with all a float's digits, as a resolved case
+    writes them) it is ``computed``.
+    """
+
+    def defined(number: float) -> Decimal:
+        return Decimal(f"{number:.15g}")
+
+    exact = Decimal(repr(magnitude)) * (defined(one) - defined(zero)) + defined(zero)
+    if len(exact.normalize().as_tuple().digits) > _SHORT_DECIMAL:
+        return computed
+    value = float(exact)
+    return value if abs(value - computed) <= 2.0 * math.ulp(computed) else computed
 
 
 def _finite(magnitude: Any) -> bool:

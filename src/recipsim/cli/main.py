@@ -18,7 +18,6 @@ written and says so) or the file system failed (disk full, read-only, no permiss
 from __future__ import annotations
 
 import argparse
-import logging
 import sys
 import warnings
 from pathlib import Path
@@ -36,7 +35,9 @@ from recipsim.cli.sweep import add_sweep_parser
 from recipsim.cli.warmup import add_warmup_parser
 from recipsim.errors import CaseError
 from recipsim.pipeline import run_case
+from recipsim.progress import show_notes
 from recipsim.report.figure_names import FIGURE_NAMES, check_figure_names
+from recipsim.report.summary_text import summary_text
 from recipsim.version import __version__
 
 # Each registers its subparser and sets ``handler(args, argv) -> exit status`` on it.
@@ -126,7 +127,7 @@ def _run_command(args: argparse.Namespace, argv: list[str] | None) -> int:
 def main(argv: list[str] | None = None) -> int:
     """Entry point of the ``recipsim`` command."""
     args = _parser().parse_args(argv)
-    _show_progress_notes(not getattr(args, "quiet", False))
+    show_notes(not getattr(args, "quiet", False))  # recipsim: ... lines on standard error
     with warnings.catch_warnings():  # restores the caller's warning display afterwards
         warnings.showwarning = _one_line_warning
         try:
@@ -151,60 +152,14 @@ def _one_line_warning(
     print(f"recipsim: warning: {message}", file=sys.stderr)
 
 
-def _show_progress_notes(show: bool) -> None:
-    """Print recipsim's one-line notes (compiling the solver, building a property table)
-    on standard error, ``recipsim: ...``; ``--quiet`` keeps them off."""
-    logger = logging.getLogger("recipsim")
-    if not any(isinstance(h, _StandardErrorHandler) for h in logger.handlers):
-        handler = _StandardErrorHandler()
-        handler.setFormatter(logging.Formatter("recipsim: %(message)s"))
-        logger.addHandler(handler)
-    logger.setLevel(logging.INFO if show else logging.WARNING)
-
-
-class _StandardErrorHandler(logging.StreamHandler):  # type: ignore[type-arg]
-    """Writes to the standard error of the moment (a notebook or a test may replace it)."""
-
-    @property  # type: ignore[override]
-    def stream(self) -> Any:
-        return sys.stderr
-
-    @stream.setter
-    def stream(self, value: Any) -> None:
-        pass
-
-
 def _print_summary(row: dict[str, Any], where: Path) -> None:
-    conv = "converged" if row["converged [-]"] else "NOT converged"
-    lines = [
-        f"{row['case']}: {row['refrigerant']}, {row['shaft_speed [rpm]']:.0f} rpm, "
-        f"PR {row['pressure_ratio [-]']:.2f}, pressure {row['pressure']}, "
-        f"mechanics {row['mechanics']}, drive {row['drive']}"
-    ]
-    if row["pressure"] == "cylinder":
-        lines += [
-            f"  mass flow {row['discharge_mass_flow [kg/s]'] * 3600:.3f} kg/h, "
-            f"capacity {row['cooling_capacity [W]']:.1f} W, "
-            f"shaft power {row['shaft_power [W]']:.1f} W, COP {row['COP [-]']:.3f}",
-            f"  volumetric eff. {row['volumetric_efficiency [-]']:.3f}, "
-            f"isentropic eff. {row['isentropic_efficiency [-]']:.3f}, "
-            f"discharge {row['discharge_temperature [K]'] - 273.15:.1f} C",
-        ]
-    else:
-        lines.append(
-            f"  indicated power {row['indicated_power [W]']:.1f} W, "
-            f"shaft power {row['shaft_power [W]']:.1f} W"
-        )
+    """The key figures (:func:`recipsim.report.summary_text.summary_text`), the bearings'
+    RMS loads and where the report went."""
     rms = ", ".join(
         f"{name} {row[f'bearing_rms_{name} [N]']:.0f}"
         for name in ("primary", "secondary", "eccentric", "pin", "piston_top", "piston_skirt")
     )
-    lines.append(f"  bearing RMS [N]: {rms}")
-    lines.append(
-        f"  {conv} in {row['revolutions [-]']} revolutions "
-        f"(residual {row['cycle_residual [-]']:.1e}), {row['wall_time [s]']:.3f} s -> {where}"
-    )
-    print("\n".join(lines))
+    print(f"{summary_text(row)}\nbearing RMS loads [N]: {rms}\nreport: {where}")
 
 
 if __name__ == "__main__":

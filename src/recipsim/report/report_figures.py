@@ -13,6 +13,7 @@ import pandas as pd
 from recipsim.report.figure_names import FIGURE_NAMES, check_figure_names
 from recipsim.report.loss_plot import plot_loss_breakdown
 from recipsim.report.plotting import PNG_OPTIONS, fixed_margins, save_cycle_figures
+from recipsim.report.summary_text import summary_markdown
 
 
 def report_figure_names(
@@ -46,8 +47,11 @@ def _moves(cycle: pd.DataFrame, bearing: str) -> bool:
 
 
 def write_tables(directory: Path, summary_row: Mapping[str, Any], cycle: pd.DataFrame) -> None:
-    """Write ``summary.csv`` (one row) and ``cycle.csv`` into ``directory``."""
+    """Write ``summary.csv`` (one row, SI; pandas writes each float as the shortest text
+    that reads back to it), ``summary.md`` (the key figures for a person) and
+    ``cycle.csv`` into ``directory``."""
     pd.DataFrame([dict(summary_row)]).to_csv(Path(directory) / "summary.csv", index=False)
+    (Path(directory) / "summary.md").write_text(summary_markdown(summary_row))
     cycle.to_csv(Path(directory) / "cycle.csv", index=False)
 
 

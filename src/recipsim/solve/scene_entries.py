@@ -14,12 +14,10 @@ step and samples, the first stage and the event values evaluated again at the sa
 
 from __future__ import annotations
 
-import logging
 from typing import TYPE_CHECKING, Any
 
 from numba import types
 
-from recipsim.cache_dirs import numba_cache_lacks
 from recipsim.model.scenes import SCENE_COUPLED, SCENE_CYLINDER, SCENE_MECHANISM
 from recipsim.physics.thermo.cylinder import I_SCENE
 from recipsim.physics.thermo.properties import PROPS_TYPE
@@ -44,7 +42,6 @@ from recipsim.solve.w_gate import EXPLICIT, WITH_W_STEP
 if TYPE_CHECKING:
     from recipsim.case.sections import Options, SolverSettings
 
-logger = logging.getLogger(__name__)
 
 integrate_cylinder = scene_entry("integrate_cylinder", SCENE_CYLINDER, EXPLICIT)
 integrate_mechanism = scene_entry("integrate_mechanism", SCENE_MECHANISM, EXPLICIT)
@@ -102,13 +99,9 @@ def integrate(*args: Any, method: int = METHOD_DOPRI5) -> None:
 
 
 def _w_entry(code: int) -> Any:
-    """The entry of scene ``code`` with the W-step; says so where its first call here
-    compiles it (nothing of it in numba's cache)."""
-    entry = W_SCENE_INTEGRATORS[code]
-    # (a plain function under NUMBA_DISABLE_JIT=1: nothing to compile)
-    if not getattr(entry, "signatures", True) and numba_cache_lacks("integrator", entry.__name__):
-        logger.info("compiling the solver's Rosenbrock-W step for this scene (once: a few seconds)")
-    return entry
+    """The entry of scene ``code`` with the W-step (its first compilation is announced
+    and timed by :mod:`recipsim.progress`, as every compilation is)."""
+    return W_SCENE_INTEGRATORS[code]
 
 
 def entry_name(options: Options, solver: SolverSettings) -> str | None:

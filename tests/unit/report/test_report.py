@@ -61,6 +61,7 @@ def test_report_files(report):
     names = {p.name for p in report.iterdir()}
     assert {
         "summary.csv",
+        "summary.md",
         "cycle.csv",
         "case.toml",
         "provenance.json",

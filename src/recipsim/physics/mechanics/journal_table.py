@@ -41,7 +41,6 @@ from __future__ import annotations
 
 import hashlib
 import json
-import logging
 import math
 import warnings
 import zipfile
@@ -55,8 +54,7 @@ from recipsim.atomic import atomic_write
 from recipsim.cache_dirs import cache_dir, private_dir
 from recipsim.physics.layout_table import Layout
 from recipsim.physics.mechanics.journal import film_peak_shape, short_film_unit_forces
-
-logger = logging.getLogger(__name__)
+from recipsim.progress import timed_step
 
 #: Table format identifier (``table[offset + H_FORMAT]``).
 TABLE_FORMAT = 1.0
@@ -382,13 +380,9 @@ def finite_journal_table(length_over_diameter: float, directory: Path | None = N
         cached = _read_cached(path, key_text)
         if cached is not None:
             return cached
-    logger.info(
-        "building the finite journal-bearing table for L/D = %.4g "
-        "(once; a few seconds, cached in %s)",
-        length_over_diameter,
-        path.parent,
-    )
-    data = build_journal_table(length_over_diameter)
+    doing = f"building the finite journal-bearing table for L/D = {length_over_diameter:.4g}"
+    with timed_step("journal-bearing table", doing, f"once; cached in {path.parent}"):
+        data = build_journal_table(length_over_diameter)
     checksum = table_checksum(key_text, data)
 
     def write(tmp: Path) -> None:

@@ -10,9 +10,12 @@ from there when a table of the fluid is cached.
 
 from __future__ import annotations
 
+import sys
 from dataclasses import dataclass
 from functools import lru_cache
 from importlib import metadata
+
+from recipsim.progress import timed_step
 
 
 @lru_cache(maxsize=1)
@@ -65,6 +68,9 @@ def coolprop_fluid_constants(coolprop_name: str) -> FluidConstants:
     ValueError
         If CoolProp does not know the fluid.
     """
+    if "CoolProp.CoolProp" not in sys.modules:  # its first import takes seconds
+        with timed_step("import CoolProp", "loading CoolProp", "its equation of state"):
+            import CoolProp.CoolProp
     import CoolProp.CoolProp as CP
 
     state = CP.AbstractState("HEOS", coolprop_name)  # ValueError for an unknown fluid

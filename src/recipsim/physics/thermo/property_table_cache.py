@@ -20,7 +20,6 @@ from __future__ import annotations
 
 import hashlib
 import json
-import logging
 import time
 import warnings
 import zipfile
@@ -48,8 +47,7 @@ from recipsim.physics.thermo.property_table import (
     TableResolution,
 )
 from recipsim.physics.thermo.table_entropy import table_entropy_sums
-
-logger = logging.getLogger(__name__)
+from recipsim.progress import timed_step
 
 #: Version of the cache file's own layout (key, checksum, arrays), part of the key
 #: (3: the entropy sums stored with the table; 4: the fluid's constants stored with it).
@@ -244,21 +242,21 @@ def load_property_table(
         )
     from recipsim.physics.thermo.property_table_build import build_table
 
-    logger.info(
-        "building the %s property table (once, about 5 s on a small machine; cached in %s)",
-        coolprop_name,
-        path.parent,
-    )
-    table = build_table(coolprop_name, t_min, t_max, res)
-    table.path = path
-    try:
-        _write(path, table, key)
-    except OSError as exc:  # an unusable cache directory: the run goes on without it
-        warnings.warn(
-            f"property table cache {path.parent} is not usable ({exc.strerror or exc}); "
-            "the table is kept in memory for this run only (see RECIPSIM_CACHE)",
-            stacklevel=2,
-        )
+    doing = f"building the {coolprop_name} property table"
+    # the step's duration is measured and quoted the next time a table is built
+    with timed_step(
+        f"property table {coolprop_name}", doing, f"once; cached in {path.parent}", "property table"
+    ):
+        table = build_table(coolprop_name, t_min, t_max, res)
+        table.path = path
+        try:
+            _write(path, table, key)
+        except OSError as exc:  # an unusable cache directory: the run goes on without it
+            warnings.warn(
+                f"property table cache {path.parent} is not usable ({exc.strerror or exc}); "
+                "the table is kept in memory for this run only (see RECIPSIM_CACHE)",
+                stacklevel=2,
+            )
     return table
 
 

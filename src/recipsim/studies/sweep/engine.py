@@ -14,12 +14,19 @@ import os
 import sys
 import time
 import uuid
-from collections.abc import Iterable
+import warnings
+from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from tqdm.auto import tqdm
+from tqdm import TqdmWarning
+
+with warnings.catch_warnings():
+    # without ipywidgets, tqdm.auto warns (at import) and takes its text bar, which
+    # _bar_disabled shows in a notebook too: the warning would only be noise
+    warnings.simplefilter("ignore", TqdmWarning)
+    from tqdm.auto import tqdm
 
 from recipsim.atomic import mark_output
 from recipsim.errors import RecipsimError
@@ -136,7 +143,8 @@ def run_sweep(
     work = _resume(spec, planned, store, retry_failed, reports, bool(plots), allow_external_paths)
     where = (scheduler, jobs, scheduler_timeout)
     ran = (_compute(work, store, planned, spec.name, where, progress), scheduler)
-    outcome = _outcome(spec, root, planned, work, (plots, parquet), ran, start)
+    maps_bar = (lambda n: progress_bar(n, f"{spec.name} maps", "fig")) if progress else None
+    outcome = _outcome(spec, root, planned, work, (plots, parquet, maps_bar), ran, start)
     write_provenance(outcome, scheduler, argv)
     return outcome
 
@@ -174,21 +182,22 @@ def _outcome(
     root: Path,
     planned: list[PlannedPoint],
     work: _Work,
-    outputs: tuple[Plots, bool],
+    outputs: tuple[Plots, bool, Callable[[int], Any] | None],
     ran: tuple[int, str | None],
     start: float,
 ) -> SweepOutcome:
     """Tabulate the points and write the sweep's files.
 
-    ``outputs``: the plots and parquet; ``ran``: the worker processes
+    ``outputs``: the plots, parquet and the maps' progress bar (given their number);
+    ``ran``: the worker processes
     used and the scheduler (used if any point was computed); the wall time is taken from
     ``start``.
     """
-    plots, parquet = outputs
+    plots, parquet, maps_bar = outputs
     table = summary_table(planned, work.records)
     axis_columns = {c for p in planned for c in p.columns}
     axes = [c for c in table.columns if c in axis_columns]
-    files = write_outputs(spec, root, table, axes, plots, parquet)
+    files = write_outputs(spec, root, table, axes, (plots, maps_bar), parquet)
     wall = time.perf_counter() - start
     return SweepOutcome(
         spec=spec,
@@ -297,7 +306,7 @@ def _compute(
     def on_start() -> None:
         nonlocal bar
         if progress:  # a bar in a terminal or a notebook, nothing in a log file
-            bar = tqdm(total=len(tasks), desc=name, unit="pt", file=sys.stderr, disable=None)
+            bar = progress_bar(len(tasks), name, "pt")
 
     def on_record(task: PointTask, record: dict[str, Any]) -> None:
         nonlocal not_ok
@@ -336,6 +345,20 @@ def _compute(
         if bar is not None:
             bar.close()
     return jobs
+
+
+def progress_bar(total: int, name: str, unit: str) -> Any:
+    """A ``tqdm.auto`` bar on standard error: a widget in a notebook with ipywidgets,
+    else a text bar in a notebook or a terminal, nothing when standard error is a file
+    (:func:`_bar_disabled`)."""
+    return tqdm(total=total, desc=name, unit=unit, file=sys.stderr, disable=_bar_disabled())
+
+
+def _bar_disabled() -> bool | None:
+    """tqdm's ``disable``: False where standard error is a notebook's output (ipykernel's
+    stream: no terminal, yet it shows the text bar), else None (tqdm's rule: a bar on a
+    terminal only)."""
+    return False if type(sys.stderr).__module__.startswith("ipykernel") else None
 
 
 def _keep(

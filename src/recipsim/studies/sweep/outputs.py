@@ -8,7 +8,7 @@ import platform
 import sys
 import time
 from collections import Counter
-from collections.abc import Collection, Sequence
+from collections.abc import Callable, Collection, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -127,7 +127,7 @@ def write_outputs(
     root: Path,
     table: pd.DataFrame,
     axes: list[str],
-    plots: Plots,
+    plots: tuple[Plots, Callable[[int], Any] | None],
     parquet: bool,
 ) -> list[Path]:
     """Write the sweep's tables, its sweep file and its map plots into ``root``.
@@ -142,8 +142,9 @@ def write_outputs(
         The summary table (:func:`summary_table`), written to ``summary.csv``.
     axes : list of str
         Axis columns of the table (the map plots' axes).
-    plots : bool or collection of str
-        Draw all map plots, none, or those named.
+    plots : (bool or collection of str, callable or None)
+        Draw all map plots, none, or those named; a progress bar for them, made given
+        their number (:func:`~.plots.save_map_plots`).
     parquet : bool
         Also write ``summary.parquet``.
 
@@ -162,8 +163,9 @@ def write_outputs(
         files.append(pq)
     with atomic_file(root / "sweep.toml") as handle:
         handle.write(spec.text)
-    if plots:
-        files.extend(save_map_plots(table, axes, root, None if plots is True else plots))
+    maps, bar = plots
+    if maps:
+        files.extend(save_map_plots(table, axes, root, None if maps is True else maps, bar))
     return files
 
 

@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import math
 import re
-from collections.abc import Collection, Iterable, Sequence
+from collections.abc import Callable, Collection, Iterable, Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -274,6 +274,7 @@ def save_map_plots(
     axes: Sequence[str],
     out_dir: Path,
     only: Collection[str] | None = None,
+    progress: Callable[[int], Any] | None = None,
 ) -> list[Path]:
     """Draw the map plots of a summary table into ``out_dir`` (atomically).
 
@@ -287,6 +288,9 @@ def save_map_plots(
         Where the PNG files go.
     only : collection of str, optional
         Draw just these plots (names of :data:`MAP_NAMES`); default all.
+    progress : callable, optional
+        Given the number of plots to draw, a progress bar (``update()``, ``close()``):
+        drawing them takes seconds.
 
     Returns
     -------
@@ -303,23 +307,43 @@ def save_map_plots(
     groups = group_columns(ok, axes, x)
     lines = map_lines(ok, x, groups)  # the same lines in every plot
     written = []
-    for column, label, name in (*MAP_QUANTITIES, ("", "", "map_bearing_loads.png")):
-        if name[4:-4] not in wanted or (column and column not in ok):
-            continue
-        if column:
-            ax = single_axes(figsize=(7.0, 4.8))
-            fig = plot_map(ok, column, x, groups, ylabel=label, ax=ax, lines=lines)
-            ax.set_title(label.rsplit(" [", 1)[0], y=TITLE_Y)
-        else:  # panels and a legend below them, in fixed margins
-            panels = plot_bearing_loads(ok, x, groups, lines)
-            if panels is None:
-                continue
-            fig = panels
-        path = Path(out_dir) / name
-
-        def save(tmp: Path, fig: Figure = fig) -> None:
-            fig.savefig(tmp, dpi=110, format="png", pil_kwargs=PNG_OPTIONS)
-
-        atomic_write(path, save)
-        written.append(path)
+    drawn = [
+        (column, label, name)
+        for column, label, name in (*MAP_QUANTITIES, ("", "", "map_bearing_loads.png"))
+        if name[4:-4] in wanted and (not column or column in ok)
+    ]
+    bar = progress(len(drawn)) if progress is not None else None
+    try:
+        for column, label, name in drawn:
+            path = _save_map(ok, (x, groups, lines), (column, label), Path(out_dir) / name)
+            if path is not None:
+                written.append(path)
+            if bar is not None:
+                bar.update(1)
+    finally:
+        if bar is not None:
+            bar.close()
     return written
+
+
+def _save_map(
+    ok: pd.DataFrame,
+    layout: tuple[str, list[str], Any],
+    quantity: tuple[str, str],
+    path: Path,
+) -> Path | None:
+    """Draw one map plot (``quantity``: its column and label; the bearing loads' panels
+    for an empty column) into ``path``; None where there is nothing to draw."""
+    x, groups, lines = layout
+    column, label = quantity
+    if column:
+        ax = single_axes(figsize=(7.0, 4.8))
+        fig = plot_map(ok, column, x, groups, ylabel=label, ax=ax, lines=lines)
+        ax.set_title(label.rsplit(" [", 1)[0], y=TITLE_Y)
+    else:  # panels and a legend below them, in fixed margins
+        panels = plot_bearing_loads(ok, x, groups, lines)
+        if panels is None:
+            return None
+        fig = panels
+    atomic_write(path, lambda tmp: fig.savefig(tmp, dpi=110, format="png", pil_kwargs=PNG_OPTIONS))
+    return path

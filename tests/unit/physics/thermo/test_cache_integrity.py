@@ -234,35 +234,6 @@ def test_a_cache_directory_others_can_write_is_reported(tmp_path):
         check_private(shared)  # once per directory
 
 
-def test_the_first_run_is_announced_once_per_cache(tmp_path, monkeypatch):
-    """``numba_cache_lacks("integrator")`` is true until the solver's code is cached."""
-    from recipsim.cache_dirs import numba_cache_lacks, numba_cache_path
-
-    monkeypatch.setenv("NUMBA_CACHE_DIR", str(tmp_path / "numba"))
-    monkeypatch.delenv("NUMBA_DISABLE_JIT", raising=False)
-    assert numba_cache_lacks("integrator")
-    solve = numba_cache_path() / "solve"
-    solve.mkdir(parents=True)
-    (solve / "property_table._patch-279.py311.nbi").write_text("")
-    assert numba_cache_lacks("integrator")  # other modules' code is not the solver's
-    (solve / "integrator.integrate_coupled-92.py311.nbi").write_text("")
-    assert not numba_cache_lacks("integrator")
-
-
-def test_each_scene_announces_its_own_first_compilation(tmp_path, monkeypatch):
-    """The solver compiles per scene: the cylinder scene's cache does not hold the
-    coupled scene's integrator."""
-    from recipsim.cache_dirs import numba_cache_lacks, numba_cache_path
-
-    monkeypatch.setenv("NUMBA_CACHE_DIR", str(tmp_path / "numba"))
-    monkeypatch.delenv("NUMBA_DISABLE_JIT", raising=False)
-    (numba_cache_path() / "solve").mkdir(parents=True)
-    cached = numba_cache_path() / "solve" / "integrator.integrate_cylinder-368.py311.nbi"
-    cached.write_text("")
-    assert not numba_cache_lacks("integrator", "integrate_cylinder")
-    assert numba_cache_lacks("integrator", "integrate_coupled")
-
-
 def test_pickled_caches_are_not_loaded_from_a_root_others_can_write(tmp_path, monkeypatch):
     """A cache root (or its pint folder) writable by others: a warning naming it, and
     neither pint's pickled definitions nor numba's cache are taken from there; the run
