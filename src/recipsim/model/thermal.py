@@ -39,6 +39,7 @@ from typing import Any, Protocol
 import numpy as np
 
 from recipsim.case.load import Case
+from recipsim.model.cycle_response import CycleResponse
 from recipsim.model.plenum import PlenumState, isentropic_state
 from recipsim.physics.thermo import cylinder as cyl
 from recipsim.physics.thermo.shell_network import (
@@ -55,8 +56,7 @@ from recipsim.physics.thermo.shell_network import (
 )
 from recipsim.physics.thermo.shell_nodes import GP_DC, GP_SM
 from recipsim.physics.thermo.suction_path import (
-    HALF_SINE_VELOCITY_SQUARE_FACTOR,
-    half_sine_film_factor,
+    film_pulse_factor,
     series_conductance,
     tube_film_coefficient,
     tube_pressure_drop,
@@ -270,7 +270,7 @@ class ThermalCoupling:
         flow = loads.delivered_mass_flow + loads.leakage_mass_flow
         film = tube_film_coefficient(
             flow, diameter, gas["viscosity"], gas["conductivity"], prandtl,
-            _film_factor(spec.suction_pulsation_factor),
+            film_pulse_factor(spec.suction_pulsation_factor),
         )  # fmt: skip
         conductances = list(self.parameters.conductances)
         for name, area in areas.items():
@@ -368,14 +368,6 @@ class ThermalCoupling:
         self._solve_and_apply(model, CycleResponse(loads, m, s, s))
 
 
-def _film_factor(pulsation_factor: float) -> float:
-    """The film's quasi-steady pulse factor for a tube whose mean(v^2)/mean(v)^2 is
-    ``pulsation_factor``: 1 for a smoothed flow, :func:`half_sine_film_factor` for a
-    half-sine draw, linear in between."""
-    share = (pulsation_factor - 1.0) / (HALF_SINE_VELOCITY_SQUARE_FACTOR - 1.0)
-    return 1.0 + min(max(share, 0.0), 1.0) * (half_sine_film_factor() - 1.0)
-
-
 def _tube_drop(
     fluid: Any,
     plenum: PlenumState,
@@ -403,69 +395,3 @@ def _apply(model: CoupledModel, solution: NetworkSolution, pressures: NetworkPre
     model.set_discharge_state(pressures.node[GP_DC], float(solution.enthalpy[DC]))
     model.set_shell_gas_state(float(t[SG]))
     model.set_wall_temperature(float(t[CW]))
-
-
-@dataclass(frozen=True)
-class CycleResponse:
-    """A revolution's flows and how they would move with the suction plenum temperature.
-
-    Within a revolution (270 deg to 270 deg) the gas discharged was drawn in the
-    revolution before: the discharge stream is paired with that plenum (``earlier``;
-    the same as ``drawn`` when the start state follows the plenum, as in revolution
-    iteration), the suction mass, its back-flow and the leakage with the plenum of this
-    revolution (``drawn``). Moved to a plenum at T: the mass flows scale with the plenum density
-    (same volumetric efficiency; the delivered flow is the suction net flow less the
-    leakage, which it equals at the periodic state), and each stream's specific
-    enthalpy rise over its plenum's enthalpy scales with T over that plenum's temperature
-    (compression work at a fixed pressure ratio, ideal gas). Exact at the plenum the
-    revolution ran with, so it does not change the converged state; it carries the
-    cycle's first-order response into each network update so that the coupled iteration
-    converges in about the cylinder's own revolutions.
-
-    Attributes
-    ----------
-    loads : NetworkLoads
-        As measured over the revolution.
-    suction_mass_flow : float
-        Net flow through the suction valve [kg/s].
-    drawn, earlier : plenum states
-        Suction plenum of this revolution and of the one before.
-    """
-
-    loads: NetworkLoads
-    suction_mass_flow: float
-    drawn: PlenumState
-    earlier: PlenumState
-
-    def at(self, temperature: float, state: tuple[float, ...]) -> NetworkLoads:
-        """The loads at a suction plenum at ``temperature`` [K], ``state`` = its
-        (h [J/kg], c_p, rho [kg/m3])."""
-        h_new, _, rho_new = state[:3]
-        loads = self.loads
-        scale = rho_new / self.drawn.density
-
-        def moved(mass: float, enthalpy_flow: float, plenum: PlenumState) -> tuple[float, float]:
-            if mass == 0.0:
-                return 0.0, enthalpy_flow * scale
-            rise = enthalpy_flow / mass - plenum.enthalpy
-            return mass * scale, mass * scale * (h_new + rise * temperature / plenum.temperature)
-
-        m_leak, h_leak = moved(loads.leakage_mass_flow, loads.leakage_enthalpy_flow, self.drawn)
-        m_back, h_back = moved(
-            loads.suction_backflow_mass_flow, loads.suction_backflow_enthalpy_flow, self.drawn
-        )
-        delivered = (self.suction_mass_flow - loads.leakage_mass_flow) * scale
-        back = loads.discharge_backflow_mass_flow * scale
-        gross = loads.delivered_mass_flow + loads.discharge_backflow_mass_flow
-        rise = loads.discharge_enthalpy_flow / gross - self.earlier.enthalpy
-        h_dis = h_new + rise * temperature / self.earlier.temperature
-        return replace(
-            loads,
-            delivered_mass_flow=delivered,
-            discharge_backflow_mass_flow=back,
-            discharge_enthalpy_flow=(delivered + back) * h_dis,
-            suction_backflow_mass_flow=m_back,
-            suction_backflow_enthalpy_flow=h_back,
-            leakage_mass_flow=m_leak,
-            leakage_enthalpy_flow=h_leak,
-        )

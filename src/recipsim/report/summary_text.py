@@ -12,7 +12,7 @@ import math
 from collections.abc import Mapping
 from typing import Any
 
-from recipsim.results.loss_breakdown import LOSS_COLUMNS
+from recipsim.results.loss_breakdown import COP_COST_COLUMNS, LOSS_COLUMNS
 
 #: Kelvin at 0 C [K].
 _ZERO_CELSIUS = 273.15
@@ -111,20 +111,29 @@ def _powers(row: Mapping[str, Any], shaft: float, capacity: float) -> list[tuple
 
 
 def largest_losses(row: Mapping[str, Any]) -> list[tuple[str, str, str]]:
-    """The :data:`LARGEST_LOSSES` largest terms of the loss chain (``loss_* [W]``,
-    :mod:`recipsim.results.loss_breakdown`), largest first, with their share of the
-    power put in (electrical, else shaft); none where the scene has no gas model."""
-    losses = [(column, _value(row, column)) for column in LOSS_COLUMNS]
-    losses = [(c, v) for c, v in losses if math.isfinite(v) and v > 0.0]
-    losses.sort(key=lambda item: -item[1])
+    """The :data:`LARGEST_LOSSES` terms of the loss chain (``loss_* [W]``,
+    :mod:`recipsim.results.loss_breakdown`) that cost the most COP (the capacity a
+    suction-side loss takes counted with its power), largest first, with their share of
+    the power put in (electrical, else shaft) and their COP cost; none where the scene has
+    no gas model."""
+    losses = [
+        (column, _value(row, column), _value(row, COP_COST_COLUMNS[column]))
+        for column in LOSS_COLUMNS
+    ]
+    losses = [item for item in losses if math.isfinite(item[1]) and item[1] > 0.0]
+    losses.sort(key=lambda item: -(item[2] if math.isfinite(item[2]) else item[1]))
     power = _value(row, "motor_electrical_power [W]")
     if not math.isfinite(power) or power <= 0.0:
         power = _value(row, "shaft_power [W]")
     rows = []
-    for column, value in losses[:LARGEST_LOSSES]:
+    for column, value, cost in losses[:LARGEST_LOSSES]:
         name = column.removeprefix("loss_").split(" [", 1)[0].replace("_", " ")
-        share = f" ({100.0 * value / power:.1f} % of the input)" if power > 0.0 else ""
-        rows.append((f"loss: {name}", _watts(value), f"W{share}"))
+        notes = [f"{100.0 * value / power:.1f} % of the input"] if power > 0.0 else []
+        if math.isfinite(cost):
+            notes.append(f"costs {cost:.3f} of COP")
+        rows.append(
+            (f"loss: {name}", _watts(value), "W" + (f" ({', '.join(notes)})" if notes else ""))
+        )
     return rows
 
 

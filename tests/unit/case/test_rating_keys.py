@@ -124,13 +124,17 @@ def test_a_nameplate_is_fitted_once_per_process_and_reproduced():
     again = load_case(catalogue, {"operating_point.standard": "ASHRAE_LBP"}).motor_circuit
     assert first is not None and again is first
     assert motor_losses._fitted_circuit.cache_info().misses == 1
+    case = load_case(catalogue)
     speed = 2900.0 * math.pi / 30.0  # the case's rated speed [rad/s]
-    rated_torque = 0.247  # [N m]
+    # the torques as the case applies them (matched to its displacement: 0.247 and 0.54
+    # N m within the 5-digit displacement it is written with)
+    rated_torque, breakdown = case.motor.rated_torque, case.motor.breakdown_torque
+    assert rated_torque == pytest.approx(0.247, rel=1e-5)
     point = motor_operating_point(first, speed)
     assert point.shaft_power == pytest.approx(rated_torque * speed, rel=1e-8)
-    assert point.efficiency == pytest.approx(0.7314, rel=1e-8)
+    assert point.efficiency == pytest.approx(case.raw["motor"]["rated_efficiency"], rel=1e-8)
     assert point.power_factor == pytest.approx(0.60, rel=1e-8)
-    assert motor_breakdown(first)[1] == pytest.approx(0.54, rel=1e-8)
+    assert motor_breakdown(first)[1] == pytest.approx(breakdown, rel=1e-8)
     other = load_case(catalogue, {"motor.rated_power_factor": 0.62}).motor_circuit
     assert other != first
     assert motor_losses._fitted_circuit.cache_info().misses == 2

@@ -40,6 +40,14 @@ def half_sine_film_factor(exponent: float = 0.8) -> float:
     return 0.5 * math.pi**p * integral / math.pi
 
 
+def film_pulse_factor(pulsation_factor: float) -> float:
+    """The film's quasi-steady pulse factor for a tube whose mean(v^2) / mean(v)^2 is
+    ``pulsation_factor``: 1 for a smoothed flow, :func:`half_sine_film_factor` for a
+    half-sine draw (``pi^2 / 4``), linear in between [-]."""
+    share = (pulsation_factor - 1.0) / (HALF_SINE_VELOCITY_SQUARE_FACTOR - 1.0)
+    return 1.0 + min(max(share, 0.0), 1.0) * (half_sine_film_factor() - 1.0)
+
+
 def reynolds_number(mass_flow: float, diameter: float, viscosity: float) -> float:
     """``Re = 4 mdot / (pi D mu)`` of a round tube [-]."""
     return 4.0 * abs(mass_flow) / (math.pi * diameter * viscosity)

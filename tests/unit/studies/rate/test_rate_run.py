@@ -1,4 +1,5 @@
-"""``recipsim rate`` end to end on a cheap case (r600a_lbp: the rigid crank, no motor model):
+"""``recipsim rate`` end to end on a cheap case (the ideal machine with R600a: the rigid
+crank, no motor model):
 one rating of 20 points shared by the tests (a module-scoped fixture), whose evaporating
 5 C column lies outside R600a's envelope (0 C at most): those four points fail, are
 reported and are left out of the fit. The catalogue of the TLES5.7KK.3 runs beside it (a
@@ -30,12 +31,17 @@ CONDENSING = "35:65:10"
 
 @pytest.fixture(scope="module")
 def out(tmp_path_factory):
-    return tmp_path_factory.mktemp("rate")
+    folder = tmp_path_factory.mktemp("rate")
+    # an R600a compressor without a motor model: the ideal machine, rated at EN 12900
+    (folder / "r600a_ideal.toml").write_text(
+        'extends = "reference_r134a_lbp_ideal"\nrefrigerant = "R600a"\n'
+    )
+    return folder
 
 
 @pytest.fixture(scope="module")
 def rating(out):
-    case = recipsim.load_case("r600a_lbp")
+    case = recipsim.load_case(str(out / "r600a_ideal.toml"))
     return recipsim.rate(
         case,
         standard="EN12900",
@@ -82,7 +88,7 @@ def test_dew_points_of_a_pure_refrigerant_are_the_grid(rating):
 
 
 def test_the_written_coefficients_read_back_to_the_fit(rating, out):
-    directory = out / "r600a_lbp_EN12900"
+    directory = out / "r600a_ideal_EN12900"
     polynomials = recipsim.read_coefficients(directory / "coefficients.csv")
     ok = rating.ratings[rating.ratings["status"] == "ok"]
     t_evap = ok["suction_dew_temperature [degC]"].to_numpy() + 273.15
@@ -134,8 +140,8 @@ def test_catalogue_points_inside_the_range_get_the_polynomial(rating):
 
 
 def test_fewer_than_ten_good_points_are_refused(rating, out):
-    case = recipsim.load_case("r600a_lbp")
-    directory = out / "r600a_lbp_EN12900"
+    case = recipsim.load_case(str(out / "r600a_ideal.toml"))
+    directory = out / "r600a_ideal_EN12900"
     with pytest.raises(RatingError, match="8 good points.*8 ok, 4 outside_envelope"):
         # 12 points, four outside the envelope: the same points, taken from disk
         rate_case(case, directory, standard="EN12900", evaporating=[-30.0, -20.0, 5.0],
@@ -143,12 +149,13 @@ def test_fewer_than_ten_good_points_are_refused(rating, out):
 
 
 def test_the_command_resumes_from_the_points_on_disk(rating, out, capsys):
-    argv = ["rate", "r600a_lbp", "--standard", "EN12900", "--evaporating=-30,-25,-20,-15,5",
-            f"--condensing={CONDENSING}", "--out", str(out), "-j", "1", "--no-plots"]  # fmt: skip
+    argv = ["rate", str(out / "r600a_ideal.toml"), "--standard", "EN12900",
+            "--evaporating=-30,-25,-20,-15,5", f"--condensing={CONDENSING}", "--out", str(out),
+            "-j", "1", "--no-plots"]  # fmt: skip
     assert main(argv) == 0
     printed = capsys.readouterr().out
     assert "fit residuals" in printed and "4 of 20 points failed" in printed
-    directory = out / "r600a_lbp_EN12900"
+    directory = out / "r600a_ideal_EN12900"
     provenance = json.loads((directory / "points" / "provenance.json").read_text())
     assert provenance["computed"] == 0 and provenance["reused"] == 20
     meta = json.loads((directory / "rating.json").read_text())
@@ -180,9 +187,9 @@ def test_a_makers_coefficients_are_compared_with_the_model(rating, out, tmp_path
     # the rating's own coefficients as the maker's: they differ from the model by the
     # fit's residuals, point by point
     maker = tmp_path / "maker.csv"
-    maker.write_bytes((out / "r600a_lbp_EN12900" / "coefficients.csv").read_bytes())
-    case = recipsim.load_case("r600a_lbp")
-    again = rate_case(case, out / "r600a_lbp_EN12900", standard="EN12900",
+    maker.write_bytes((out / "r600a_ideal_EN12900" / "coefficients.csv").read_bytes())
+    case = recipsim.load_case(str(out / "r600a_ideal.toml"))
+    again = rate_case(case, out / "r600a_ideal_EN12900", standard="EN12900",
                       evaporating=EVAPORATING, condensing=CONDENSING, coefficients=maker,
                       sweep_options={"progress": False, "jobs": 1})  # fmt: skip
     capacity = again.maker[again.maker["quantity"] == "cooling_capacity"]
