@@ -24,7 +24,12 @@ import pandas as pd
 from recipsim.case.files import read_input_text
 from recipsim.case.units import to_si
 from recipsim.errors import CaseError
-from recipsim.studies.calibrate.data import MAX_DATA_BYTES, MeasuredPoint, read_points
+from recipsim.studies.calibrate.data import (
+    MAX_DATA_BYTES,
+    MeasuredPoint,
+    find_data_file,
+    read_points,
+)
 from recipsim.studies.rate.coefficients import PUBLISHED_UNITS, Polynomial, unit_factor
 from recipsim.studies.rate.grid import RatingGrid
 from recipsim.studies.rate.polynomial import from_kelvin
@@ -51,7 +56,8 @@ def read_catalogue(path: str | Path) -> list[MeasuredPoint]:
     CaseError
         Naming the file and what is wrong (no comparable column, a bad cell).
     """
-    text = read_input_text(Path(path), "catalogue", MAX_DATA_BYTES)
+    path = find_data_file(path)  # a file, or a shipped catalogue by its file name
+    text = read_input_text(path, "catalogue", MAX_DATA_BYTES)
     header = [str(c).strip() for c in pd.read_csv(io.StringIO(text), nrows=0).columns]
     targets = [c for c in CATALOGUE_TARGETS if c in header]
     if not targets:

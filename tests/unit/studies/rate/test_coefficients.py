@@ -93,3 +93,14 @@ def test_a_malformed_file_is_refused_naming_where(tmp_path, change, where):
     with pytest.raises(CaseError) as info:
         read_coefficients(path)
     assert info.value.key.startswith(where) or where in str(info.value)
+
+
+def test_a_shipped_catalogue_is_found_by_its_file_name():
+    """``--catalogue danfoss_tles5.7kk.3_r600a.csv`` from any directory: the shipped file,
+    as calibrate finds it (its seven points, capacity at every one, COP at two)."""
+    from recipsim.studies.rate.compare import read_catalogue
+
+    points = read_catalogue("danfoss_tles5.7kk.3_r600a.csv")
+    assert len(points) == 7
+    assert all("cooling_capacity [W]" in p.targets for p in points)
+    assert sum("COP [-]" in p.targets for p in points) == 2
