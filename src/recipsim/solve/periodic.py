@@ -40,6 +40,7 @@ from recipsim.case.sections import SolverSettings
 from recipsim.errors import SolverError
 from recipsim.model.build import Model, WorkingModel
 from recipsim.model.scenes import SCENE_CYLINDER
+from recipsim.solve.acceleration import AndersonMixing
 from recipsim.solve.residual import cycle_residual, residual_reference, state_change
 from recipsim.solve.revolution import (
     INTEGRATOR_METHODS,
@@ -221,6 +222,7 @@ def _iterate(
     converged = False
     period = 1
     tried: set[int] = set()  # hand-overs tried: 1 (one-revolution shooting) or n
+    mixing = accelerated(model) if hand_over else None
     for count in range(1, s.max_revolutions + 1):
         if tally.revolutions >= s.max_revolutions:
             break  # spent, shooting's revolutions included
@@ -244,6 +246,7 @@ def _iterate(
             converged = True
             break
         if stalled(history):
+            mixing = None
             ref = residual_reference(model, rev) * (model.scale[: model.n_err] > 0.0)
             ends = [r.y_end[: model.n_err] for r in recent]
             period = subharmonic_period(ends, ref, s.cycle_tolerance)
@@ -255,10 +258,22 @@ def _iterate(
             handed = _hand_over(model, recent, (rev, h), history, tally, start, integrate, tried)
             if handed is not None:
                 return handed
+        if mixing is not None:
+            mixing.next_start(rev, y)
     assert rev is not None
     method = "revolutions, shooting's period-1 orbit repels" if 1 in tried else "revolutions"
     solution = PeriodicSolution(model, rev, tally.revolutions, residual, converged, history)
     return _tallied(solution, tally, start, method, period)
+
+
+def accelerated(model: WorkingModel) -> AndersonMixing | None:
+    """Anderson mixing (:mod:`.acceleration`) for a crank train's revolutions (a scene
+    with a mechanism, without the shell's thermal network, whose state the mixing does not
+    see); None for the cylinder on the rigid crank, whose slowest multiplier (about 0.4)
+    leaves little to gain."""
+    if model.scene == SCENE_CYLINDER or model.thermal is not None:
+        return None
+    return AndersonMixing(model)
 
 
 def _tallied(
