@@ -19,6 +19,16 @@ revolution is integrated from its start as before and convergence is judged exac
 in plain revolution iteration (the cycle residual of a revolution against the previous
 one), so an accelerated solve ends on a revolution as genuine as a plain one.
 
+Scales: each unknown relative to the cycle residual's reference
+(:func:`~recipsim.solve.residual.residual_reference`), except the crank speed under a
+free-running drive: the rotor's kinetic energy is several times the drive work of a
+revolution (13 J against 2 J on the reference compressor), so a speed that is off by a
+part in 1e5 moves the revolution's drive work, which the cycle residual also judges, by
+7 parts in 1e5. The crank speed is scaled by ``W / (I omega)``, the speed error that
+moves the drive work ``W`` by its own size (``I``: the rotor's polar inertia with the
+counterweight): unscaled, the least squares would not see it and leave the drive work
+converging at the plain rate.
+
 Safeguards: no mixing on the first revolution (from the initial state, far from the
 orbit, the map is far from linear); the history restarts when the discrete modes at the
 section change (the unknowns change), when the residual grew over the last revolution,
@@ -31,13 +41,16 @@ from __future__ import annotations
 
 import numpy as np
 
-from recipsim.model.build import WorkingModel
-from recipsim.solve.residual import residual_reference
+from recipsim.model.build import WorkingModel, scenes
+from recipsim.physics.mechanics import layout as mlay
+from recipsim.solve.residual import reciprocating_energy, residual_reference
 from recipsim.solve.revolution import Revolution, discharge_enthalpy
 from recipsim.solve.shooting_map import shooting_unknowns
 
-#: Differences kept (the slow modes of a crank train are one or two).
-MEMORY = 3
+#: Differences kept: the slow modes of a crank train are one or two (the bearings' orbit,
+#: the crank speed under a motor); a longer memory keeps iterates from farther away,
+#: where the map is less linear (measured: 3 and 5 took 1-3 more revolutions on the skirt).
+MEMORY = 2
 #: Singular values of the scaled differences below this fraction of the largest are dropped.
 RCOND = 1e-6
 #: Largest Anderson step, in multiples of the plain step ``f_k`` (scaled infinity norms):
@@ -66,8 +79,10 @@ class AndersonMixing:
 
     def _reset(self, rev: Revolution) -> None:
         self.idx = shooting_unknowns(self.model, rev.mode_end)
-        ref = residual_reference(self.model, rev)[self.idx]
-        self.ref = np.append(ref, max(abs(self.enthalpy_start), 1.0))
+        ref = residual_reference(self.model, rev)
+        speed = self.model.state_index("mechanism_crank_speed")
+        ref[speed] = min(ref[speed], _speed_scale(self.model, rev))
+        self.ref = np.append(ref[self.idx], max(abs(self.enthalpy_start), 1.0))
         self.starts, self.images = [], []
 
     def next_start(self, rev: Revolution, y_next: np.ndarray) -> None:
@@ -102,6 +117,18 @@ class AndersonMixing:
         if h_out is not None:
             model.set_discharge_enthalpy(self.enthalpy_start)
         self.mixed += int(start is not g)
+
+
+def _speed_scale(model: WorkingModel, rev: Revolution) -> float:
+    """``W / (I omega)`` [rad/s]: the crank speed error that changes the drive work of
+    ``rev`` by its own size (module docstring; ``W`` at least the reciprocating energy
+    that floors it in the cycle residual)."""
+    mp = mlay.PAR.bundle(model.mechanism_par)
+    inertia = mp.rotor_polar_inertia + mp.counterweight_mass * mp.counterweight_radius**2
+    end = scenes.named_state(model.scene, rev.y_end)
+    work = max(abs(end.drive_work), reciprocating_energy(model))
+    omega = abs(end.mechanism_crank_speed)
+    return work / (inertia * omega) if inertia * omega > 0.0 else np.inf
 
 
 def _norm(v: np.ndarray) -> float:
