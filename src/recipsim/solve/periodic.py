@@ -10,8 +10,11 @@ indicated work, mass-weighted discharge enthalpy and drive work from the
 previous revolution, and the revolution's mass and energy closures over 10
 (:mod:`recipsim.solve.residual`: near zero delivery the cylinder keeps many times the
 gas it passes, and a state change within tolerance can leave a closure of 2e-3).
-Undamped flexible bearings never settle this way (their free
-vibration does not decay) and lightly damped ones settle slowly: ``"auto"`` hands
+On a crank train ``"auto"`` mixes the revolutions (Anderson,
+:mod:`.acceleration`): each starts from an extrapolation of the last three, which removes a
+slow mode of the bearings' orbit (the piston on its skirt film: 10 revolutions instead of
+39); ``"revolutions"`` iterates plainly. Undamped flexible bearings never settle this way
+(their free vibration does not decay) and lightly damped ones settle slowly: ``"auto"`` hands
 such runs over to shooting (see :func:`solve_periodic`), as it does any run whose
 residual stalls (:func:`stalled`: no halving over ``STALL_WINDOW`` revolutions), e.g. the
 slow settling near zero delivery; ``"revolutions"`` ends them at ``max_revolutions``
