@@ -10,8 +10,11 @@ indicated work, mass-weighted discharge enthalpy and drive work from the
 previous revolution, and the revolution's mass and energy closures over 10
 (:mod:`recipsim.solve.residual`: near zero delivery the cylinder keeps many times the
 gas it passes, and a state change within tolerance can leave a closure of 2e-3).
-Undamped flexible bearings never settle this way (their free
-vibration does not decay) and lightly damped ones settle slowly: ``"auto"`` hands
+On a crank train ``"auto"`` mixes the revolutions (Anderson,
+:mod:`.acceleration`): each starts from an extrapolation of the last three, which removes a
+slow mode of the bearings' orbit (the piston on its skirt film: 10 revolutions instead of
+39); ``"revolutions"`` iterates plainly. Undamped flexible bearings never settle this way
+(their free vibration does not decay) and lightly damped ones settle slowly: ``"auto"`` hands
 such runs over to shooting (see :func:`solve_periodic`), as it does any run whose
 residual stalls (:func:`stalled`: no halving over ``STALL_WINDOW`` revolutions), e.g. the
 slow settling near zero delivery; ``"revolutions"`` ends them at ``max_revolutions``
@@ -40,6 +43,7 @@ from recipsim.case.sections import SolverSettings
 from recipsim.errors import SolverError
 from recipsim.model.build import Model, WorkingModel
 from recipsim.model.scenes import SCENE_CYLINDER
+from recipsim.solve.acceleration import AndersonMixing
 from recipsim.solve.residual import cycle_residual, residual_reference, state_change
 from recipsim.solve.revolution import (
     INTEGRATOR_METHODS,
@@ -221,6 +225,7 @@ def _iterate(
     converged = False
     period = 1
     tried: set[int] = set()  # hand-overs tried: 1 (one-revolution shooting) or n
+    mixing = accelerated(model) if hand_over else None
     for count in range(1, s.max_revolutions + 1):
         if tally.revolutions >= s.max_revolutions:
             break  # spent, shooting's revolutions included
@@ -244,6 +249,7 @@ def _iterate(
             converged = True
             break
         if stalled(history):
+            mixing = None
             ref = residual_reference(model, rev) * (model.scale[: model.n_err] > 0.0)
             ends = [r.y_end[: model.n_err] for r in recent]
             period = subharmonic_period(ends, ref, s.cycle_tolerance)
@@ -255,10 +261,22 @@ def _iterate(
             handed = _hand_over(model, recent, (rev, h), history, tally, start, integrate, tried)
             if handed is not None:
                 return handed
+        if mixing is not None:
+            mixing.next_start(rev, y)
     assert rev is not None
     method = "revolutions, shooting's period-1 orbit repels" if 1 in tried else "revolutions"
     solution = PeriodicSolution(model, rev, tally.revolutions, residual, converged, history)
     return _tallied(solution, tally, start, method, period)
+
+
+def accelerated(model: WorkingModel) -> AndersonMixing | None:
+    """Anderson mixing (:mod:`.acceleration`) for a crank train's revolutions (a scene
+    with a mechanism, without the shell's thermal network, whose state the mixing does not
+    see); None for the cylinder on the rigid crank, whose slowest multiplier (about 0.4)
+    leaves little to gain."""
+    if model.scene == SCENE_CYLINDER or model.thermal is not None:
+        return None
+    return AndersonMixing(model)
 
 
 def _tallied(

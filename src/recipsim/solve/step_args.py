@@ -63,7 +63,10 @@ class Workspace(NamedTuple):
     interpolated state, scratch derivative; ``aux`` (``N_AUX``): the scene's outputs;
     ``g_old``, ``g_new``, ``g_int`` (``N_EVENTS``): event values at the step's start,
     end and at a trial time; ``jac`` (n, n_err), ``lu`` (n_err, n_err), ``piv``
-    (n_err): the Rosenbrock-W Jacobian, its iteration matrix's factors and pivots.
+    (n_err): the Rosenbrock-W Jacobian, its iteration matrix's factors and pivots;
+    ``active`` (n_err) and ``usub`` (n_err): the indices of the states the iteration
+    matrix is factorised over (under control, nonzero scale) and a right-hand side
+    gathered on them.
     """
 
     stages: np.ndarray
@@ -78,6 +81,8 @@ class Workspace(NamedTuple):
     jac: np.ndarray
     lu: np.ndarray
     piv: np.ndarray
+    active: np.ndarray
+    usub: np.ndarray
 
 
 @njit(cache=True)
@@ -96,4 +101,6 @@ def new_workspace(n, n_err):
         np.zeros((n, n_err)),
         np.empty((n_err, n_err)),
         np.empty(n_err, dtype=np.int64),
+        np.zeros(n_err, dtype=np.int64),
+        np.empty(n_err),
     )

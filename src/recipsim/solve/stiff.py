@@ -13,9 +13,13 @@ keeps its order with *any* matrix in place of the Jacobian. That allows
 - a Jacobian with respect to the error-controlled states only (forward differences,
   one right-hand side per state of nonzero scale): the quadratures and zero-scale
   states do not feed back, so their columns are zero and the iteration matrix is
-  block lower triangular, ``n_err`` x ``n_err`` to factorise. The quadratures' rows are
-  kept: their stages then see the same linearisation as the gas states they integrate
-  (without them the cycle's mass and energy balances close 100x worse);
+  block lower triangular: only its block on the states of nonzero scale is factorised
+  (28 x 28 on the coupled lubricated scene, whose 46 states include 18 quadratures:
+  a fifth of the full matrix's factorisation, which was half of the solve's time
+  outside the right-hand side), the others' rows are solved for explicitly. The
+  quadratures' rows are kept: their stages then see the same linearisation as the gas
+  states they integrate (without them the cycle's mass and energy balances close 100x
+  worse);
 - no time derivative of the right-hand side (the autonomised system's approximate
   Jacobian has a zero time column);
 - reusing a Jacobian over several steps (refreshed after a rejection).
@@ -206,15 +210,34 @@ def _lu_solve(a, piv, b, n) -> None:
 
 
 @njit(cache=True)
-def _solve_stage(lu, piv, jac, n_err, hg, u) -> None:
-    """``u <- W^-1 u`` with ``W = I / (h gamma) - J``, ``J`` zero in the columns beyond
-    ``n_err`` (block lower triangular: the leading block from its LU factors, then the
-    rest explicitly)."""
-    _lu_solve(lu, piv, u, n_err)
-    for i in range(n_err, u.shape[0]):
+def _active_states(scale, n_err, active) -> int:
+    """Write the indices of the states under control with nonzero scale into ``active``
+    (increasing); returns their number."""
+    m = 0
+    for i in range(n_err):
+        if scale[i] != 0.0:
+            active[m] = i
+            m += 1
+    return m
+
+
+@njit(cache=True)
+def _solve_stage(lu, piv, jac, active, m, usub, hg, u) -> None:
+    """``u <- W^-1 u`` with ``W = I / (h gamma) - J``, ``J`` zero in every column but
+    those of the ``m`` states ``active`` (block lower triangular: the active block from
+    its LU factors, then the other rows explicitly, ``u_i = h gamma (b_i + J_ia u_a)``)."""
+    for a in range(m):
+        usub[a] = u[active[a]]
+    _lu_solve(lu, piv, usub, m)
+    k = 0
+    for i in range(u.shape[0]):
+        if k < m and active[k] == i:
+            u[i] = usub[k]
+            k += 1
+            continue
         s = u[i]
-        for j in range(n_err):
-            s += jac[i, j] * u[j]
+        for b in range(m):
+            s += jac[i, active[b]] * usub[b]
         u[i] = hg * s
 
 
@@ -225,7 +248,8 @@ def w_step(code, t, h, y, ynew, scene, tol, work):
 
     ``code`` is the scene's code (a compile-time constant); ``scene``, ``tol`` and
     ``work`` are the bundles of :mod:`recipsim.solve.step_args`;
-    uses ``work.stages[1:6]``, ``work.lu`` and ``work.piv`` as work space. Returns
+    uses ``work.stages[1:6]``, ``work.lu``, ``work.piv``, ``work.active`` and
+    ``work.usub`` as work space. Returns
     ``(status, error_norm)``; on success ``ynew`` holds the state at ``t + h`` and
     ``work.stages[6] = f(t + h, ynew)`` (status -1: singular iteration matrix).
     """
@@ -246,19 +270,23 @@ def w_step(code, t, h, y, ynew, scene, tol, work):
     u4 = stages[4]
     fs = stages[5]
     k7 = stages[6]
+    active = work.active
+    usub = work.usub
     hg = h * GAMMA
     inv = 1.0 / hg
-    for i in range(n_err):
-        for j in range(n_err):
-            lu[i, j] = -jac[i, j]
-        lu[i, i] += inv
-    if not _lu_factor(lu, piv, n_err):
+    m_act = _active_states(scale, n_err, active)
+    for a in range(m_act):
+        ia = active[a]
+        for b in range(m_act):
+            lu[a, b] = -jac[ia, active[b]]
+        lu[a, a] += inv
+    if not _lu_factor(lu, piv, m_act):
         return -1, math.inf
     ih = 1.0 / h
     # stage 1
     for i in range(n):
         u1[i] = k1[i]
-    _solve_stage(lu, piv, jac, n_err, hg, u1)
+    _solve_stage(lu, piv, jac, active, m_act, usub, hg, u1)
     # stage 2
     for i in range(n):
         ytmp[i] = y[i] + _A21 * u1[i]
@@ -267,7 +295,7 @@ def w_step(code, t, h, y, ynew, scene, tol, work):
         return st, math.inf
     for i in range(n):
         u2[i] = fs[i] + ih * (_C21 * u1[i])
-    _solve_stage(lu, piv, jac, n_err, hg, u2)
+    _solve_stage(lu, piv, jac, active, m_act, usub, hg, u2)
     # stage 3
     for i in range(n):
         ytmp[i] = y[i] + _A31 * u1[i] + _A32 * u2[i]
@@ -276,7 +304,7 @@ def w_step(code, t, h, y, ynew, scene, tol, work):
         return st, math.inf
     for i in range(n):
         u3[i] = fs[i] + ih * (_C31 * u1[i] + _C32 * u2[i])
-    _solve_stage(lu, piv, jac, n_err, hg, u3)
+    _solve_stage(lu, piv, jac, active, m_act, usub, hg, u3)
     # stage 4
     for i in range(n):
         ytmp[i] = y[i] + _A41 * u1[i] + _A42 * u2[i] + _A43 * u3[i]
@@ -285,7 +313,7 @@ def w_step(code, t, h, y, ynew, scene, tol, work):
         return st, math.inf
     for i in range(n):
         u4[i] = fs[i] + ih * (_C41 * u1[i] + _C42 * u2[i] + _C43 * u3[i])
-    _solve_stage(lu, piv, jac, n_err, hg, u4)
+    _solve_stage(lu, piv, jac, active, m_act, usub, hg, u4)
     for i in range(n):
         ynew[i] = y[i] + _M1 * u1[i] + _M2 * u2[i] + _M3 * u3[i] + _M4 * u4[i]
     st = rhs_for(code, t + h, ynew, mode, par, ipar, props, pbuf, k7, aux)

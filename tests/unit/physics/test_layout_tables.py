@@ -180,8 +180,14 @@ def test_mechanism_constants_are_the_tables_indices() -> None:
         "A_BEARING_DISSIPATION": nb,
         "A_BEARING_CONTACT": nb,
         "A_BEARING_PEAK_PRESSURE": nb,
+        "A_SKIRT_CACHE_ROWS": 2 * mlay.N_FILM_CACHE,
     }
     _covered(mlay.OUTPUTS, _slot_constants(mlay, ("A_",)), series, "outputs")
+    cache_blocks = {
+        "FC_ARGUMENTS": mlay.N_FILM_ARGUMENTS,
+        "FC_RESULTS": mlay.N_FILM_CACHE - mlay.FC_RESULTS,
+    }
+    _covered(mlay.FILM_CACHE, _slot_constants(mlay, ("FC_",)), cache_blocks, "film cache")
     for i, bearing in enumerate(mlay.BEARING_NAMES):
         row = mlay.P_BEARINGS + i * mlay.N_BEARING_PAR
         assert mlay.PAR.entries[row + mlay.BP_LAW].name == f"{bearing}_law"

@@ -84,6 +84,39 @@ def _record_station(
 
 
 @njit(cache=True)
+def _cached_skirt(aux: np.ndarray, arguments: tuple) -> int:  # type: ignore[type-arg]
+    """The row of the skirt film's cache (:data:`.layout.A_SKIRT_CACHE_ROWS`) that holds
+    ``arguments`` exactly, made the row used last; -1 if none does."""
+    for k in range(2):
+        row = lay.A_SKIRT_CACHE_ROWS + k * lay.N_FILM_CACHE
+        if aux[row + lay.FC_VALID] != 1.0:
+            continue
+        same = True
+        for j in range(lay.N_FILM_ARGUMENTS):
+            if aux[row + lay.FC_ARGUMENTS + j] != arguments[j]:
+                same = False
+                break
+        if same:
+            aux[lay.A_SKIRT_CACHE] = k
+            return row
+    return -1
+
+
+@njit(cache=True)
+def _cache_skirt(aux: np.ndarray, arguments: tuple, results: tuple) -> None:  # type: ignore[type-arg]
+    """Keep ``arguments`` and their ``results`` in the row of the skirt film's cache
+    not used last, which becomes the row used last."""
+    k = 1 - int(aux[lay.A_SKIRT_CACHE])
+    row = lay.A_SKIRT_CACHE_ROWS + k * lay.N_FILM_CACHE
+    for j in range(lay.N_FILM_ARGUMENTS):
+        aux[row + lay.FC_ARGUMENTS + j] = arguments[j]
+    for j in range(len(results)):
+        aux[row + lay.FC_RESULTS + j] = results[j]
+    aux[row + lay.FC_VALID] = 1.0
+    aux[lay.A_SKIRT_CACHE] = k
+
+
+@njit(cache=True)
 def piston_skirt_forces(
     par: np.ndarray,
     aux: np.ndarray,
@@ -103,27 +136,46 @@ def piston_skirt_forces(
     Returns the lateral (Y) forces on the piston at the two stations and the axial
     friction force on the piston (positive towards the head) [N]; records the stations
     in ``aux`` as bearings 5 and 6 (the film's peak pressure at ``piston_skirt``).
+
+    Arguments met in one of the last two evaluations with this ``aux`` (the
+    finite-difference Jacobian's columns of states that do not move the piston) take
+    that evaluation's results from the cache in ``aux`` (:data:`.layout.FILM_CACHE`):
+    the same numbers, bit for bit, without the film's 8-20 us. Not with the detailed
+    outputs (the peak pressure is not cached).
     """
     row = _ROW + lay.B_PISTON_SKIRT * _NB
     radius = 0.5 * par[row + lay.BP_DIAMETER]
     clearance = par[row + lay.BP_CLEARANCE]
     mu = par[row + lay.BP_VISCOSITY]
-    f_top, f_skirt, friction = skirt_film(
-        e_top, e_skirt, v_top, v_skirt, sliding_speed, radius, top_to_skirt, clearance, mu
-    )
-    c_top, c_skirt, c_friction = skirt_contact(
-        e_top, e_skirt, v_top, v_skirt, sliding_speed, radius, top_to_skirt, clearance,
+    arguments = (
+        e_top, e_skirt, v_top, v_skirt, sliding_speed, top_to_skirt, radius, clearance, mu,
         par[row + lay.BP_CONTACT_FILM], par[row + lay.BP_CONTACT_STIFFNESS],
         par[row + lay.BP_CONTACT_FRICTION],
     )  # fmt: skip
-    f_top += c_top
-    f_skirt += c_skirt
-    friction += c_friction
+    detailed = par[lay.P_DETAILED_OUTPUTS] != 0.0
+    cached = -1 if detailed else _cached_skirt(aux, arguments)
     peak = 0.0
-    if par[lay.P_DETAILED_OUTPUTS] != 0.0:
-        peak = skirt_peak_pressure(
+    if cached >= 0:
+        r = cached + lay.FC_RESULTS
+        f_top, f_skirt, friction = aux[r], aux[r + 1], aux[r + 2]
+        c_top, c_skirt = aux[r + 3], aux[r + 4]
+    else:
+        f_top, f_skirt, friction = skirt_film(
             e_top, e_skirt, v_top, v_skirt, sliding_speed, radius, top_to_skirt, clearance, mu
         )
+        c_top, c_skirt, c_friction = skirt_contact(
+            e_top, e_skirt, v_top, v_skirt, sliding_speed, radius, top_to_skirt, clearance,
+            arguments[9], arguments[10], arguments[11],
+        )  # fmt: skip
+        f_top += c_top
+        f_skirt += c_skirt
+        friction += c_friction
+        if detailed:
+            peak = skirt_peak_pressure(
+                e_top, e_skirt, v_top, v_skirt, sliding_speed, radius, top_to_skirt, clearance, mu
+            )
+        else:
+            _cache_skirt(aux, arguments, (f_top, f_skirt, friction, c_top, c_skirt))
     _record_station(lay.B_PISTON_TOP, aux, e_top, f_top, -f_top * v_top, abs(c_top), 0.0)
     _record_station(
         lay.B_PISTON_SKIRT, aux, e_skirt, f_skirt, -f_skirt * v_skirt, abs(c_skirt), peak

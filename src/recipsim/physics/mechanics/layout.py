@@ -265,4 +265,33 @@ A_BEARING_PEAK_PRESSURE = OUTPUTS.add_series(
     "largest film pressure at this instant (computed with P_DETAILED_OUTPUTS, else 0; the "
     "skirt film reports at piston_skirt)",
 )
+#: The skirt film's cache (not a result): its last two evaluations, each a row of
+#: :data:`FILM_CACHE` (a validity flag, the arguments the film and its contact read and
+#: their results), and the row used last at ``A_SKIRT_CACHE``. The film is the costliest
+#: part of the right-hand side (8-20 us); the finite-difference Jacobian's columns of the
+#: states that do not move the piston (the rotor's, the rod's, the gas's: 21 of 28)
+#: find their arguments here and take the results bit for bit
+#: (:func:`recipsim.physics.mechanics.bearing_forces.piston_skirt_forces`).
+FILM_CACHE = Layout("film cache row")
+_f = FILM_CACHE.add
+FC_VALID = _f("valid", "code", "1 once the row holds an evaluation")
+FC_ARGUMENTS = FILM_CACHE.add_series(
+    "argument_{}",
+    (
+        "e_top", "e_skirt", "v_top", "v_skirt", "sliding_speed", "length", "radius",
+        "clearance", "viscosity", "contact_film", "contact_stiffness", "contact_friction",
+    ),
+    "-",
+    "argument of the film and its contact, in SI units (m, m/s, Pa s, N/m^1.5, -)",
+)  # fmt: skip
+N_FILM_ARGUMENTS = FILM_CACHE.size - FC_ARGUMENTS
+FC_RESULTS = FILM_CACHE.add_series(
+    "result_{}",
+    ("f_top", "f_skirt", "friction", "contact_top", "contact_skirt"),
+    "N",
+    "forces at the stations, friction, and the contact's normal forces",
+)
+N_FILM_CACHE = FILM_CACHE.size
+A_SKIRT_CACHE = _a("skirt_film_cache_last", "index", "row of the skirt film's cache used last")
+A_SKIRT_CACHE_ROWS = OUTPUTS.add_rows(FILM_CACHE, ("skirt_film_cache_0", "skirt_film_cache_1"))
 N_AUX = OUTPUTS.size
