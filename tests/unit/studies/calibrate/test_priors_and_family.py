@@ -214,3 +214,25 @@ def test_the_command_with_a_catalogue_name_runs_from_any_directory(
     assert main([*args, "danfoss_tles5.7kk3_r600a.csv", *fit]) == 2
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and "no such calibration data file" in err
+
+
+def test_a_point_failing_a_step_away_is_stepped_the_other_way() -> None:
+    """A run that fails a 1 % step forward (a refused value, a stalled solve: the residual
+    FAILED_RESIDUAL) must not enter the Jacobian as a slope of 1000: the column is taken
+    backward instead, and where both sides fail the fit stops with a message."""
+    import numpy as np
+
+    from recipsim.studies.calibrate.fit import FAILED_RESIDUAL, STEP, forward_jacobian
+    from recipsim.studies.calibrate.parameters import CalibrationError
+
+    def f(x: np.ndarray) -> np.ndarray:  # slope 2 in x; fails beyond x = 0.5
+        return np.array([FAILED_RESIDUAL if x[0] > 0.5 else 2.0 * x[0]])
+
+    jac = forward_jacobian(f, np.array([0.5]))
+    assert jac[0, 0] == pytest.approx(2.0, rel=1e-9)
+
+    def g(x: np.ndarray) -> np.ndarray:  # fails on both sides of 0.5
+        return np.array([FAILED_RESIDUAL if abs(x[0] - 0.5) > 0.1 * STEP else 0.0])
+
+    with pytest.raises(CalibrationError, match="fails a 1% step"):
+        forward_jacobian(g, np.array([0.5]))
