@@ -18,7 +18,8 @@ from __future__ import annotations
 import pytest
 
 from recipsim.api import load_case, simulate
-from recipsim.physics.thermo.shell_network import LINK_NAMES
+from recipsim.model.thermal import ThermalCoupling
+from recipsim.physics.thermo.shell_network import LINK_NAMES, NetworkLoads
 
 
 @pytest.fixture(scope="module")
@@ -49,9 +50,6 @@ def test_cop_costs_are_the_losses_removed_one_at_a_time(tles):
 
 
 def test_suction_passage_film_is_in_series_and_grows_with_flow():
-    from recipsim.model.thermal import ThermalCoupling
-    from recipsim.physics.thermo.shell_network import NetworkLoads
-
     case = load_case("tles5.7kk3_r600a", {"thermal.suction_passage_gas_side_area": 1e-3})
     result = simulate(case)
     model = result.solution.model

@@ -179,6 +179,23 @@ class ThermalSpec:
     discharge_muffler_tube_length: float = 0.0
     discharge_pulsation_factor: float = 1.0
 
+    @property
+    def suction_tube(self) -> tuple[float, float, float, float]:
+        """The suction muffler's tube: K [-], flow area [m2], length [m], pulsation [-]."""
+        return (
+            self.suction_muffler_loss_coefficient, self.suction_muffler_flow_area,
+            self.suction_muffler_tube_length, self.suction_pulsation_factor,
+        )  # fmt: skip
+
+    @property
+    def discharge_tube(self) -> tuple[float, float, float, float]:
+        """The discharge muffler's tube and line: K [-], flow area [m2], length [m],
+        pulsation [-]."""
+        return (
+            self.discharge_muffler_loss_coefficient, self.discharge_muffler_flow_area,
+            self.discharge_muffler_tube_length, self.discharge_pulsation_factor,
+        )  # fmt: skip
+
     def network(self, ambient_temperature: float) -> NetworkParameters:
         """The network's parameters at ``ambient_temperature`` [K]."""
         return NetworkParameters(

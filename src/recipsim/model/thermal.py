@@ -57,9 +57,10 @@ from recipsim.physics.thermo.shell_network import (
 from recipsim.physics.thermo.shell_nodes import GP_DC, GP_SM
 from recipsim.physics.thermo.suction_path import (
     film_pulse_factor,
+    gas_tube_pressure_drop,
     series_conductance,
+    tube_diameter,
     tube_film_coefficient,
-    tube_pressure_drop,
 )
 
 _DEW_MARGIN = 0.5  # K
@@ -183,15 +184,14 @@ class ThermalCoupling:
         op = model.case.operating_point
         spec = self.spec
         suction_flow = loads.delivered_mass_flow + loads.leakage_mass_flow
-        dp_s = _tube_drop(
-            model.fluid, model.suction, suction_flow, spec.suction_muffler_loss_coefficient,
-            spec.suction_muffler_flow_area, spec.suction_muffler_tube_length,
-            spec.suction_pulsation_factor,
+        suction, discharge, fluid = model.suction, model.discharge, model.fluid
+        dp_s = gas_tube_pressure_drop(
+            fluid, suction.pressure, suction.temperature, suction.density, suction_flow,
+            spec.suction_tube,
         )  # fmt: skip
-        dp_d = _tube_drop(
-            model.fluid, model.discharge, loads.delivered_mass_flow,
-            spec.discharge_muffler_loss_coefficient, spec.discharge_muffler_flow_area,
-            spec.discharge_muffler_tube_length, spec.discharge_pulsation_factor,
+        dp_d = gas_tube_pressure_drop(
+            fluid, discharge.pressure, discharge.temperature, discharge.density,
+            loads.delivered_mass_flow, spec.discharge_tube,
         )  # fmt: skip
         if dp_s >= 0.5 * op.suction_pressure:
             raise ValueError(
@@ -230,14 +230,17 @@ class ThermalCoupling:
 
     # ---- solving and applying -------------------------------------------------------------
     def _coupled_solution(
-        self, model: CoupledModel, response: CycleResponse, pressures: NetworkPressures
+        self,
+        model: CoupledModel,
+        response: CycleResponse,
+        pressures: NetworkPressures,
+        parameters: NetworkParameters,
     ) -> NetworkSolution:
-        """The network together with the cycle moved to a plenum at the suction muffler's
-        temperature (:class:`CycleResponse`), solved by one Newton."""
+        """The network (``parameters``) together with the cycle moved to a plenum at the
+        suction muffler's temperature (:class:`CycleResponse`), solved by one Newton."""
         state = self._state(model)
         p_sm = pressures.node[GP_SM]
         guess = None if self.applied is None else self.applied.solution.temperature
-        parameters = self.network_parameters(model, response.loads)
 
         def loads_at(t_sm: float) -> NetworkLoads:
             return response.at(t_sm, state(p_sm, t_sm))
@@ -266,7 +269,7 @@ class ThermalCoupling:
         gas = model.fluid.transport(suction.pressure, suction.temperature)
         cp = model.fluid.enthalpy_pt(suction.pressure, suction.temperature)[1]
         prandtl = gas["viscosity"] * cp / gas["conductivity"]
-        diameter = math.sqrt(4.0 * spec.suction_muffler_flow_area / math.pi)
+        diameter = tube_diameter(spec.suction_muffler_flow_area)
         flow = loads.delivered_mass_flow + loads.leakage_mass_flow
         film = tube_film_coefficient(
             flow, diameter, gas["viscosity"], gas["conductivity"], prandtl,
@@ -284,7 +287,9 @@ class ThermalCoupling:
         largest relative change of the boundary (suction plenum temperature and pressure,
         wall temperature, discharge plenum temperature and pressure)."""
         pressures = self.pressures(model, response.loads)
-        solution = self._coupled_solution(model, response, pressures)
+        # the films at the plenum the revolution ran with: the conductances solved with
+        parameters = self.network_parameters(model, response.loads)
+        solution = self._coupled_solution(model, response, pressures, parameters)
         _apply(model, solution, pressures)
         t = solution.temperature
         change = 1.0
@@ -298,7 +303,6 @@ class ThermalCoupling:
                 abs(pressures.node[GP_SM] - old.pressures.node[GP_SM]) / pressures.node[GP_SM],
                 abs(pressures.node[GP_DC] - old.pressures.node[GP_DC]) / pressures.node[GP_DC],
             )
-        parameters = self.network_parameters(model, response.loads)
         self.applied = AppliedNetwork(solution, solution.loads, pressures, parameters)
         return change
 
@@ -366,25 +370,6 @@ class ThermalCoupling:
         motor, friction = self._losses(model, None, 1.0 / freq, m * (h_dis - s.enthalpy))
         loads = NetworkLoads(m, 0.0, 0.0, 0.0, m * h_dis, 0.0, 0.0, motor, friction)
         self._solve_and_apply(model, CycleResponse(loads, m, s, s))
-
-
-def _tube_drop(
-    fluid: Any,
-    plenum: PlenumState,
-    mass_flow: float,
-    minor_loss: float,
-    flow_area: float,
-    length: float,
-    pulsation_factor: float,
-) -> float:
-    """Mean pressure drop of a muffler tube [Pa] with the gas of ``plenum``."""
-    if minor_loss == 0.0 and length == 0.0:
-        return 0.0
-    viscosity = fluid.transport(plenum.pressure, plenum.temperature)["viscosity"]
-    diameter = math.sqrt(4.0 * flow_area / math.pi)
-    return tube_pressure_drop(
-        mass_flow, plenum.density, viscosity, diameter, length, minor_loss, pulsation_factor
-    )
 
 
 def _apply(model: CoupledModel, solution: NetworkSolution, pressures: NetworkPressures) -> None:

@@ -140,9 +140,11 @@ def loss_breakdown(
     h_2s = isentropic_state(fluid, inlet, op.discharge_pressure)["h"]
     dh_s_line = h_2s - inlet.enthalpy
     t_in = row.get("cylinder_inlet_temperature [K]", inlet.temperature)
+    rho_cyl = inlet.density  # the gas the cylinder draws, at the line pressure
     if abs(t_in - inlet.temperature) > 1e-9:
         heated = fluid.state_pt(op.suction_pressure, t_in)
         dh_s_heated = fluid.state_ps(op.discharge_pressure, heated["s"])["h"] - heated["h"]
+        rho_cyl = heated["rho"]
     else:
         dh_s_heated = dh_s_line
 
@@ -163,7 +165,6 @@ def loss_breakdown(
     out["loss_cylinder_heat_and_other [W]"] = (
         row["indicated_power [W]"] - row["isentropic_power [W]"] - named
     )
-    rho_cyl = fluid.state_pt(op.suction_pressure, t_in)["rho"]
     out.update(_capacity_losses(row, inlet.density, rho_cyl, model.suction.density, mdot))
     out.update(_cop_costs(row, out))
     return out

@@ -15,6 +15,7 @@ from __future__ import annotations
 from recipsim.physics.thermo.shell_nodes import TEMPERATURES
 from recipsim.results.column_docs import ColumnDoc
 from recipsim.results.column_docs import column as _c
+from recipsim.results.loss_breakdown import COP_COST_COLUMNS
 
 
 def _nodes() -> str:
@@ -202,21 +203,12 @@ SUMMARY_DOCS: tuple[ColumnDoc, ...] = (
     ),
     *(
         _c(
-            f"cop_{name} [-]",
-            f"COP gained by removing `{name}` alone (and the capacity it costs, if any): "
-            "(Q + dQ) / (W - L) - Q / W with the electrical power W",
+            cost,
+            f"COP gained by removing `{loss.removesuffix(' [W]')}` alone (and the capacity "
+            "it costs, if any): (Q + dQ) / (W - L) - Q / W with the electrical power W",
         )
-        for name in (
-            "loss_motor",
-            "loss_mechanical",
-            "loss_suction_valve",
-            "loss_discharge_valve",
-            "loss_mufflers",
-            "loss_leakage",
-            "loss_suction_heating",
-            "loss_cylinder_heat_and_other",
-        )
-    ),  # fmt: skip
+        for loss, cost in COP_COST_COLUMNS.items()
+    ),
     _c(
         "bearing_dissipation_power [W]",
         "power absorbed by the bearings, -(sum F.de/dt + T_journal w_journal + T_bushing "

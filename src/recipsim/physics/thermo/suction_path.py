@@ -24,6 +24,7 @@ heated gas, eq. 8.60) with the laminar floor ``Nu = 3.66`` (eq. 8.55).
 from __future__ import annotations
 
 import math
+from typing import Any
 
 #: Mean of v^2 over the square of the mean v for a half-sine draw over half a revolution.
 HALF_SINE_VELOCITY_SQUARE_FACTOR = math.pi**2 / 4.0
@@ -84,6 +85,33 @@ def tube_pressure_drop(
     f = darcy_friction_factor(reynolds_number(mass_flow, diameter, viscosity))
     k = minor_loss + f * length / diameter
     return pulsation_factor * k * mass_flow * mass_flow / (2.0 * density * area * area)
+
+
+def tube_diameter(flow_area: float) -> float:
+    """Diameter of the round tube of ``flow_area`` [m2] [m]."""
+    return math.sqrt(4.0 * flow_area / math.pi)
+
+
+def gas_tube_pressure_drop(
+    fluid: Any,
+    pressure: float,
+    temperature: float,
+    density: float,
+    mass_flow: float,
+    tube: tuple[float, float, float, float],
+) -> float:
+    """:func:`tube_pressure_drop` of a gas at ``pressure`` [Pa], ``temperature`` [K] and
+    ``density`` [kg/m3], its viscosity from ``fluid.transport``; ``tube`` is (entry and
+    exit losses K [-], flow area [m2], length [m], pulsation factor [-]). No tube (K and
+    length 0): 0, without asking the fluid."""
+    minor_loss, flow_area, length, pulsation_factor = tube
+    if minor_loss == 0.0 and length == 0.0:
+        return 0.0
+    viscosity = fluid.transport(pressure, temperature)["viscosity"]
+    return tube_pressure_drop(
+        mass_flow, density, viscosity, tube_diameter(flow_area), length, minor_loss,
+        pulsation_factor,
+    )  # fmt: skip
 
 
 def tube_film_coefficient(
