@@ -2,8 +2,8 @@
 
 The directive ``case-reference`` writes one table per case-file table: every key with
 its SI unit, default, allowed range, whether it is required and its meaning, read from
-the declarations that validate the files: :mod:`recipsim.case.schema` ``Field``,
-``Choice``, ``Text`` for the tables read by :func:`~recipsim.case.schema.read_table`, and
+the declarations that validate the files: :mod:`recipsim.schema` ``Field``,
+``Choice``, ``Text`` for the tables read by :func:`~recipsim.schema.read_table`, and
 ``Described`` (unit and range words that the loader's checks and messages use) for the
 tables validated in code: ``[mechanism.*]``, ``[bearings.<name>]``
 (:mod:`recipsim.case.mechanism_schema`) and ``[oil]`` (:mod:`recipsim.case.lubrication`).
@@ -50,7 +50,7 @@ def _cell(text: str) -> str:
 
 def declared_rows(table: str, spec: Any) -> list[list[str]]:
     """Rows (key, unit, default, allowed, required, meaning) of one declared table."""
-    from recipsim.case.schema import REQUIRED, Choice, Field, Flag, TextList
+    from recipsim.schema import REQUIRED, Choice, Field, Flag, TextList
 
     rows = []
     for key, field in spec.items():

@@ -33,9 +33,9 @@ from recipsim.case.motor import case_motor, check_motor_speed
 from recipsim.case.motor_losses import friction_option
 from recipsim.case.operating_point import operating_point
 from recipsim.case.refrigerant import case_fluid, load_refrigerant
-from recipsim.case.schema import check_keys, read_table
 from recipsim.case.sections import Geometry, Leakage, Options
 from recipsim.case.thermal import parse_thermal
+from recipsim.schema import check_keys, read_table
 
 
 def case_sections(

@@ -25,7 +25,6 @@ from recipsim.case.case_schema import (
 from recipsim.case.files import resolve_reference
 from recipsim.case.mechanism import MechanismSpec
 from recipsim.case.pressure_curve import read_pressure_curve
-from recipsim.case.schema import check_keys, read_table
 from recipsim.case.sections import (
     Geometry,
     HeatTransfer,
@@ -36,6 +35,7 @@ from recipsim.case.sections import (
 )
 from recipsim.errors import CaseError
 from recipsim.physics.mechanics.tabulated import PressureCurve
+from recipsim.schema import check_keys, read_table
 
 
 @lru_cache(maxsize=64)

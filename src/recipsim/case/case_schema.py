@@ -1,5 +1,5 @@
-"""The declared keys of a case file's own tables: one :class:`~recipsim.case.schema.Field`
-or :class:`~recipsim.case.schema.Choice` per key, with its unit, default, range and meaning.
+"""The declared keys of a case file's own tables: one :class:`~recipsim.schema.Field`
+or :class:`~recipsim.schema.Choice` per key, with its unit, default, range and meaning.
 
 The tables that have their own modules declare their keys there (``[motor]`` in
 :mod:`.motor`, ``[thermal]`` in :mod:`.thermal`, ``[oil]`` in :mod:`.lubrication`,
@@ -13,7 +13,7 @@ import math
 from typing import Any
 
 from recipsim.case.rating import RATING_SPEC
-from recipsim.case.schema import Choice, Field, Flag, Spec, Text
+from recipsim.schema import Choice, Field, Flag, Spec, Text
 
 #: the top of the file: the case's name, its description and its refrigerant
 HEADER_SPEC: Spec = {"name": Text(None), "description": Text(""), "refrigerant": Text()}

@@ -6,8 +6,8 @@ from __future__ import annotations
 from collections.abc import Mapping
 from typing import Any
 
-from recipsim.case.schema import Field, Spec, read_table
 from recipsim.errors import CaseError
+from recipsim.schema import Field, Spec, read_table
 
 ENVELOPE_SPEC: Spec = {
     "evaporating_temperature_min": Field(

@@ -28,8 +28,8 @@ import math
 from dataclasses import dataclass
 from typing import Any
 
-from recipsim.case.schema import Choice, Field, Spec, read_table
 from recipsim.errors import CaseError
+from recipsim.schema import Choice, Field, Spec, read_table
 
 #: Standard gravity [m/s2].
 GRAVITY = 9.80665

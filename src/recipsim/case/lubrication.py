@@ -32,9 +32,7 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any
 
-from recipsim.case.schema import Described, DescribedSpec
 from recipsim.case.table_reader import TableReader
-from recipsim.case.units import to_si
 from recipsim.errors import CaseError
 from recipsim.physics.lubricant import (
     DEFAULT_OIL,
@@ -48,6 +46,8 @@ from recipsim.physics.mechanics.journal import (
     DEFAULT_CONTACT_STIFFNESS,
     DEFAULT_FRICTION_COEFFICIENT,
 )
+from recipsim.schema import Described, DescribedSpec
+from recipsim.units import to_si
 
 #: Default film temperature [K] (60 C).
 DEFAULT_FILM_TEMPERATURE = 333.15

@@ -1,6 +1,6 @@
 """The parser of the mechanism tables of a case into :mod:`.mechanism_spec`'s dataclasses.
 
-Case tables read here (units as strings are converted by :func:`recipsim.case.units.to_si`;
+Case tables read here (units as strings are converted by :func:`recipsim.units.to_si`;
 bare numbers are taken in SI)::
 
     [mechanism.piston]          mass, length, pin_offset_from_crown,

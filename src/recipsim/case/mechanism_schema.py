@@ -1,5 +1,5 @@
 """The keys of the ``[mechanism.*]`` and ``[bearings.<name>]`` tables: SI unit, range in
-words, default, when required, meaning (:class:`recipsim.case.schema.Described`).
+words, default, when required, meaning (:class:`recipsim.schema.Described`).
 
 :mod:`recipsim.case.mechanism` reads every key with the unit and the range words declared
 here (its messages say them) and checks the rules in code; the case-file reference
@@ -9,7 +9,7 @@ here (its messages say them) and checks the rules in code; the case-file referen
 from __future__ import annotations
 
 from recipsim.case.lubrication import FILM_SPEC
-from recipsim.case.schema import Described, DescribedSpec
+from recipsim.schema import Described, DescribedSpec
 
 _INERTIA = "kg*m**2"
 _D = Described

@@ -14,10 +14,10 @@ from functools import lru_cache
 from typing import Any
 
 from recipsim.case.motor_losses import CIRCUIT_SPEC, motor_circuit_from_table
-from recipsim.case.schema import Field, Spec, read_table
 from recipsim.errors import CaseError
 from recipsim.physics.motor import MotorSpec, kloss
 from recipsim.physics.motor_circuit import MotorCircuit
+from recipsim.schema import Field, Spec, read_table
 
 CURVE_SPEC: Spec = {
     "line_frequency": Field("Hz", 50.0, lo=1.0, hi=1000.0, doc="supply frequency"),

@@ -29,10 +29,10 @@ from collections.abc import Mapping
 from functools import lru_cache
 from typing import Any
 
-from recipsim.case.schema import Choice, Field, Spec
 from recipsim.errors import CaseError
 from recipsim.physics.motor_circuit import MotorCircuit
 from recipsim.physics.motor_nameplate import MotorNameplate, motor_circuit_from_nameplate
+from recipsim.schema import Choice, Field, Spec
 
 _ONE = "dimensionless"
 _CIRCUIT_VALUES = (

@@ -23,9 +23,9 @@ from recipsim.case.rating import (
     suction_gas_temperature,
 )
 from recipsim.case.refrigerant import RefrigerantSpec
-from recipsim.case.schema import read_table
 from recipsim.case.sections import OperatingPoint
 from recipsim.errors import CaseError
+from recipsim.schema import read_table
 
 if TYPE_CHECKING:
     from recipsim.case.refrigerant import AnyFluid

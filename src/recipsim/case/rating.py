@@ -35,9 +35,9 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any
 
-from recipsim.case.schema import Choice, Field, Spec
-from recipsim.case.units import correctly_rounded
 from recipsim.errors import CaseError
+from recipsim.schema import Choice, Field, Spec
+from recipsim.units import correctly_rounded
 
 _PREFIX = "operating_point"
 #: Default ambient temperature [K] (32.2 C, the ASHRAE LBP ambient).

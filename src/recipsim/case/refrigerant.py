@@ -23,11 +23,11 @@ from typing import TYPE_CHECKING, Any, TypeAlias
 from recipsim.atomic import checked_name
 from recipsim.case.envelope_table import read_envelope
 from recipsim.case.files import read_toml, shipped_dir
-from recipsim.case.schema import Field, Spec, Text, check_keys, read_table
 from recipsim.errors import CaseError
 from recipsim.physics.thermo.fluid import Fluid
 from recipsim.physics.thermo.property_table_cache import fluid_constants, load_property_table
 from recipsim.physics.thermo.table_states import TableFluid
+from recipsim.schema import Field, Spec, Text, check_keys, read_table
 
 if TYPE_CHECKING:
     from recipsim.physics.thermo.table_states import TableFluid

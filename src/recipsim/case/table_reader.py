@@ -6,8 +6,8 @@ import math
 from collections.abc import Callable, Collection, Mapping
 from typing import Any
 
-from recipsim.case.units import to_si
 from recipsim.errors import CaseError
+from recipsim.units import to_si
 
 
 class TableReader:
@@ -73,7 +73,7 @@ class TableReader:
         context: str = "",
     ) -> float:
         """Key ``name`` with the unit and the range words of its declaration
-        (:class:`recipsim.case.schema.Described` in ``spec``), checked against the
+        (:class:`recipsim.schema.Described` in ``spec``), checked against the
         declared range (``check``: a rule involving other keys, for a declaration
         without one); ``context`` (e.g. the length a range refers to) is appended to the
         range in messages."""

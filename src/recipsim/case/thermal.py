@@ -37,9 +37,9 @@ import math
 from dataclasses import dataclass
 from typing import Any
 
-from recipsim.case.schema import Field, Spec, read_table
 from recipsim.physics.thermo.shell_network import LINK_NAMES, NetworkParameters
 from recipsim.physics.thermo.suction_path import HALF_SINE_VELOCITY_SQUARE_FACTOR
+from recipsim.schema import Field, Spec, read_table
 
 _UA = "W/K"
 #: Default conductance of each link [W/K] and what it stands for.

@@ -9,7 +9,7 @@ differ. The refrigerant file and a tabulated pressure curve are copied beside it
 reads the report directory alone and reproduces the run: every value is written with
 ``repr``, which reads back as the same float.
 
-Tables validated by a declaration (:mod:`recipsim.case.schema`) are written from it; the
+Tables validated by a declaration (:mod:`recipsim.schema`) are written from it; the
 mechanism and bearing tables, validated by hand in :mod:`recipsim.case.mechanism`, from
 the validated dataclasses with :data:`MECHANISM_UNITS`; a key or table this module does
 not know is copied as it was read, which loads the same.
@@ -40,9 +40,9 @@ from recipsim.case.files import resolve_reference
 from recipsim.case.mechanism_schema import MECHANISM_UNITS as DECLARED_MECHANISM_UNITS
 from recipsim.case.motor import MOTOR_SPEC
 from recipsim.case.overrides import toml_literal
-from recipsim.case.schema import Field, Spec, read_table
 from recipsim.errors import CaseError
 from recipsim.physics.mechanics.layout import BEARING_NAMES
+from recipsim.schema import Field, Spec, read_table
 from recipsim.version import __version__
 
 #: SI unit of each ``[mechanism.*]`` and ``[bearings.*]`` key written from the validated

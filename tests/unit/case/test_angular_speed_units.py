@@ -11,7 +11,7 @@ import pytest
 
 from helpers import REFERENCE
 from recipsim.case.load import load_case
-from recipsim.case.units import to_si
+from recipsim.units import to_si
 
 RPM_3000 = 3000.0 * 2.0 * math.pi / 60.0  # [rad/s]
 

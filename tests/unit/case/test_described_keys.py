@@ -10,8 +10,8 @@ from recipsim.case import mechanism
 from recipsim.case.load import load_case
 from recipsim.case.lubrication import FILM_KEYS, FILM_SPEC, OIL_SPEC, parse_oil
 from recipsim.case.mechanism_schema import BEARING_SPEC, PISTON_SPEC, ROD_SPEC, ROTOR_SPEC
-from recipsim.case.units import to_si
 from recipsim.errors import CaseError
+from recipsim.units import to_si
 
 
 def test_declared_keys_are_the_accepted_keys() -> None:

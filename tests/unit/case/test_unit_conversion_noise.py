@@ -9,7 +9,7 @@ import math
 import pytest
 
 from recipsim.case.rating import STANDARDS
-from recipsim.case.units import correctly_rounded, to_si
+from recipsim.units import correctly_rounded, to_si
 
 
 @pytest.mark.parametrize(

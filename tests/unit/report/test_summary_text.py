@@ -9,10 +9,10 @@ import math
 
 import pandas as pd
 
-from recipsim.case.units import to_si
 from recipsim.report.report_figures import write_tables
 from recipsim.report.summary_text import key_figures, summary_markdown, summary_text
 from recipsim.results.loss_breakdown import LOSS_COLUMNS
+from recipsim.units import to_si
 
 
 def _row(**changes):

@@ -8,9 +8,9 @@ import re
 from dataclasses import dataclass
 
 from recipsim.case.case import Case
-from recipsim.case.units import _registry
 from recipsim.errors import CaseError, RecipsimError
 from recipsim.studies.calibrate.priors import declared_field
+from recipsim.units import _registry
 
 
 class CalibrationError(RecipsimError):

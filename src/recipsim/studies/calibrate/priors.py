@@ -25,8 +25,8 @@ from recipsim.case.case_schema import (
     VALVES_TOP_SPEC,
 )
 from recipsim.case.motor import MOTOR_SPEC
-from recipsim.case.schema import Field, Spec
 from recipsim.case.thermal import THERMAL_SPEC
+from recipsim.schema import Field, Spec
 
 #: Widest 95 % interval of a fitted parameter judged determined [decades].
 MAX_INTERVAL_DECADES = 1.0

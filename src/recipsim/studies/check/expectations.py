@@ -16,7 +16,8 @@ from pathlib import Path
 from typing import Any
 
 from recipsim.case.files import read_toml
-from recipsim.case.schema import (
+from recipsim.errors import CaseError
+from recipsim.schema import (
     Choice,
     Field,
     FileSpec,
@@ -26,7 +27,6 @@ from recipsim.case.schema import (
     check_keys,
     read_table,
 )
-from recipsim.errors import CaseError
 from recipsim.studies.check.metrics import METRICS
 
 OUTCOMES = ("converged", "not_converged", "refused", "failed")
@@ -96,7 +96,7 @@ def find_cases(paths: Iterable[Path]) -> list[Path]:
 
 
 #: The keys of ``[defaults]`` and ``[cases.<name>]``, read by
-#: :func:`recipsim.case.schema.read_table` (a key a table leaves out keeps the value of
+#: :func:`recipsim.schema.read_table` (a key a table leaves out keeps the value of
 #: ``[defaults]``, then of :class:`Expectation`); the case-file reference prints them.
 EXPECTATION_SPEC: FileSpec = {
     "expected": Choice(OUTCOMES, "converged", "the outcome the case must end with"),

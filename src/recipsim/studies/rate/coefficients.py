@@ -29,9 +29,9 @@ import numpy as np
 import pandas as pd
 
 from recipsim.case.files import read_input_text
-from recipsim.case.units import to_si
 from recipsim.errors import CaseError
 from recipsim.studies.rate.polynomial import COEFFICIENTS, evaluate, from_kelvin
+from recipsim.units import to_si
 
 #: Rated quantities and their SI unit.
 SI_UNITS = {

@@ -22,7 +22,6 @@ import numpy as np
 import pandas as pd
 
 from recipsim.case.files import read_input_text
-from recipsim.case.units import to_si
 from recipsim.errors import CaseError
 from recipsim.studies.calibrate.data import (
     MAX_DATA_BYTES,
@@ -34,6 +33,7 @@ from recipsim.studies.rate.coefficients import PUBLISHED_UNITS, Polynomial, unit
 from recipsim.studies.rate.grid import RatingGrid
 from recipsim.studies.rate.polynomial import from_kelvin
 from recipsim.studies.sweep.worker import OK
+from recipsim.units import to_si
 
 #: Catalogue columns compared, and the rated quantity each one is.
 CATALOGUE_TARGETS = {

@@ -43,14 +43,14 @@ from recipsim.case.load import (
 )
 from recipsim.case.mechanism_schema import MECHANISM_UNITS
 from recipsim.case.refrigerant import find_refrigerant_file
-from recipsim.case.schema import Choice, Field, Flag, Text
-from recipsim.case.units import to_si
 from recipsim.errors import CaseError
+from recipsim.schema import Choice, Field, Flag, Text
 from recipsim.studies.sweep.spec import SweepSpec
 from recipsim.studies.sweep.worker import point_case
+from recipsim.units import to_si
 from recipsim.version import __version__
 
-# Messages of :mod:`recipsim.case.schema` and :mod:`recipsim.case.mechanism` that mean "this
+# Messages of :mod:`recipsim.schema` and :mod:`recipsim.case.mechanism` that mean "this
 # key does not exist or is not where a table is expected": an error of the sweep file.
 _KEY_ERRORS = ("unknown key", "expected a table", "is not a table", "empty part in")
 

@@ -42,13 +42,13 @@ from recipsim.atomic import checked_name, name_from_stem
 from recipsim.case.case import Case
 from recipsim.case.files import find_case_file, read_toml, resolve_reference
 from recipsim.case.overrides import parse_override, toml_literal
-from recipsim.case.schema import Field, FileSpec, Text, check_keys, read_table
 from recipsim.errors import CaseError
+from recipsim.schema import Field, FileSpec, Text, check_keys, read_table
 
 #: Largest sweep run unless the sweep file (``max_points``) or ``--max-points`` allows more.
 DEFAULT_MAX_POINTS = 100_000
 
-#: The sweep file's top level, read by :func:`recipsim.case.schema.read_table` (the
+#: The sweep file's top level, read by :func:`recipsim.schema.read_table` (the
 #: case-file reference prints it); ``[set]``, ``[axes]`` and ``[[points]]`` hold case keys,
 #: validated by the case schema when the points are planned.
 SWEEP_SPEC: FileSpec = {

@@ -259,7 +259,7 @@ def test_a_planted_pint_pickle_in_an_open_cache_never_runs(tmp_path):
     others can write is never read: there the planted code leaves no trace."""
     root = tmp_path / "cache"
     env = {**os.environ, "RECIPSIM_CACHE": str(root)}
-    code = "from recipsim.case.units import to_si; print(to_si('22 mm', 'm', 'f', 'k'))"
+    code = "from recipsim.units import to_si; print(to_si('22 mm', 'm', 'f', 'k'))"
 
     def convert() -> str:
         out = subprocess.run(

@@ -11,8 +11,8 @@ from pathlib import Path
 import pytest
 
 from helpers import CASES
-from recipsim.case.schema import Field, TextList, read_table
 from recipsim.errors import CaseError
+from recipsim.schema import Field, TextList, read_table
 from recipsim.studies.check.expectations import (
     EXPECTATION_SPEC,
     FAST_OVERRIDES,

@@ -14,9 +14,9 @@ import pytest
 
 from helpers import REFERENCE, REFRIGERANTS
 from recipsim.case.load import load_case
-from recipsim.case.units import _convert, to_si
 from recipsim.errors import CaseError
 from recipsim.studies.sweep.worker import point_case
+from recipsim.units import _convert, to_si
 
 POINTS = [
     ('operating_point.shaft_speed="2500 rpm"', 'operating_point.condensing_temperature="45 degC"'),

@@ -13,8 +13,8 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any
 
-from recipsim.case.units import in_written_unit, to_si
 from recipsim.errors import CaseError
+from recipsim.units import in_written_unit, to_si
 
 REQUIRED = object()
 
