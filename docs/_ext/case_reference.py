@@ -101,11 +101,11 @@ def tables() -> list[tuple[str, str, list[list[str]]]]:
     """(heading, note, rows) of every table of a case file, a refrigerant file, the check's
     expectations and a sweep file."""
     from recipsim.case import case_schema, mechanism_schema
+    from recipsim.case.envelope_table import ENVELOPE_SPEC
+    from recipsim.case.friction import FRICTION_SPEC
     from recipsim.case.lubrication import OIL_SPEC
     from recipsim.case.mechanism import PISTON_BEARING_KEYS
     from recipsim.case.motor import MOTOR_SPEC
-    from recipsim.case.envelope_table import ENVELOPE_SPEC
-    from recipsim.case.friction import FRICTION_SPEC
     from recipsim.case.refrigerant import LIMITS_SPEC, RATING_POINT_SPEC, REFRIGERANT_SPEC
     from recipsim.case.thermal import THERMAL_SPEC
     from recipsim.studies.check.expectations import EXPECTATION_SPEC, MINIMUM_SPEC
@@ -333,6 +333,31 @@ def reference_rst() -> list[str]:
     return lines
 
 
+def slot_rst() -> list[str]:
+    """The model slots' choices (:mod:`recipsim.slots`) as reStructuredText lines: per
+    slot its key, what it models, and each choice's summary and source."""
+    from recipsim.case import case_schema  # noqa: F401  (imports every option's registry)
+    from recipsim.slots import registered
+
+    heading = "Model choices"
+    lines = [heading, "-" * len(heading), ""]
+    lines += [
+        "Each choice of a model slot as its module declares it (its registry: "
+        ":mod:`recipsim.slots`).",
+        "",
+    ]
+    for slot in registered():
+        lines += [f"``{slot.option}``: {slot.doc}", ""]
+        lines += [".. list-table::", "   :header-rows: 1", "   :widths: 18 50 32", ""]
+        rows = [["choice", "what it models", "source"]]
+        rows += [[f"``{n}``", summary, source] for n, summary, source in slot.describe()]
+        for row in rows:
+            lines.append(f"   * - {_cell(row[0])}")
+            lines += [f"     - {_cell(c)}" for c in row[1:]]
+        lines.append("")
+    return lines
+
+
 class CaseReference(SphinxDirective):
     """``.. case-reference::``: the generated tables."""
 
@@ -341,7 +366,10 @@ class CaseReference(SphinxDirective):
     def run(self) -> list[nodes.Node]:
         container = nodes.container()
         self.state.nested_parse(
-            StringList(reference_rst(), source="case-reference"), 0, container, match_titles=True
+            StringList(reference_rst() + slot_rst(), source="case-reference"),
+            0,
+            container,
+            match_titles=True,
         )
         return container.children
 

@@ -21,8 +21,10 @@ What a choice declares
     One line for the docs, ``recipsim cases --options`` and error messages, and where
     its law comes from (a paper, a textbook, a stated estimate).
 ``keys``
-    The case keys it reads, as :mod:`recipsim.schema` declarations (unit, default,
-    range, meaning) by table: the case-file reference and the validation read them.
+    The case keys it adds, as :mod:`recipsim.schema` declarations (unit, default,
+    range, meaning) by table (``{"bearings.<name>": {"stiffness": ...}}``): the
+    case-file reference and the validation read them. Keys every choice of a slot
+    shares (a journal's film geometry) are the slot's, declared once with the table.
 ``outputs``
     The output columns it adds (:class:`Output`: name, unit, meaning).
 
@@ -48,9 +50,9 @@ from __future__ import annotations
 import difflib
 from collections.abc import Iterable, Iterator, Mapping
 from dataclasses import dataclass, field
-from typing import Generic, TypeVar
+from typing import Any, Generic, TypeVar
 
-from recipsim.schema import Choice, Spec
+from recipsim.schema import Choice
 
 
 @dataclass(frozen=True)
@@ -70,11 +72,20 @@ class ModelChoice:
     code: int
     summary: str
     source: str = ""
-    keys: Mapping[str, Spec] = field(default_factory=dict)
+    keys: Mapping[str, Mapping[str, Any]] = field(default_factory=dict)
     outputs: tuple[Output, ...] = ()
 
 
 C = TypeVar("C", bound=ModelChoice)
+
+#: Every slot constructed so far, in order (a slot registers itself when its registry
+#: module is imported; importing :mod:`recipsim.case.case_schema` imports all of them).
+_REGISTERED: list[Slot[Any]] = []
+
+
+def registered() -> tuple[Slot[Any], ...]:
+    """The slots whose registry modules are imported, in the order they were built."""
+    return tuple(_REGISTERED)
 
 
 class Slot(Generic[C]):
@@ -115,6 +126,7 @@ class Slot(Generic[C]):
         if default is not None and default not in self._choices:
             raise ValueError(f"{option}: default {default!r} is not a choice")
         self.default = default
+        _REGISTERED.append(self)
 
     @property
     def names(self) -> tuple[str, ...]:

@@ -13,6 +13,7 @@ import math
 from typing import Any
 
 from recipsim.case.rating import RATING_SPEC
+from recipsim.physics.mechanics.bearing_laws.registry import BEARING_LAWS, JOURNAL_LAWS
 from recipsim.schema import Choice, Field, Flag, Spec, Text
 
 #: the top of the file: the case's name, its description and its refrigerant
@@ -25,11 +26,7 @@ OPTION_SPEC: Spec = {
     "heat_transfer": Choice(("adiabatic", "annand", "adair"), "adiabatic", "in-cylinder heat"),
     "leakage": Choice(("none", "piston_gap"), "none", "piston-cylinder leakage"),
     "mechanics": Choice(("pinned", "flexible"), "pinned", "crank train"),
-    "bearing_law": Choice(
-        ("linear", "short_journal", "finite_journal"),
-        "linear",
-        "law of the journal bearings (primary, secondary, eccentric) whose table names none",
-    ),
+    "bearing_law": BEARING_LAWS.schema_choice(JOURNAL_LAWS),
     "drive": Choice(("constant_speed", "torque_profile", "induction_motor"), "constant_speed"),
     "friction": Choice(
         ("off", "mean", "films"),

@@ -10,7 +10,7 @@ bare numbers are taken in SI)::
     [mechanism.connecting_rod]  mass, centre_of_mass_fraction (from the big end), inertia
     [mechanism.rotor]           mass, polar_inertia, transverse_inertia, centre_of_mass_z,
                                 primary_z, secondary_z  (eccentric plane is z = 0)
-    [bearings.<name>]           law = "linear", stiffness, damping;
+    [bearings.<name>]           law (a bearing law), stiffness, damping (linear law);
                                 piston_top / piston_skirt also position_from_crown
 
 for ``<name>`` in primary, secondary, eccentric, pin, piston_top, piston_skirt.
@@ -40,7 +40,12 @@ from recipsim.case.mechanism_spec import (
 )
 from recipsim.case.table_reader import TableReader as _Table
 from recipsim.errors import CaseError
-from recipsim.physics.mechanics.layout import BEARING_LAWS, BEARING_NAMES
+from recipsim.physics.mechanics.bearing_laws.registry import (
+    BEARING_LAWS,
+    DEFAULT_LAW,
+    laws_of,
+)
+from recipsim.physics.mechanics.layout import BEARING_NAMES, PISTON_STATION_NAMES
 
 __all__ = ["PISTON_BEARING_KEYS", "CrankGeometry", "MechanismSpec", "mechanism_from_dict"]
 
@@ -138,12 +143,13 @@ def _parse_bearing(
 ) -> BearingSpec:
     """One ``[bearings.<name>]`` table; ``default_law`` (``options.bearing_law``) applies
     to the journals that name no law of their own."""
-    is_piston = name in ("piston_top", "piston_skirt")
+    is_piston = name in PISTON_STATION_NAMES
     t.check_keys(PISTON_BEARING_KEYS if is_piston else _BEARING_KEYS)
-    allowed = BEARING_LAWS[name]
-    fallback = default_law if default_law in allowed and not is_piston else "linear"
-    law = t.choice("law", allowed, None if is_piston or name == "pin" else fallback)
-    needs_spring = law == "linear"
+    allowed = laws_of(name)
+    fallback = default_law if default_law in allowed and not is_piston else DEFAULT_LAW
+    default = None if is_piston else allowed[0] if len(allowed) == 1 else fallback
+    law = t.choice("law", allowed, default)
+    needs_spring = BEARING_LAWS[law].spring
     spec = BEARING_SPEC
     k = t.described(spec, "stiffness", default=None if needs_spring else 0.0)
     c = t.described(spec, "damping", default=None if needs_spring else 0.0)
@@ -157,26 +163,28 @@ def _parse_bearing(
             f"{piston.length:g} m",
         )
     film = None
-    if law == "skirt_film" or (is_piston and "radial_clearance" in t.data):
+    if BEARING_LAWS[law].station_pair or (is_piston and "radial_clearance" in t.data):
         if bore is None:
             raise CaseError(t.file, t.key("law"), "the piston film needs the bore")
         film = parse_film(t, oil.get(), diameter=bore, length=piston.length)
-    elif law != "linear" or (not is_piston and has_film_keys(t.data)):
+    elif BEARING_LAWS[law].film or (not is_piston and has_film_keys(t.data)):
         film = parse_film(t, oil.get())
     return BearingSpec(law=law, stiffness=k, damping=c, position_from_crown=position, film=film)
 
 
 def _check_piston_film(bearings: list[BearingSpec], file: str) -> None:
-    """The piston's two stations form one film: both ``skirt_film`` or neither, with one
-    clearance and one temperature."""
+    """The piston's two stations form one film: both on a station-pair law (the skirt
+    film) or neither, the same law, with one clearance and one temperature."""
     top, skirt = bearings[4], bearings[5]
-    if (top.law == "skirt_film") != (skirt.law == "skirt_film"):
+    paired = BEARING_LAWS[top.law].station_pair
+    if paired != BEARING_LAWS[skirt.law].station_pair or (paired and top.law != skirt.law):
+        law = top.law if paired else skirt.law
         raise CaseError(
             file,
             "bearings.piston_skirt.law",
-            "piston_top and piston_skirt form one film: both skirt_film or neither",
+            f"piston_top and piston_skirt form one film: both {law} or neither",
         )
-    if top.law == "skirt_film" and top.film is not None and skirt.film is not None:
+    if paired and top.film is not None and skirt.film is not None:
         for key in ("radial_clearance", "film_temperature"):
             if getattr(top.film, key) != getattr(skirt.film, key):
                 raise CaseError(file, f"bearings.piston_skirt.{key}",
@@ -189,7 +197,7 @@ def mechanism_from_dict(
     *,
     bore: float | None = None,
     allowed_extra_keys: Collection[str] = (),
-    default_law: str = "linear",
+    default_law: str | None = None,
 ) -> MechanismSpec:
     """Read the ``[mechanism.*]`` and ``[bearings.*]`` tables of a case.
 
@@ -204,8 +212,9 @@ def mechanism_from_dict(
     allowed_extra_keys : collection of str
         Keys of ``[mechanism]`` and ``[bearings]`` that belong to someone else (e.g. a
         model-selection key) and are skipped instead of being rejected.
-    default_law : str
-        Law of the journals whose table names none (``options.bearing_law``).
+    default_law : str or None
+        Law of the journals whose table names none (``options.bearing_law``; None: the
+        slot's default).
 
     Returns
     -------
@@ -238,7 +247,8 @@ def mechanism_from_dict(
         if name not in brg.data:
             raise CaseError(file, brg.key(name), "missing table")
         table = _Table(brg.data[name], file, brg.key(name))
-        bearings.append(_parse_bearing(table, name, piston, bore, oil, default_law))
+        law = DEFAULT_LAW if default_law is None else default_law
+        bearings.append(_parse_bearing(table, name, piston, bore, oil, law))
     _check_piston_film(bearings, file)
     top, skirt = bearings[4].position_from_crown, bearings[5].position_from_crown
     if top == skirt:

@@ -9,6 +9,9 @@ here (its messages say them) and checks the rules in code; the case-file referen
 from __future__ import annotations
 
 from recipsim.case.lubrication import FILM_SPEC
+from recipsim.physics.mechanics.bearing_laws import linear
+from recipsim.physics.mechanics.bearing_laws.registry import laws_of
+from recipsim.physics.mechanics.layout import BEARING_NAMES
 from recipsim.schema import Described, DescribedSpec
 
 _INERTIA = "kg*m**2"
@@ -73,21 +76,26 @@ ROTOR_SPEC: DescribedSpec = {
     ),
     "counterweight_z": _D("m", "any finite value", "0", doc="axial position of the counterweight"),
 }  # fmt: skip
-_LINEAR = "with law = linear"
+
+
+def _laws_in_words() -> str:
+    """The laws each bearing accepts, from the bearing laws' registry."""
+    groups: dict[tuple[str, ...], list[str]] = {}
+    for name in BEARING_NAMES:
+        groups.setdefault(laws_of(name), []).append(name)
+    return "; ".join(f"{', '.join(names)}: {', '.join(laws)}" for laws, names in groups.items())
+
+
 #: ``[bearings.<name>]``: the law and the linear law's keys, then the film keys
 #: (:data:`recipsim.case.lubrication.FILM_SPEC`); ``position_from_crown`` and only some
 #: film keys on the piston bearings.
 BEARING_SPEC: DescribedSpec = {
     "law": _D(
-        "", "journals: linear, short_journal, finite_journal; pin: linear; piston_top, "
-        "piston_skirt: linear, skirt_film",
-        "journals: options.bearing_law; others: required", required="pin, piston bearings",
-        doc="bearing force law",
+        "", _laws_in_words(),
+        "journals: options.bearing_law; a bearing with one law: that law",
+        required="piston bearings", doc="bearing force law",
     ),
-    "stiffness": _D("N/m", "> 0", required=_LINEAR, doc="isotropic, normal to the bearing axis",
-                    lo=0.0, open_lo=True),
-    "damping": _D("N*s/m", ">= 0", required=_LINEAR, doc="viscous, normal to the bearing axis",
-                  lo=0.0),
+    **linear.LAW.keys["bearings.<name>"],
     "position_from_crown": _D(
         "m", "0 ... piston length", required="piston_top, piston_skirt",
         doc="piston bearings: marker below the crown",

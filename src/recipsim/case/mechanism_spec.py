@@ -132,9 +132,8 @@ class BearingSpec:
     Attributes
     ----------
     law : str
-        ``"linear"``: isotropic spring and dashpot normal to the bearing axis;
-        ``"short_journal"``, ``"finite_journal"``: hydrodynamic journal;
-        ``"skirt_film"``: the piston's lubricated skirt (piston_top and piston_skirt).
+        The name of its law in the bearing laws' registry
+        (:data:`recipsim.physics.mechanics.bearing_laws.registry.BEARING_LAWS`).
     stiffness : float
         [N/m] (linear law; 0 when not given).
     damping : float

@@ -30,6 +30,7 @@ from functools import lru_cache
 from typing import Any
 
 from recipsim.errors import CaseError
+from recipsim.physics.mechanics.bearing_laws.registry import BEARING_LAWS
 from recipsim.physics.motor_circuit import MotorCircuit
 from recipsim.physics.motor_nameplate import MotorNameplate, motor_circuit_from_nameplate
 from recipsim.schema import Choice, Field, Spec
@@ -237,7 +238,9 @@ def friction_option(options: Any, mechanism: Any, file: str) -> str:
         ``films`` without a film bearing, or ``off``/``mean`` with one (the films'
         friction cannot be switched off or counted twice).
     """
-    films = options.mechanics == "flexible" and any(b.law != "linear" for b in mechanism.bearings)
+    films = options.mechanics == "flexible" and any(
+        BEARING_LAWS[b.law].film for b in mechanism.bearings
+    )
     chosen = options.friction
     if chosen is None:
         return "films" if films else "off"

@@ -8,6 +8,7 @@ from typing import Any
 
 from recipsim.case.mechanism import mechanism_from_dict
 from recipsim.case.mechanism_spec import CrankGeometry, MechanismSpec
+from recipsim.physics.mechanics.bearing_laws.registry import DEFAULT_LAW
 
 
 def reference_mechanism_tables() -> dict[str, Any]:
@@ -72,15 +73,15 @@ def reference_mechanism_tables() -> dict[str, Any]:
                 "damping": "1300 N*s/m",
                 **_journal("14 mm", "12 mm"),
             },
-            "pin": {"law": "linear", "stiffness": "5.0e7 N/m", "damping": "1300 N*s/m"},
+            "pin": {"stiffness": "5.0e7 N/m", "damping": "1300 N*s/m"},
             "piston_top": {
-                "law": "linear",
+                "law": DEFAULT_LAW,
                 "stiffness": "3.0e7 N/m",
                 "damping": "730 N*s/m",
                 "position_from_crown": f"{10.0 - gauss:.4f} mm",
             },
             "piston_skirt": {
-                "law": "linear",
+                "law": DEFAULT_LAW,
                 "stiffness": "3.0e7 N/m",
                 "damping": "730 N*s/m",
                 "position_from_crown": f"{10.0 + gauss:.4f} mm",

@@ -40,6 +40,7 @@ from recipsim.report.case_report import report_dir
 from recipsim.results.tables import cycle_table
 from recipsim.solve.periodic import solve_periodic
 from recipsim.studies.paper import run_paper_study
+from recipsim.studies.paper_hydrodynamic import DEFAULT_LAW, FILM_LAWS
 from recipsim.studies.paper_report import conclusion_three
 
 
@@ -78,9 +79,9 @@ def add_paper_parser(sub: Any) -> None:
     )
     p.add_argument(
         "--bearing-law",
-        choices=("finite_journal", "short_journal"),
-        default="finite_journal",
-        help="film law of the hydrodynamic column's journals (default finite_journal)",
+        choices=FILM_LAWS,
+        default=DEFAULT_LAW,
+        help=f"film law of the hydrodynamic column's journals (default {DEFAULT_LAW})",
     )
     p.add_argument(
         "--undamped-revolutions",

@@ -3,13 +3,11 @@ parameter array read by the compiled functions (layout: :mod:`.layout`)."""
 
 from __future__ import annotations
 
-import functools
-
 import numpy as np
 
 from recipsim.case.mechanism_spec import CrankGeometry, MechanismSpec
 from recipsim.physics.mechanics import layout as lay
-from recipsim.physics.mechanics.journal_table import finite_journal_table
+from recipsim.physics.mechanics.bearing_laws.registry import BEARING_LAWS
 from recipsim.physics.motor import MotorSpec
 
 #: Axis of each bearing (the linear law acts normal to it): rotor, eccentric and pin
@@ -150,21 +148,20 @@ def _write_bearings(par: np.ndarray, spec: MechanismSpec) -> None:
 
     Raises
     ------
-    ValueError
-        If a bearing's law is unknown.
+    KeyError
+        If a bearing's law is not in the bearing laws' registry.
     """
     offsets = _table_offsets(spec)
     for i, (bearing, axis) in enumerate(zip(spec.bearings, _BEARING_AXES, strict=True)):
         row = lay.P_BEARINGS + i * lay.N_BEARING_PAR
-        if bearing.law not in lay.LAW_CODES:
-            raise ValueError(f"unknown bearing law {bearing.law!r}")
-        par[row + lay.BP_LAW] = lay.LAW_CODES[bearing.law]
+        law = BEARING_LAWS[bearing.law]
+        par[row + lay.BP_LAW] = law.code
         par[row + lay.BP_AXIS] = axis
         par[row + lay.BP_STIFFNESS] = bearing.stiffness
         par[row + lay.BP_DAMPING] = bearing.damping
         par[row + lay.BP_TABLE] = offsets[i]
         film = bearing.film
-        if film is not None and bearing.law != "linear":
+        if film is not None and law.film:
             par[row + lay.BP_DIAMETER] = film.diameter
             par[row + lay.BP_LENGTH] = film.length
             par[row + lay.BP_CLEARANCE] = film.radial_clearance
@@ -174,38 +171,30 @@ def _write_bearings(par: np.ndarray, spec: MechanismSpec) -> None:
             par[row + lay.BP_CONTACT_FRICTION] = film.contact_friction
 
 
-def _finite_tables(spec: MechanismSpec) -> list[np.ndarray | None]:
-    """The impedance table of each ``finite_journal`` bearing (None for the others)."""
+def _law_tables(spec: MechanismSpec) -> list[np.ndarray | None]:
+    """The table of each bearing whose law keeps one (None for the others)."""
     tables: list[np.ndarray | None] = []
     for bearing in spec.bearings:
-        if bearing.law == "finite_journal" and bearing.film is not None:
-            tables.append(_finite_table(bearing.film.length / bearing.film.diameter))
+        build = BEARING_LAWS[bearing.law].table
+        if build is not None and bearing.film is not None:
+            tables.append(build(bearing.film.length / bearing.film.diameter))
         else:
             tables.append(None)
     return tables
-
-
-@functools.lru_cache(maxsize=16)
-def _finite_table(length_over_diameter: float) -> np.ndarray:
-    """The finite_journal table of one L/D, read (or built) once per process: the
-    parameter array and the bearing-table array of every model built need it."""
-    table = finite_journal_table(length_over_diameter)
-    table.flags.writeable = False
-    return table
 
 
 def _table_offsets(spec: MechanismSpec) -> list[int]:
     """Offset of each bearing's table in :func:`bearing_tables` (-1: none)."""
     offsets = []
     position = 0
-    for table in _finite_tables(spec):
+    for table in _law_tables(spec):
         offsets.append(-1 if table is None else position)
         position += 0 if table is None else table.size
     return offsets
 
 
 def bearing_tables(spec: MechanismSpec) -> np.ndarray:
-    """The ``finite_journal`` tables of ``spec`` in bearing order, one flat float64 array
+    """The bearing laws' tables of ``spec`` in bearing order, one flat float64 array
     (a single zero when there are none), as the compiled mechanism reads them."""
-    tables = [t for t in _finite_tables(spec) if t is not None]
+    tables = [t for t in _law_tables(spec) if t is not None]
     return np.concatenate(tables) if tables else np.zeros(1)

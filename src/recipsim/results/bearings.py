@@ -17,6 +17,7 @@ from typing import Any
 import numpy as np
 
 from recipsim.physics.mechanics import layout as lay
+from recipsim.physics.mechanics.bearing_laws.registry import BEARING_LAWS
 from recipsim.physics.mechanics.pinned import N_PIN_OUT, pinned_reactions_array
 from recipsim.physics.mechanics.pinned import OUTPUTS as PIN_OUTPUTS
 from recipsim.results.sampled import CycleColumns, nan_max, nan_min
@@ -117,7 +118,7 @@ def film_clearances(mech_par: np.ndarray) -> dict[str, float]:
     out = {}
     par = lay.PAR.bundle(mech_par)
     for name in lay.BEARING_NAMES:
-        if int(getattr(par, f"{name}_law")) != lay.LAW_LINEAR:
+        if BEARING_LAWS.by_code(int(getattr(par, f"{name}_law"))).film:
             out[name] = float(getattr(par, f"{name}_clearance"))
     return out
 

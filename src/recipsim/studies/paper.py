@@ -155,7 +155,8 @@ def run_paper_study(
     hydrodynamic : bool
         Add the hydrodynamic column: the ``inertia`` and ``gas`` loads with the case's
         journals on films (:func:`recipsim.studies.paper_hydrodynamic.run_hydrodynamic`).
-    bearing_law : {"finite_journal", "short_journal"}
+    bearing_law : str
+        One of :data:`recipsim.studies.paper_hydrodynamic.FILM_LAWS`.
         Film law of the hydrodynamic journals.
 
     Raises

@@ -27,6 +27,9 @@ from typing import Any
 import numpy as np
 
 from recipsim.case.load import Case
+from recipsim.physics.mechanics.bearing_laws import finite_journal
+from recipsim.physics.mechanics.bearing_laws.registry import BEARING_LAWS, JOURNAL_LAWS
+from recipsim.physics.mechanics.layout import JOURNAL_NAMES
 from recipsim.physics.mechanics.tabulated import PressureCurve
 from recipsim.pipeline import simulate_case
 from recipsim.studies.paper_load_run import LoadRun, tabulated_case
@@ -35,9 +38,11 @@ from recipsim.studies.paper_load_run import LoadRun, tabulated_case
 #: so ``gas_damped`` has no hydrodynamic counterpart).
 HYDRODYNAMIC_CONFIGURATIONS = ("inertia", "gas")
 #: Bearings that run on the film law; the pin and piston bearings keep their laws.
-JOURNALS = ("primary", "secondary", "eccentric")
+JOURNALS = JOURNAL_NAMES
 #: Film law of the column.
-DEFAULT_LAW = "finite_journal"
+DEFAULT_LAW = finite_journal.LAW.name
+#: The film laws a journal may run on: the hydrodynamic column's choices.
+FILM_LAWS: tuple[str, ...] = tuple(name for name in JOURNAL_LAWS if BEARING_LAWS[name].film)
 #: Solver of the film runs (``reference_r134a_lbp_lubricated``'s).
 SOLVER_METHOD = "dopri5_stiff"
 
@@ -63,8 +68,9 @@ def hydrodynamic_case(
         ``radial_clearance``), the ``[oil]`` table, the shell pressure and the speed.
     curve : PressureCurve
         Cylinder pressure against crank angle from TDC [rad], [Pa].
-    law : {"finite_journal", "short_journal"}
-        Film law of the primary, secondary and eccentric journals.
+    law : str
+        Film law of the primary, secondary and eccentric journals, one of
+        :data:`FILM_LAWS`.
     samples_per_revolution : int
         Samples of the reported revolution.
     label : str

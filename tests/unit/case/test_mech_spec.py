@@ -88,7 +88,7 @@ def _error(t: dict) -> CaseError:
         (("mechanism", "connecting_rod", "inertia"), "mechanism.connecting_rod.inertia"),
         (("mechanism", "rotor", "secondary_z"), "mechanism.rotor.secondary_z"),
         (("bearings", "eccentric", "stiffness"), "bearings.eccentric.stiffness"),
-        (("bearings", "pin", "law"), "bearings.pin.law"),
+        (("bearings", "piston_top", "law"), "bearings.piston_top.law"),
         (
             ("bearings", "piston_skirt", "position_from_crown"),
             "bearings.piston_skirt.position_from_crown",

@@ -12,6 +12,7 @@ from __future__ import annotations
 import numpy as np
 
 from recipsim.physics.mechanics import layout as mlay
+from recipsim.physics.mechanics.bearing_laws import short_journal
 from recipsim.physics.thermo import cylinder as cyl
 from recipsim.results.bearings import flexible_columns
 from recipsim.results.tables import CYCLE_COLUMNS, GAS_COLUMNS
@@ -34,7 +35,7 @@ def test_mechanism_columns_read_their_own_output_slots() -> None:
     par = np.zeros(mlay.N_PAR)
     for i in range(mlay.N_BEARINGS):  # every bearing on a film: all film columns
         row = mlay.P_BEARINGS + i * mlay.N_BEARING_PAR
-        par[row + mlay.BP_LAW] = mlay.LAW_SHORT_JOURNAL
+        par[row + mlay.BP_LAW] = short_journal.CODE
         par[row + mlay.BP_CLEARANCE] = 1e-5
     cols = flexible_columns(aux, par)
     by_column = {e.column: e for e in mlay.OUTPUTS.entries}

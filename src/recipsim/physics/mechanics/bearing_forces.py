@@ -10,7 +10,7 @@ import numpy as np
 from numba import njit
 
 from recipsim.physics.mechanics import layout as lay
-from recipsim.physics.mechanics.bearings import (
+from recipsim.physics.mechanics.bearing_laws.registry import (
     bearing_load,
     bearing_peak_pressure,
     bearing_spring_energy,

@@ -41,6 +41,7 @@ from numba import njit
 from recipsim.physics.kinematics import piston_displacement, rod_angle, rod_centre_of_mass
 from recipsim.physics.mechanics import layout as lay
 from recipsim.physics.mechanics.bearing_forces import bearing_force, piston_skirt_forces
+from recipsim.physics.mechanics.bearing_laws import skirt_film
 from recipsim.physics.mechanics.bodies import (
     counterweight_accelerations,
     planar_marker,
@@ -177,7 +178,7 @@ def flexible_rhs(
     friction = 0.0
     if (
         int(par[lay.P_BEARINGS + lay.B_PISTON_SKIRT * lay.N_BEARING_PAR + lay.BP_LAW])
-        == lay.LAW_SKIRT_FILM
+        == skirt_film.CODE
     ):
         f5y, f6y, friction = piston_skirt_forces(par, aux, p5y, p6y, v5y, v6y, vxp, u_top - u_skirt)
         f5x = 0.0

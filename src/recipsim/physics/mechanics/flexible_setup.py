@@ -15,6 +15,7 @@ import numpy as np
 
 from recipsim.physics.kinematics import piston_displacement, rod_angle, rod_centre_of_mass
 from recipsim.physics.mechanics import layout as lay
+from recipsim.physics.mechanics.bearing_laws.registry import law_in_row
 from recipsim.physics.mechanics.bodies import rotor_marker
 from recipsim.physics.mechanics.pinned import N_PIN_OUT, pinned_reactions
 
@@ -141,26 +142,15 @@ def _place_rod_and_piston(
 
 
 def effective_stiffness(par: np.ndarray, i: int) -> float:
-    """A stiffness of bearing ``i`` for start poses and tolerances [N/m].
-
-    The linear law's own; a journal film's secant stiffness at eccentricity ratio 0.5
-    from the short-bearing load at the shaft speed (fixed bushing); the piston film's
-    none (0: the piston starts centred).
-    """
+    """A stiffness of bearing ``i`` for start poses and tolerances [N/m]: its law's
+    ``start_stiffness`` (the linear law's own, a journal film's secant stiffness at
+    eccentricity ratio 0.5 at the shaft speed), 0 for a law without one (the body starts
+    centred)."""
     row = _ROW + i * _NB
-    law = int(par[row + lay.BP_LAW])
-    if law == lay.LAW_LINEAR:
-        return float(par[row + lay.BP_STIFFNESS])
-    if law == lay.LAW_SKIRT_FILM:
+    law = law_in_row(par, row)
+    if law.start_stiffness is None:
         return 0.0
-    c = par[row + lay.BP_CLEARANCE]
-    radius = 0.5 * par[row + lay.BP_DIAMETER]
-    length = par[row + lay.BP_LENGTH]
-    omega = max(abs(par[lay.P_SPEED]), 1.0)
-    eps = 0.5
-    shape = eps * math.sqrt(math.pi**2 * (1 - eps**2) + 16 * eps**2) / (1 - eps**2) ** 2
-    load = par[row + lay.BP_VISCOSITY] * omega * radius * length**3 / (4 * c * c) * shape
-    return float(load / (eps * c))
+    return law.start_stiffness(par, row, float(par[lay.P_SPEED]))
 
 
 def state_scales(par: np.ndarray) -> np.ndarray:

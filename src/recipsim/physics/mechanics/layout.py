@@ -42,28 +42,12 @@ BEARING_NAMES: tuple[str, ...] = (
     "piston_skirt",
 )
 
-#: Bearing law codes (``par[P_BEARINGS + i * N_BEARING_PAR + BP_LAW]``).
-LAW_LINEAR = 0
-LAW_SHORT_JOURNAL = 1  # Ocvirk short bearing, Guembel cavitation (journal.py)
-LAW_FINITE_JOURNAL = 2  # finite-length impedance table (journal_finite.py)
-LAW_SKIRT_FILM = 3  # piston_top + piston_skirt as one lubricated skirt (skirt.py)
-LAW_CODES: dict[str, int] = {
-    "linear": LAW_LINEAR,
-    "short_journal": LAW_SHORT_JOURNAL,
-    "finite_journal": LAW_FINITE_JOURNAL,
-    "skirt_film": LAW_SKIRT_FILM,
-}
-#: Laws each bearing accepts (the pin stays linear: its journal does not turn against
-#: its bushing by more than the rod's swing, so it runs squeeze-only at eps near 1).
-JOURNAL_LAWS = ("linear", "short_journal", "finite_journal")
-BEARING_LAWS: dict[str, tuple[str, ...]] = {
-    "primary": JOURNAL_LAWS,
-    "secondary": JOURNAL_LAWS,
-    "eccentric": JOURNAL_LAWS,
-    "pin": ("linear",),
-    "piston_top": ("linear", "skirt_film"),
-    "piston_skirt": ("linear", "skirt_film"),
-}
+#: The rotor and eccentric journals (a journal law's bearings) and the piston's two
+#: stations (the lubricated skirt's). The pin stays on the linear law: its journal does
+#: not turn against its bushing by more than the rod's swing, so it runs squeeze-only at
+#: eps near 1. The laws each bearing accepts are the bearing laws' registry's.
+JOURNAL_NAMES: tuple[str, ...] = BEARING_NAMES[:3]
+PISTON_STATION_NAMES: tuple[str, ...] = BEARING_NAMES[4:]
 
 #: Bearing axis codes: the law acts in the plane normal to this axis.
 AXIS_X = 0
@@ -74,7 +58,7 @@ AXIS_Z = 2
 #: ``P_BEARINGS + i * N_BEARING_PAR``).
 BEARING = Layout("bearing parameters")
 _b = BEARING.add
-BP_LAW = _b("law", "code", "bearing law (LAW_*)")
+BP_LAW = _b("law", "code", "bearing law (the code of its bearing_laws module)")
 BP_AXIS = _b("axis", "code", "axis code (AXIS_*); the force is normal to it")
 BP_STIFFNESS = _b("stiffness", "N/m", "stiffness of the linear law")
 BP_DAMPING = _b("damping", "N s/m", "damping of the linear law")

@@ -8,6 +8,7 @@ import numpy as np
 
 from recipsim.physics.mechanics import layout as lay
 from recipsim.physics.mechanics.bearing_forces import piston_skirt_forces
+from recipsim.physics.mechanics.bearing_laws import skirt_film
 
 LENGTH = 0.0115  # film length between the stations [m]
 
@@ -16,7 +17,7 @@ def _par(detailed: bool = False) -> np.ndarray:
     """Mechanism parameters with the reference piston's skirt film (19 mm bore, 10 um)."""
     par = np.zeros(lay.N_PAR)
     row = lay.P_BEARINGS + lay.B_PISTON_SKIRT * lay.N_BEARING_PAR
-    par[row + lay.BP_LAW] = lay.LAW_SKIRT_FILM
+    par[row + lay.BP_LAW] = skirt_film.CODE
     par[row + lay.BP_DIAMETER] = 0.019
     par[row + lay.BP_CLEARANCE] = 10e-6
     par[row + lay.BP_VISCOSITY] = 4.6e-3
