@@ -27,6 +27,7 @@ from numba import njit
 from recipsim.physics.mechanics.bearing_laws import (
     finite_journal,
     linear,
+    mobility,
     short_journal,
     skirt_film,
 )
@@ -50,7 +51,7 @@ DEFAULT_LAW: str = linear.LAW.name
 BEARING_LAWS: Slot[BearingLaw] = Slot(
     "options.bearing_law",
     "law of the journal bearings (primary, secondary, eccentric) whose table names none",
-    (linear.LAW, short_journal.LAW, finite_journal.LAW, skirt_film.LAW),
+    (linear.LAW, short_journal.LAW, finite_journal.LAW, mobility.LAW, skirt_film.LAW),
     default=DEFAULT_LAW,
 )
 
@@ -75,6 +76,7 @@ def law_in_row(par: np.ndarray, row: int) -> BearingLaw:
 _LINEAR = linear.CODE
 _SHORT = short_journal.CODE
 _FINITE = finite_journal.CODE
+_MOBILITY = mobility.CODE
 
 
 @njit(cache=True)
@@ -98,6 +100,9 @@ def bearing_film(
     if law == _FINITE:
         return finite_journal.finite_film(par, row, tables, ex, ey, vx, vy, spin_journal,
                                           spin_bushing)  # fmt: skip
+    if law == _MOBILITY:
+        return mobility.mobility_film(par, row, tables, ex, ey, vx, vy, spin_journal,
+                                      spin_bushing)  # fmt: skip
     return 0.0, 0.0, 0.0
 
 
@@ -189,6 +194,9 @@ def bearing_peak_pressure(
     if law == _FINITE:
         return finite_journal.finite_peak_pressure(par, row, tables, ex, ey, vx, vy,
                                                    spin_journal, spin_bushing)  # fmt: skip
+    if law == _MOBILITY:
+        return mobility.mobility_peak_pressure(par, row, tables, ex, ey, vx, vy,
+                                               spin_journal, spin_bushing)  # fmt: skip
     return 0.0
 
 
