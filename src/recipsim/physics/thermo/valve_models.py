@@ -7,7 +7,8 @@ and ``reed`` are declared here: their laws are a few lines of
 :mod:`recipsim.physics.thermo.cylinder_rhs` (the ideal valves' pressure constraint),
 :func:`~recipsim.physics.thermo.flow.reed_flow_area` and the reed events of
 :mod:`recipsim.physics.thermo.cylinder_events`; their codes are the layout's
-``VALVES_*`` constants. A choice with its own law has its own module beside this one.
+``VALVES_*`` constants. A choice with its own law has its own module beside this one
+(``jet_reed``: the flow-momentum force from the port geometry).
 
 Adding a valve model
 --------------------
@@ -31,6 +32,7 @@ import math
 from numba import njit
 
 from recipsim.physics.thermo import cylinder as cyl
+from recipsim.physics.thermo import jet_reed
 from recipsim.physics.thermo.flow import reed_flow_area
 from recipsim.physics.thermo.valve_choice import ValveModel
 from recipsim.slots import Slot
@@ -68,7 +70,7 @@ REED = ValveModel(
 VALVE_MODELS: Slot[ValveModel] = Slot(
     option="options.valves",
     doc="valve model",
-    choices=(IDEAL, QUASI_STATIC, REED),
+    choices=(IDEAL, QUASI_STATIC, REED, jet_reed.JET_REED),
     default=REED.name,
 )
 
@@ -76,7 +78,7 @@ VALVE_MODELS: Slot[ValveModel] = Slot(
 @njit(cache=True)
 def moves_reeds(code: int) -> bool:
     """Whether the valve model ``code`` has moving reeds (states, back-flow, events)."""
-    return code == cyl.VALVES_REED
+    return code == cyl.VALVES_REED or code == jet_reed.CODE
 
 
 @njit(cache=True)
@@ -84,7 +86,7 @@ def valve_flow_area(code: int, lift: float, par, base: int) -> float:
     """Effective flow area [m2] of one valve of model ``code`` at ``lift`` [m]
     (``par[base:]`` its row of :data:`~recipsim.physics.thermo.cylinder.VALVE`);
     0 for the ideal valves, whose flow is a constraint."""
-    if code == cyl.VALVES_REED:
+    if code == cyl.VALVES_REED or code == jet_reed.CODE:
         return reed_flow_area(
             lift, par[base + cyl.V_PORT_D], par[base + cyl.V_CURTAIN_D], par[base + cyl.V_CFLOW]
         )
@@ -116,4 +118,8 @@ def reed_opening_force(
     par : ndarray
         The float parameters; ``par[base:]`` is the valve's row.
     """
+    if code == jet_reed.CODE:
+        return jet_reed.jet_reed_force(
+            dp_open, mdot, rho_up, par[base + cyl.V_PORT_D], par[base + cyl.V_PRELOAD]
+        )
     return par[base + cyl.V_AFORCE] * dp_open - par[base + cyl.V_PRELOAD] + jet_force
