@@ -333,9 +333,10 @@ def reference_rst() -> list[str]:
     return lines
 
 
-def slot_rst() -> list[str]:
-    """The model slots' choices (:mod:`recipsim.slots`) as reStructuredText lines: per
-    slot its key, what it models, and each choice's summary and source."""
+def all_slots_rst() -> list[str]:
+    """Every model slot's choices (:mod:`recipsim.slots`) as reStructuredText lines."""
+    from model_slots import slot_lines
+
     from recipsim.case import case_schema  # noqa: F401  (imports every option's registry)
     from recipsim.slots import registered
 
@@ -347,14 +348,7 @@ def slot_rst() -> list[str]:
         "",
     ]
     for slot in registered():
-        lines += [f"``{slot.option}``: {slot.doc}", ""]
-        lines += [".. list-table::", "   :header-rows: 1", "   :widths: 18 50 32", ""]
-        rows = [["choice", "what it models", "source"]]
-        rows += [[f"``{n}``", summary, source] for n, summary, source in slot.describe()]
-        for row in rows:
-            lines.append(f"   * - {_cell(row[0])}")
-            lines += [f"     - {_cell(c)}" for c in row[1:]]
-        lines.append("")
+        lines += slot_lines(slot)
     return lines
 
 
@@ -366,7 +360,7 @@ class CaseReference(SphinxDirective):
     def run(self) -> list[nodes.Node]:
         container = nodes.container()
         self.state.nested_parse(
-            StringList(reference_rst() + slot_rst(), source="case-reference"),
+            StringList(reference_rst() + all_slots_rst(), source="case-reference"),
             0,
             container,
             match_titles=True,

@@ -22,6 +22,7 @@ from typing import Any
 from recipsim.case.case import Case
 from recipsim.case.envelope import check_envelope
 from recipsim.case.load import load_case
+from recipsim.physics.thermo.pressure_sources import PRESSURE_SOURCES
 from recipsim.progress import logger
 from recipsim.report.case_report import report_dir, write_case_report
 from recipsim.results.case_run import CaseRun, case_run, summary_only
@@ -59,7 +60,10 @@ def solve_case(case: Case) -> tuple[Case, PeriodicSolution | None, StartupRun | 
     if entry is not None:
         check_step_budget(case.solver)  # before anything is compiled or integrated
     check_envelope(case)
-    if case.options.pressure == "tabulated" and case.options.mechanics == "pinned":
+    if (
+        not PRESSURE_SOURCES[case.options.pressure].solves_gas
+        and case.options.mechanics == "pinned"
+    ):
         return case, None, None
     if case.solver.start == "rest":
         with explained("building the model"):

@@ -35,6 +35,9 @@ from recipsim.case.sections import (
 )
 from recipsim.errors import CaseError
 from recipsim.physics.mechanics.tabulated import PressureCurve
+from recipsim.physics.thermo.heat_transfer import HEAT_TRANSFER
+from recipsim.physics.thermo.pressure_sources import PRESSURE_SOURCES
+from recipsim.physics.thermo.valve_models import VALVE_MODELS
 from recipsim.schema import check_keys, read_table
 
 
@@ -62,7 +65,8 @@ def heat_transfer(raw: dict[str, Any] | None, options: Options, file: str) -> He
     correlation's own."""
     ht = read_table(raw, HEAT_TRANSFER_SPEC, file, "heat_transfer")
     network = options.thermal == "network"  # the network gives the wall temperature
-    if options.heat_transfer != "adiabatic" and ht["wall_temperature"] is None and not network:
+    exchanges = HEAT_TRANSFER[options.heat_transfer].exchanges_heat
+    if exchanges and ht["wall_temperature"] is None and not network:
         raise CaseError(
             file,
             "heat_transfer.wall_temperature",
@@ -168,7 +172,7 @@ def valves(raw: dict[str, Any] | None, options: Options, file: str) -> Valves:
     specs = {}
     for side in ("suction", "discharge"):
         table = raw.get(side)
-        if table is None and options.valves == "ideal":
+        if table is None and not VALVE_MODELS[options.valves].uses_valve_data:
             table = _IDEAL_PLACEHOLDER
         v = read_table(table, VALVE_SPEC, file, f"valves.{side}")
         if v["port_position"] is None:
@@ -194,7 +198,7 @@ def pressure_curve(
 ) -> PressureCurve | None:
     """The tabulated p(theta) curve: a CSV named relative to the case file."""
     table = read_table(raw, PRESSURE_CURVE_SPEC, file, "pressure_curve")
-    if options.pressure != "tabulated":
+    if PRESSURE_SOURCES[options.pressure].solves_gas:
         return None
     if table["file"] is None:
         raise CaseError(

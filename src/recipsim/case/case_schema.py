@@ -14,17 +14,22 @@ from typing import Any
 
 from recipsim.case.rating import RATING_SPEC
 from recipsim.physics.mechanics.bearing_laws.registry import BEARING_LAWS, JOURNAL_LAWS
+from recipsim.physics.thermo.heat_transfer import ANNAND, HEAT_TRANSFER
+from recipsim.physics.thermo.leakage_models import GAP_LAWS, LEAKAGE
+from recipsim.physics.thermo.pressure_sources import PRESSURE_SOURCES
+from recipsim.physics.thermo.property_backends import PROPERTY_BACKENDS
+from recipsim.physics.thermo.valve_models import VALVE_MODELS
 from recipsim.schema import Choice, Field, Flag, Spec, Text
 
 #: the top of the file: the case's name, its description and its refrigerant
 HEADER_SPEC: Spec = {"name": Text(None), "description": Text(""), "refrigerant": Text()}
 
 OPTION_SPEC: Spec = {
-    "pressure": Choice(("cylinder", "tabulated"), "cylinder", "pressure source"),
-    "properties": Choice(("heos", "table"), "heos", "property backend"),
-    "valves": Choice(("ideal", "quasi_static", "reed"), "reed", "valve model"),
-    "heat_transfer": Choice(("adiabatic", "annand", "adair"), "adiabatic", "in-cylinder heat"),
-    "leakage": Choice(("none", "piston_gap"), "none", "piston-cylinder leakage"),
+    "pressure": PRESSURE_SOURCES.schema_choice(),
+    "properties": PROPERTY_BACKENDS.schema_choice(),
+    "valves": VALVE_MODELS.schema_choice(),
+    "heat_transfer": HEAT_TRANSFER.schema_choice(),
+    "leakage": LEAKAGE.schema_choice(),
     "mechanics": Choice(("pinned", "flexible"), "pinned", "crank train"),
     "bearing_law": BEARING_LAWS.schema_choice(JOURNAL_LAWS),
     "drive": Choice(("constant_speed", "torque_profile", "induction_motor"), "constant_speed"),
@@ -178,11 +183,7 @@ VALVES_TOP_SPEC: Spec = {
 }
 
 LEAKAGE_SPEC: Spec = {
-    "model": Choice(
-        ("isothermal", "incompressible"),
-        "isothermal",
-        "gap law: compressible isothermal (mean-pressure density) or upstream density",
-    ),
+    "model": GAP_LAWS.schema_choice(),
     "radial_clearance": Field(
         "m",
         6e-6,
@@ -212,7 +213,7 @@ HEAT_TRANSFER_SPEC: Spec = {
         hi=100.0,
         doc="correlation constant a",
         plausible=(0.35, 0.8),
-        plausible_when=("options.heat_transfer", "annand"),
+        plausible_when=(HEAT_TRANSFER.option, ANNAND.name),
         plausible_source="Annand (1963): a = 0.35-0.8 with the intensity of the gas motion",
     ),
 }

@@ -17,6 +17,7 @@ from recipsim.case.sections import (
     ValveSpec,
 )
 from recipsim.errors import CaseError
+from recipsim.physics.thermo.valve_models import VALVE_MODELS
 
 
 def check_solver(solver: SolverSettings, options: Options, file: str) -> None:
@@ -62,7 +63,7 @@ def check_buildable(geometry: Geometry, valves: Valves, options: Options, file: 
             f"{geometry.liner_length:.4g} m is too short: the piston crown travels "
             f"{crown_at_bdc:.4g} m from the head (stroke + clearance height); allowed: longer",
         )
-    if options.valves == "ideal":
+    if not VALVE_MODELS[options.valves].uses_valve_data:
         return  # the lossless valves use no valve data
     for side in ("suction", "discharge"):
         valve: ValveSpec = getattr(valves, side)

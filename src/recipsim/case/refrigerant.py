@@ -25,6 +25,7 @@ from recipsim.case.envelope_table import read_envelope
 from recipsim.case.files import read_toml, shipped_dir
 from recipsim.errors import CaseError
 from recipsim.physics.thermo.fluid import Fluid
+from recipsim.physics.thermo.property_backends import PROPERTY_BACKENDS
 from recipsim.physics.thermo.property_table_cache import fluid_constants, load_property_table
 from recipsim.physics.thermo.table_states import TableFluid
 from recipsim.schema import Field, Spec, Text, check_keys, read_table
@@ -239,11 +240,11 @@ def case_fluid(refrigerant: RefrigerantSpec, properties: str) -> AnyFluid:
     refrigerant : RefrigerantSpec
         The refrigerant (its CoolProp name and model temperature range).
     properties : str
-        The case's ``options.properties``: ``"heos"`` gives a CoolProp :class:`Fluid`;
-        ``"table"`` the fluid's cached property table (built on first use), one
-        instance per fluid and range in a process (a sweep loads it once).
+        The case's ``options.properties``: a tabulated backend gives the fluid's
+        cached property table (built on first use), one instance per fluid and range in
+        a process (a sweep loads it once); else a CoolProp :class:`Fluid`.
     """
-    if properties == "table":
+    if PROPERTY_BACKENDS[properties].tabulated:
         return _table_fluid(
             refrigerant.coolprop_name, refrigerant.min_temperature, refrigerant.max_temperature
         )

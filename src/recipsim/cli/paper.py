@@ -42,6 +42,7 @@ from recipsim.solve.periodic import solve_periodic
 from recipsim.studies.paper import run_paper_study
 from recipsim.studies.paper_hydrodynamic import DEFAULT_LAW, FILM_LAWS
 from recipsim.studies.paper_report import conclusion_three
+from recipsim.studies.paper_runs import UNDAMPED_STARTS
 
 
 def add_paper_parser(sub: Any) -> None:
@@ -64,7 +65,7 @@ def add_paper_parser(sub: Any) -> None:
     )
     p.add_argument(
         "--undamped-start",
-        choices=("periodic", "unloaded", "quasi_static"),
+        choices=UNDAMPED_STARTS,
         default=None,
         help=(
             "undamped runs: their periodic response at constant speed, by shooting "

@@ -22,6 +22,7 @@ from typing import Any
 from recipsim.case.load import load_case
 from recipsim.case.refrigerant import case_fluid, load_refrigerant
 from recipsim.cli.options import exit_status
+from recipsim.physics.thermo.property_backends import TABLE
 from recipsim.pipeline import simulate_case
 from recipsim.solve.scene_entries import compile_entry, entry_name
 
@@ -91,7 +92,7 @@ def warmup(cases: list[str], refrigerants: list[str], verbose: bool = True) -> i
 
     for name in refrigerants:
         start = time.perf_counter()
-        case_fluid(load_refrigerant(name, "--refrigerants", name), "table")
+        case_fluid(load_refrigerant(name, "--refrigerants", name), TABLE.name)
         say(f"property table of {name} ready ({time.perf_counter() - start:.1f} s)")
     for case in cases:
         start = time.perf_counter()

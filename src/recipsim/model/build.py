@@ -40,6 +40,7 @@ from recipsim.physics.mechanics import layout as mlay
 from recipsim.physics.mechanics.flexible_setup import initial_state, state_scales
 from recipsim.physics.mechanics.tabulated import tabulated_pressure
 from recipsim.physics.thermo import cylinder as cyl
+from recipsim.physics.thermo.pressure_sources import PRESSURE_SOURCES
 
 if TYPE_CHECKING:
     from recipsim.case.refrigerant import AnyFluid
@@ -229,7 +230,7 @@ def build_model(case: Case, drive_pressure: tuple[np.ndarray, np.ndarray] | None
     """
     model = cylinder_model(case)
     opts = case.options
-    if opts.mechanics == "pinned" and opts.pressure == "cylinder":
+    if opts.mechanics == "pinned" and PRESSURE_SOURCES[opts.pressure].solves_gas:
         return model
     mpar = case_mechanism_parameters(case)
     scene, p_angles, p_values = _pressure_table(case)
@@ -284,7 +285,7 @@ def _pressure_table(case: Case) -> tuple[int, np.ndarray, np.ndarray]:
         The tabulated crank angles [rad] and pressures [Pa] (a single zero each when the
         cylinder gives the pressure).
     """
-    if case.options.pressure == "tabulated":
+    if not PRESSURE_SOURCES[case.options.pressure].solves_gas:
         assert case.pressure_curve is not None
         curve = case.pressure_curve
         return scenes.SCENE_MECHANISM, curve.crank_angle, curve.pressure
@@ -349,7 +350,7 @@ def _drive_table(
     paper's ``torque_profile`` drive); for the coupled scene the pressure is that of
     the cylinder on the rigid crank (``drive_pressure``)."""
     op = case.operating_point
-    if case.options.pressure == "cylinder":
+    if PRESSURE_SOURCES[case.options.pressure].solves_gas:
         if drive_pressure is None:
             raise ValueError(
                 "the coupled torque_profile drive needs the rigid crank's cylinder pressure: "

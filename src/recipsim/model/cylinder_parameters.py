@@ -15,26 +15,17 @@ from recipsim.case.load import Case
 from recipsim.model import scenes
 from recipsim.model.plenum import PlenumState, write_plenum
 from recipsim.physics.thermo import cylinder as cyl
-from recipsim.physics.thermo.heat_transfer import (
-    DEFAULT_COEFFICIENT,
-    HT_ADAIR,
-    HT_ADIABATIC,
-    HT_ANNAND,
-)
+from recipsim.physics.thermo.heat_transfer import HEAT_TRANSFER
+from recipsim.physics.thermo.leakage_models import LEAKAGE, leakage_code
 from recipsim.physics.thermo.properties import HeosProperties
 from recipsim.physics.thermo.table_states import TableFluid
+from recipsim.physics.thermo.valve_models import VALVE_MODELS
 
 if TYPE_CHECKING:
     from recipsim.case.refrigerant import AnyFluid
 
 START_ANGLE = 1.5 * math.pi  # crank angle at which every revolution starts [rad]
 
-_VALVE_CODES = {
-    "ideal": cyl.VALVES_IDEAL,
-    "quasi_static": cyl.VALVES_QUASI_STATIC,
-    "reed": cyl.VALVES_REED,
-}
-_HT_CODES = {"adiabatic": HT_ADIABATIC, "annand": HT_ANNAND, "adair": HT_ADAIR}
 _FLOW_CODES = {"real_gas": cyl.FLOW_REAL_GAS, "ideal_gas": cyl.FLOW_IDEAL_GAS}
 
 
@@ -71,10 +62,10 @@ def cylinder_parameters(
     _write_valves(par, case)
     ipar = np.zeros(scenes.N_IPAR, dtype=np.int64)
     ipar[cyl.I_SCENE] = 0
-    ipar[cyl.I_VALVES] = _VALVE_CODES[opts.valves]
+    ipar[cyl.I_VALVES] = VALVE_MODELS[opts.valves].code
     ipar[cyl.I_FLOW] = _FLOW_CODES[case.valves.flow_model]
-    ipar[cyl.I_HT] = _HT_CODES[opts.heat_transfer]
-    ipar[cyl.I_LEAK] = _leak_code(opts.leakage, case.leakage.model)
+    ipar[cyl.I_HT] = HEAT_TRANSFER[opts.heat_transfer].code
+    ipar[cyl.I_LEAK] = leakage_code(opts.leakage, case.leakage.model)
     return par, ipar
 
 
@@ -143,9 +134,9 @@ def _write_gas(
     par[cyl.C_VSTICK] = case.valves.stick_velocity
     par[cyl.C_LEAK_DELTA] = case.leakage.radial_clearance
     par[cyl.C_LEAK_ECC] = case.leakage.eccentricity_ratio
-    ht_code = _HT_CODES[case.options.heat_transfer]
+    correlation = HEAT_TRANSFER[case.options.heat_transfer]
     coef = case.heat_transfer.coefficient
-    par[cyl.C_HT_COEF] = DEFAULT_COEFFICIENT[ht_code] if math.isnan(coef) else coef
+    par[cyl.C_HT_COEF] = correlation.default_coefficient if math.isnan(coef) else coef
     par[cyl.C_TWALL] = case.heat_transfer.wall_temperature
 
 
@@ -178,7 +169,7 @@ def _write_valves(par: np.ndarray, case: Case) -> None:
 def property_callback(case: Case, fluid: AnyFluid) -> HeosProperties:
     """The property callback of the compiled code.
 
-    With ``properties = "table"`` the compiled code interpolates a cached table that
+    With a tabulated property backend the compiled code interpolates a cached table that
     follows the outputs in the callback's buffer, and calls HEOS only where the table
     has no data; transport properties are computed when heat transfer or leakage needs
     them.
@@ -196,7 +187,7 @@ def property_callback(case: Case, fluid: AnyFluid) -> HeosProperties:
         The callback, its ``table`` set (None without one).
     """
     opts = case.options
-    transport = opts.heat_transfer != "adiabatic" or opts.leakage != "none"
+    transport = HEAT_TRANSFER[opts.heat_transfer].exchanges_heat or LEAKAGE[opts.leakage].leaks
     ref = case.refrigerant
     table = fluid.table if isinstance(fluid, TableFluid) else None
     props = HeosProperties(
@@ -208,10 +199,3 @@ def property_callback(case: Case, fluid: AnyFluid) -> HeosProperties:
     )
     props.table = table
     return props
-
-
-def _leak_code(option: str, law: str) -> int:
-    """Compiled code of the piston-gap leakage: none, incompressible or isothermal."""
-    if option == "none":
-        return cyl.LEAK_NONE
-    return cyl.LEAK_ISOTHERMAL if law == "isothermal" else cyl.LEAK_INCOMPRESSIBLE

@@ -13,7 +13,7 @@ import pandas as pd
 from recipsim.report.figure_names import FIGURE_NAMES, check_figure_names
 from recipsim.report.loss_plot import plot_loss_breakdown
 from recipsim.report.plotting import PNG_OPTIONS, fixed_margins, save_cycle_figures
-from recipsim.report.summary_text import summary_markdown
+from recipsim.report.summary_text import pressure_label, summary_markdown
 
 
 def report_figure_names(
@@ -76,7 +76,5 @@ def draw_report_figures(
 
 def run_title(row: Mapping[str, Any]) -> str:
     """What was run, for plot titles: case name, mechanics, drive and pressure source."""
-    pressure = {"cylinder": "cylinder model", "tabulated": "tabulated pressure"}.get(
-        str(row.get("pressure")), str(row.get("pressure"))
-    )
+    pressure = pressure_label(row)
     return f"{row.get('case')}: {row.get('mechanics')} crank, {row.get('drive')}, {pressure}"

@@ -42,6 +42,7 @@ from recipsim.case.motor import MOTOR_SPEC
 from recipsim.case.overrides import toml_literal
 from recipsim.errors import CaseError
 from recipsim.physics.mechanics.layout import BEARING_NAMES
+from recipsim.physics.thermo.pressure_sources import PRESSURE_SOURCES
 from recipsim.schema import Field, Spec, read_table
 from recipsim.version import __version__
 
@@ -200,7 +201,7 @@ def _pressure_curve(case: Case, table: Any, files: dict[str, bytes]) -> dict[str
             case.allow_external_paths,
         )
     except CaseError:
-        if case.options.pressure == "tabulated":
+        if not PRESSURE_SOURCES[case.options.pressure].solves_gas:
             raise
         return {}  # named but unused, and gone: the resolved case needs none
     files[path.name] = path.read_bytes()

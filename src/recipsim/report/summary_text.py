@@ -12,6 +12,7 @@ import math
 from collections.abc import Mapping
 from typing import Any
 
+from recipsim.physics.thermo.pressure_sources import PRESSURE_SOURCES, PressureSource
 from recipsim.results.loss_breakdown import COP_COST_COLUMNS, LOSS_COLUMNS
 
 #: Kelvin at 0 C [K].
@@ -27,6 +28,23 @@ def _value(row: Mapping[str, Any], column: str) -> float:
     except (TypeError, ValueError):
         return math.nan
     return value
+
+
+def _pressure_source(row: Mapping[str, Any]) -> PressureSource | None:
+    name = str(row.get("pressure"))
+    return PRESSURE_SOURCES[name] if name in PRESSURE_SOURCES else None
+
+
+def _solves_gas(row: Mapping[str, Any]) -> bool:
+    """Whether the row's pressure source solved the cylinder's gas."""
+    source = _pressure_source(row)
+    return source is not None and source.solves_gas
+
+
+def pressure_label(row: Mapping[str, Any]) -> str:
+    """How a title names the row's pressure source ("cylinder model", ...)."""
+    source = _pressure_source(row)
+    return source.label if source is not None else str(row.get("pressure"))
 
 
 def _fmt(value: float, decimals: int) -> str:
@@ -73,14 +91,15 @@ def key_figures(row: Mapping[str, Any]) -> list[tuple[str, str, str]]:
     ]
     shaft = _value(row, "shaft_power [W]")
     capacity = _value(row, "cooling_capacity [W]")
-    if row.get("pressure") == "cylinder":
+    gas = _solves_gas(row)
+    if gas:
         rows += [
             ("discharge temperature", _celsius(row, "discharge_temperature [K]"), "C"),
             ("mass flow", _fmt(_value(row, "discharge_mass_flow [kg/s]") * 3600.0, 3), "kg/h"),
             ("cooling capacity", _watts(capacity), "W"),
         ]
     rows += _powers(row, shaft, capacity)
-    if row.get("pressure") == "cylinder":
+    if gas:
         rows += [
             ("isentropic efficiency", _fmt(_value(row, "isentropic_efficiency [-]"), 3), "-"),
             ("volumetric efficiency", _fmt(_value(row, "volumetric_efficiency [-]"), 3), "-"),
@@ -94,7 +113,7 @@ def _powers(row: Mapping[str, Any], shaft: float, capacity: float) -> list[tuple
     ``"lossless"``), else said to be the shaft power's; shaft power and its COP."""
     motor = row.get("motor", "lossless") != "lossless"
     electrical = _value(row, "motor_electrical_power [W]")
-    gas = row.get("pressure") == "cylinder"
+    gas = _solves_gas(row)
     rows = [
         (
             "electrical power",
@@ -171,7 +190,7 @@ def summary_markdown(row: Mapping[str, Any], title: bool = True) -> str:
 
 
 def _heading(row: Mapping[str, Any]) -> str:
-    pressure = "cylinder model" if row.get("pressure") == "cylinder" else "tabulated pressure"
+    pressure = pressure_label(row)
     return (
         f"{row.get('case', '')}: {row.get('mechanics', '')} crank, {row.get('drive', '')}, "
         f"{pressure}"

@@ -11,6 +11,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from recipsim.case.load import Case
+from recipsim.physics.thermo.valve_models import VALVE_MODELS
 from recipsim.results.sampled import CycleColumns
 
 if TYPE_CHECKING:
@@ -62,7 +63,7 @@ def valve_timing(
             row[f"{side}_valve_opening_angle [deg]"] = math.nan
             row[f"{side}_valve_closing_angle [deg]"] = math.nan
             continue
-        if case.options.valves == "reed":
+        if VALVE_MODELS[case.options.valves].moves_reeds:
             flowing = cycle[f"{side}_valve_lift [m]"] > 0.0
         else:
             flow = np.abs(cycle[f"{side}_mass_flow [kg/s]"])

@@ -16,6 +16,7 @@ import numpy as np
 from recipsim.case.case import Case
 from recipsim.model import scenes
 from recipsim.model.build import Model, build_model, cylinder_model
+from recipsim.physics.thermo.pressure_sources import PRESSURE_SOURCES
 from recipsim.solve.periodic import sample_outputs, solve_periodic
 
 
@@ -39,5 +40,6 @@ def rigid_crank_pressure(case: Case) -> tuple[np.ndarray, np.ndarray]:
 def build_model_for(case: Case) -> Model:
     """:func:`~recipsim.model.build.build_model` of ``case``, with the rigid crank's
     pressure solved first where the coupled ``torque_profile`` drive needs it."""
-    needs = case.options.pressure == "cylinder" and case.options.drive == "torque_profile"
+    solves_gas = PRESSURE_SOURCES[case.options.pressure].solves_gas
+    needs = solves_gas and case.options.drive == "torque_profile"
     return build_model(case, rigid_crank_pressure(case) if needs else None)

@@ -20,6 +20,7 @@ from numba import types
 
 from recipsim.model.scenes import SCENE_COUPLED, SCENE_CYLINDER, SCENE_MECHANISM
 from recipsim.physics.thermo.cylinder import I_SCENE
+from recipsim.physics.thermo.pressure_sources import PRESSURE_SOURCES
 from recipsim.physics.thermo.properties import PROPS_TYPE
 from recipsim.solve.integrator import (
     METHOD_AUTO_IN_W,
@@ -109,7 +110,7 @@ def entry_name(options: Options, solver: SolverSettings) -> str | None:
     with, by name; None where nothing is integrated (pinned mechanism, tabulated
     pressure). ``"dopri5_stiff"`` starts with the explicit entry (the one with the
     W-step compiles where a stretch turns stiff), ``"ros34pw2"`` with the W-step's."""
-    if options.pressure == "tabulated":
+    if not PRESSURE_SOURCES[options.pressure].solves_gas:
         if options.mechanics != "flexible":
             return None
         scene = "integrate_mechanism"

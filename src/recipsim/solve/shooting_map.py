@@ -10,7 +10,7 @@ import numpy as np
 
 from recipsim.model.build import Model, WorkingModel, scenes
 from recipsim.physics.mechanics import layout as mlay
-from recipsim.physics.thermo import cylinder as cyl
+from recipsim.physics.thermo.valve_models import VALVE_MODELS
 from recipsim.solve.revolution import (
     Revolution,
     _Tally,
@@ -45,7 +45,7 @@ def shooting_unknowns(model: Model, mode: np.ndarray) -> np.ndarray:
     idx: list[int] = []
     if model.has_gas:
         idx += [model.state_index("gas_temperature"), model.state_index("gas_density")]
-        if scenes.IPAR.bundle(model.ipar).valves == cyl.VALVES_REED:
+        if VALVE_MODELS.by_code(int(scenes.IPAR.bundle(model.ipar).valves)).moves_reeds:
             for i, reed in enumerate(("suction", "discharge")):
                 if mode[i] == 1:  # free reed: lift and velocity are unknowns
                     idx += [model.state_index(f"{reed}_valve_{s}") for s in ("lift", "velocity")]

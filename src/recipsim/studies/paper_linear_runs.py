@@ -32,7 +32,7 @@ from recipsim.physics.mechanics.flexible_setup import initial_state
 from recipsim.physics.mechanics.pinned import PinnedLoads
 from recipsim.physics.mechanics.tabulated import PressureCurve, tabulated_pressure
 from recipsim.studies.paper_load_run import LoadRun, solve_load, tabulated_case
-from recipsim.studies.paper_runs import CONFIGURATIONS, RunRecord
+from recipsim.studies.paper_runs import CONFIGURATIONS, DEFLECTED_START, RunRecord
 from recipsim.studies.paper_tables import cylinder_pressures, pinned_table
 
 #: The undamped shooting integrates at this times the study's ``rtol``: an undamped
@@ -133,7 +133,7 @@ def flexible_runs(
         run_case, mode = flexible_case(case, loads[load_of(config)], config, options)
         start = None
         if mode == "fixed_revolutions":
-            start = tdc_start(loads[load_of(config)], options["undamped_start"] == "quasi_static")
+            start = tdc_start(loads[load_of(config)], options["undamped_start"] == DEFLECTED_START)
         t0 = time.perf_counter()
         result = solve_load(config, run_case, start, jacobian if mode == "shooting" else None)
         if mode == "shooting":

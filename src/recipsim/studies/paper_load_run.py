@@ -20,6 +20,7 @@ from recipsim.case.load import Case
 from recipsim.model.build import Model
 from recipsim.physics.mechanics.layout import BEARING_NAMES
 from recipsim.physics.mechanics.tabulated import PressureCurve
+from recipsim.physics.thermo.pressure_sources import TABULATED
 from recipsim.results.tables import cycle_table, summary
 from recipsim.solve.drive import build_model_for
 from recipsim.solve.periodic import solve_periodic
@@ -106,7 +107,7 @@ def tabulated_case(
     return replace(
         changed,
         name=case.name + (f"_{label}" if label else ""),
-        options=replace(changed.options, pressure="tabulated"),
+        options=replace(changed.options, pressure=TABULATED.name),
         pressure_curve=curve,
     )
 

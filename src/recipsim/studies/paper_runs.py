@@ -18,7 +18,9 @@ from recipsim.studies.paper_load_run import LoadRun
 CONFIGURATIONS = ("inertia", "gas", "gas_damped")
 #: How the undamped runs are made: their periodic response (shooting), or a transient
 #: of fixed revolutions from the quasi-static or the unloaded pose.
-UNDAMPED_STARTS = ("periodic", "quasi_static", "unloaded")
+#: the undamped start from the pose the pinned loads deflect the mechanism to
+DEFLECTED_START = "quasi_static"
+UNDAMPED_STARTS = ("periodic", DEFLECTED_START, "unloaded")
 #: Runs, as ``<config>_<model>`` (``gas_damped`` reuses the ``gas`` pinned run).
 RUNS = ("inertia_pinned", "inertia_flexible", "gas_pinned", "gas_flexible", "gas_damped_flexible")
 #: Runs of the hydrodynamic column (``hydrodynamic=case``), after :data:`RUNS`.

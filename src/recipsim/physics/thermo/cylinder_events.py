@@ -11,6 +11,7 @@ from __future__ import annotations
 from numba import njit
 
 from recipsim.physics.thermo import cylinder as cyl
+from recipsim.physics.thermo.valve_models import moves_reeds
 
 
 @njit(cache=True)
@@ -28,7 +29,7 @@ def cylinder_event_values(y, mode, par, ipar, aux, g) -> None:
         else:
             g[0] = (par[cyl.C_PS] - p) / par[cyl.C_PS]
             g[2] = (p - par[cyl.C_PD]) / par[cyl.C_PD]
-    elif valves == cyl.VALVES_REED:
+    elif moves_reeds(valves):
         for i in range(2):
             base = cyl.C_VALVE0 + i * cyl.VALVE_BLOCK
             ix = cyl.Y_XS + 2 * i

@@ -17,6 +17,9 @@ with ``h_i`` the upstream enthalpy. Valve models:
   diameter (``V_CURTAIN_D``: the port's or the reed's, :func:`flow.reed_flow_area`) and
   whether the jet's momentum (``V_MOMENTUM``, :func:`flow.jet_momentum_force`) adds to
   the pressure force on the reed.
+- the valve models' flow areas and reed forces come from the registry's dispatch
+  (:mod:`recipsim.physics.thermo.valve_models`), where another valve model adds its
+  branch.
 
 Piston-gap leakage (``I_LEAK``): ``LEAK_INCOMPRESSIBLE`` (upstream density and
 viscosity) or ``LEAK_ISOTHERMAL`` (compressible, ``p/rho`` and viscosity the means of
@@ -34,7 +37,6 @@ from recipsim.physics.thermo import cylinder as cyl
 from recipsim.physics.thermo.flow import (
     gap_leakage_mass_flow,
     isothermal_gap_leakage_mass_flow,
-    reed_flow_area,
     valve_mass_flow_and_force,
 )
 from recipsim.physics.thermo.heat_transfer import HT_ADIABATIC, heat_transfer_coefficient
@@ -53,12 +55,11 @@ from recipsim.physics.thermo.properties import (
     STATUS_OK,
 )
 from recipsim.physics.thermo.property_table import STATUS_FALLBACK, table_props
-
-
-@njit(cache=True)
-def _valve_force(dp_open: float, par, base: int) -> float:
-    """Net opening force of a reed at zero lift: A_ff dp - preload [N]."""
-    return par[base + cyl.V_AFORCE] * dp_open - par[base + cyl.V_PRELOAD]
+from recipsim.physics.thermo.valve_models import (
+    moves_reeds,
+    reed_opening_force,
+    valve_flow_area,
+)
 
 
 @njit(cache=True)
@@ -241,19 +242,9 @@ def cylinder_gas_rhs(
     mdot_d = 0.0
     lift_s = y[cyl.Y_XS]
     lift_d = y[cyl.Y_XD]
-    if valves == cyl.VALVES_REED:
-        a_s = reed_flow_area(
-            lift_s, par[bs + cyl.V_PORT_D], par[bs + cyl.V_CURTAIN_D], par[bs + cyl.V_CFLOW]
-        )
-        a_d = reed_flow_area(
-            lift_d, par[bd + cyl.V_PORT_D], par[bd + cyl.V_CURTAIN_D], par[bd + cyl.V_CFLOW]
-        )
-    elif valves == cyl.VALVES_QUASI_STATIC:
-        a_s = par[bs + cyl.V_CFLOW] * 0.25 * math.pi * par[bs + cyl.V_PORT_D] ** 2
-        a_d = par[bd + cyl.V_CFLOW] * 0.25 * math.pi * par[bd + cyl.V_PORT_D] ** 2
-    else:
-        a_s = 0.0
-        a_d = 0.0
+    a_s = valve_flow_area(valves, lift_s, par, bs)
+    a_d = valve_flow_area(valves, lift_d, par, bd)
+    reeds = moves_reeds(valves)
     # jet momentum on the reeds, along their opening direction [N]
     fjet_s = 0.0
     fjet_d = 0.0
@@ -262,7 +253,7 @@ def cylinder_gas_rhs(
     if a_s > 0.0:
         if p_s > p:
             mdot_s, fjet_s = valve_mass_flow_and_force(a_s, p_s, rho_s, p, kappa_s, dp_lam, jet_s)
-        elif valves == cyl.VALVES_REED:
+        elif reeds:
             mdot_s, fjet_s = valve_mass_flow_and_force(
                 a_s, p, rho_up_cyl, p_s, kappa, dp_lam, jet_s
             )
@@ -273,7 +264,7 @@ def cylinder_gas_rhs(
             mdot_d, fjet_d = valve_mass_flow_and_force(
                 a_d, p, rho_up_cyl, p_d, kappa, dp_lam, jet_d
             )
-        elif valves == cyl.VALVES_REED:
+        elif reeds:
             mdot_d, fjet_d = valve_mass_flow_and_force(a_d, p_d, rho_d, p, kappa_d, dp_lam, jet_d)
             mdot_d = -mdot_d
             fjet_d = -fjet_d
@@ -315,12 +306,16 @@ def cylinder_gas_rhs(
     dydt[cyl.Y_RHO] = a_rho
 
     # reed dynamics
-    f_s = _valve_force(p_s - p, par, bs) + fjet_s
-    f_d = _valve_force(p - p_d, par, bd) + fjet_d
+    f_s = reed_opening_force(
+        valves, p_s - p, mdot_s, rho_s if mdot_s >= 0.0 else rho_up_cyl, fjet_s, par, bs
+    )
+    f_d = reed_opening_force(
+        valves, p - p_d, mdot_d, rho_up_cyl if mdot_d >= 0.0 else rho_d, fjet_d, par, bd
+    )
     for i in range(2):
         base = cyl.C_VALVE0 + i * cyl.VALVE_BLOCK
         ix = cyl.Y_XS + 2 * i
-        if valves == cyl.VALVES_REED and mode[i] == 1:
+        if reeds and mode[i] == 1:
             force = f_s if i == 0 else f_d
             acc = (
                 force - par[base + cyl.V_STIFF] * y[ix] - par[base + cyl.V_DAMP] * y[ix + 1]

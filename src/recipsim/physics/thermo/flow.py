@@ -27,6 +27,9 @@ import math
 
 from numba import njit
 
+from recipsim.physics.thermo import cylinder as cyl
+from recipsim.slots import ModelChoice
+
 
 @njit(cache=True)
 def _drop_factor(a: float, log_r: float) -> float:
@@ -238,3 +241,19 @@ def isothermal_gap_leakage_mass_flow(
         p_cylinder - p_shell, rho_mean, viscosity, bore, clearance, length,
         piston_velocity_to_head, eccentricity_ratio,
     )  # fmt: skip
+
+
+#: ``leakage.model = "isothermal"``: :func:`isothermal_gap_leakage_mass_flow`
+ISOTHERMAL_GAP = ModelChoice(
+    name="isothermal",
+    code=cyl.LEAK_ISOTHERMAL,
+    summary="compressible isothermal Couette-Poiseuille flow (mean-pressure density)",
+    source="laminar gap flow integrated along the gap at constant p/rho",
+)
+#: ``leakage.model = "incompressible"``: :func:`gap_leakage_mass_flow`
+INCOMPRESSIBLE_GAP = ModelChoice(
+    name="incompressible",
+    code=cyl.LEAK_INCOMPRESSIBLE,
+    summary="laminar Couette-Poiseuille flow at the upstream density and viscosity",
+    source="laminar flow in an eccentric annulus (1 + 1.5 eps^2)",
+)

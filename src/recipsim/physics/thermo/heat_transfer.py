@@ -10,19 +10,76 @@ cylinder: head + piston crown + liner ``2 A_p + pi D x_wall`` (Roskosch et al.).
   ``omega_g = 2 omega (1.04 + cos 2 theta)``, halved in the half revolution around
   top dead centre (ThermoCycle's compressor convention; the original's angle origin
   is not verified).
+
+The ``options.heat_transfer`` slot: :data:`HEAT_TRANSFER` (its choices, a
+:class:`HeatTransferModel` each, are declared beside their correlations here). Adding a
+correlation: write it (in its own module if it is more than a few lines), declare its
+entry with a new ``code`` and its default coefficient, list it in
+:data:`HEAT_TRANSFER`, and add one ``if model == CODE`` branch to
+:func:`heat_transfer_coefficient` (numba compiles the dispatch statically); test it
+against a published value.
 """
 
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 
 from numba import njit
+
+from recipsim.slots import ModelChoice, Slot
 
 HT_ADIABATIC = 0
 HT_ANNAND = 1
 HT_ADAIR = 2
 
-DEFAULT_COEFFICIENT = {HT_ADIABATIC: 0.0, HT_ANNAND: 0.575, HT_ADAIR: 0.053}
+
+@dataclass(frozen=True)
+class HeatTransferModel(ModelChoice):
+    """An in-cylinder heat-transfer correlation.
+
+    Attributes
+    ----------
+    default_coefficient : float
+        The correlation's constant ``a`` where the case gives no
+        ``heat_transfer.coefficient`` [-].
+    exchanges_heat : bool
+        Heat flows between wall and gas: the case needs a wall temperature, the
+        property callback the transport properties.
+    """
+
+    default_coefficient: float = 0.0
+    exchanges_heat: bool = True
+
+
+ADIABATIC = HeatTransferModel(
+    name="adiabatic",
+    code=HT_ADIABATIC,
+    summary="no heat between the cylinder wall and the gas",
+    exchanges_heat=False,
+)
+ANNAND = HeatTransferModel(
+    name="annand",
+    code=HT_ANNAND,
+    summary="Nu = a Re^0.7 on the bore and the mean piston speed",
+    source="Annand (1963); ThermoCycle Annand1963",
+    default_coefficient=0.575,
+)
+ADAIR = HeatTransferModel(
+    name="adair",
+    code=HT_ADAIR,
+    summary="Nu = a Re^0.8 Pr^0.6 on the equivalent diameter and the swirl velocity",
+    source="Adair, Qvale & Pearson (1972)",
+    default_coefficient=0.053,
+)
+
+#: The ``options.heat_transfer`` slot.
+HEAT_TRANSFER: Slot[HeatTransferModel] = Slot(
+    option="options.heat_transfer",
+    doc="in-cylinder heat",
+    choices=(ADIABATIC, ANNAND, ADAIR),
+    default=ADIABATIC.name,
+)
 
 
 @njit(cache=True)

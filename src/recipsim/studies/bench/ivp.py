@@ -36,8 +36,8 @@ from numba.experimental import jitclass
 from recipsim.errors import SolverError
 from recipsim.model import scenes
 from recipsim.model.build import Model, WorkingModel
-from recipsim.physics.thermo import cylinder as cyl
 from recipsim.physics.thermo.properties import PROPS_SIGNATURE
+from recipsim.physics.thermo.valve_models import VALVE_MODELS
 from recipsim.solve.integrator import (
     N_STATS,
     ST_NACCEPT,
@@ -123,10 +123,7 @@ def active_events(model: Model) -> list[int]:
     active: list[int] = []
     ipar = scenes.IPAR.bundle(model.ipar)
     if model.has_gas:
-        if ipar.valves == cyl.VALVES_REED:
-            active += [0, 1, 2, 3]
-        elif ipar.valves == cyl.VALVES_IDEAL:
-            active += [0, 2]
+        active += list(VALVE_MODELS.by_code(int(ipar.valves)).event_functions)
     if ipar.stop_on_angle != 0 and model.scene != scenes.SCENE_CYLINDER:
         active.append(scenes.EV_THETA_END)
     return active

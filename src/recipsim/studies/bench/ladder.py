@@ -10,8 +10,8 @@ them. Axes (see :func:`build_ladder`):
 - integrators: scipy's ``solve_ivp`` methods driving the same compiled right-hand side
   from Python (:mod:`.ivp`);
 - periodic solver: ``solver.periodic = "revolutions" | "shooting"``;
-- property backend: every rung names it; ``"heos"`` unless the rung is about
-  ``options.properties = "table"`` (alone, with longer steps and with shooting);
+- property backend: every rung names it; HEOS unless the rung is about the
+  tabulated properties (alone, with longer steps and with shooting);
 - fidelity: cheaper valve models (``options.valves``), the rigid crank
   (``options.mechanics = "pinned"`` for a flexible case) and, for a case with any part
   of the loss chain, the indicated machine (``thermal = "fixed_wall"``, ``motor =
@@ -39,6 +39,9 @@ from recipsim.case.case import Case
 from recipsim.case.case_schema import SOLVER_SPEC
 from recipsim.case.overrides import parse_override
 from recipsim.errors import RecipsimError
+from recipsim.physics.thermo.pressure_sources import PRESSURE_SOURCES
+from recipsim.physics.thermo.property_backends import HEOS, TABLE
+from recipsim.physics.thermo.valve_models import VALVE_MODELS
 
 DOPRI5 = "dopri5"
 #: the compiled DOPRI5 switching to the Rosenbrock-W step on stiff stretches
@@ -51,14 +54,16 @@ IVP_METHODS = ("RK45", "LSODA", "BDF", "Radau")
 #: pure-Python baseline methods (what a user would pick: the default and the stiff switcher)
 BASELINE_METHODS = ("RK45", "LSODA")
 #: valve models from the cheapest up
-VALVE_ORDER = ("ideal", "quasi_static", "reed")
+VALVE_ORDER = tuple(m.name for m in sorted(VALVE_MODELS, key=lambda m: m.fidelity))
+#: the exact property model and the tabulated one
+HEOS_PROPERTIES = f"options.properties={HEOS.name}"
 
 #: Reference: CoolProp HEOS (the exact property model, whatever the case's backend: the
 #: table's interpolation error is part of a table rung's error), tolerances well below
 #: anything the ladder asks for, revolutions until the cycle residual is 1e-8 (the floor:
 #: at rtol 1e-10 the residual's own noise is ~1e-9).
 REFERENCE_OVERRIDES = (
-    "options.properties=heos",
+    HEOS_PROPERTIES,
     "solver.rtol=1e-10",
     "solver.atol=1e-10",
     "solver.cycle_tolerance=1e-8",
@@ -69,7 +74,7 @@ REFERENCE_OVERRIDES = (
 #: tighter tolerances (same cycle tolerance: below 1e-8 the cycle residual stalls on its
 #: own noise, e.g. 400 revolutions without reaching 1e-9 on the coupled scene).
 SELF_CHECK_OVERRIDES = (
-    "options.properties=heos",
+    HEOS_PROPERTIES,
     "solver.rtol=1e-11",
     "solver.atol=1e-11",
     "solver.cycle_tolerance=1e-8",
@@ -127,7 +132,7 @@ def _rung(
     *extra: str,
     label: str = "",
     baseline: bool = False,
-    properties: str = "heos",
+    properties: str = HEOS.name,
 ) -> Rung:
     """A rung; the property backend is always explicit (the case's default may change)."""
     prefix = f"baseline {integrator}" if baseline else integrator
@@ -137,9 +142,9 @@ def _rung(
 
 
 def _table(
-    rtol: float, cycle: float, *extra: str, label: str = "table", integrator: str = DOPRI5
+    rtol: float, cycle: float, *extra: str, label: str = TABLE.name, integrator: str = DOPRI5
 ) -> Rung:
-    return _rung(integrator, rtol, cycle, *extra, label=label, properties="table")
+    return _rung(integrator, rtol, cycle, *extra, label=label, properties=TABLE.name)
 
 
 #: The loss chain's options of the indicated machine (lossless motor, no friction,
@@ -160,7 +165,8 @@ def lower_fidelity(case: Case) -> list[tuple[str, tuple[str, ...]]]:
         out.append((f"valves={v}", (f"options.valves={v}",)))
     if case_loss_chain(case) != INDICATED:
         out.append(("indicated", tuple(f"options.{k}={v}" for k, v in INDICATED.items())))
-    if case.options.mechanics == "flexible" and case.options.pressure == "cylinder":
+    solves_gas = PRESSURE_SOURCES[case.options.pressure].solves_gas
+    if case.options.mechanics == "flexible" and solves_gas:
         extra: tuple[str, ...] = ("options.mechanics=pinned",)
         if case.options.drive != "constant_speed":  # the rigid crank turns at constant speed
             extra += ("options.drive=constant_speed",)

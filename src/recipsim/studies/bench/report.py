@@ -21,6 +21,7 @@ import numpy as np
 import pandas as pd
 
 from recipsim.atomic import atomic_directory
+from recipsim.physics.thermo.property_backends import TABLE
 from recipsim.report.figure_kit import new_figure
 from recipsim.studies.bench.errors import MAX_ERROR, error_columns
 from recipsim.studies.bench.measure import OK, Outcome
@@ -177,7 +178,7 @@ def plot(frame: pd.DataFrame, title: str, limit: float = ERROR_LIMIT, by: str = 
         if row["baseline"]:
             marker = "X" if row["integrator"] == "RK45" else "P"
             colour, label = "C3", f"baseline {row['integrator']} (pure Python)"
-        elif row["properties"] == "table":
+        elif row["properties"] == TABLE.name:
             colour = "C9"
             label += " table"
         elif row["periodic_used"] == "shooting":

@@ -31,6 +31,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from recipsim.model.scenes import named_state
+from recipsim.physics.thermo.valve_models import VALVE_MODELS
 
 if TYPE_CHECKING:
     from recipsim.results.case_run import CaseRun
@@ -149,7 +150,7 @@ def cycle_metrics(run: CaseRun) -> dict[str, float]:
     if run.solution is None or not run.solution.model.has_gas:
         return out
     out["volumetric_efficiency"] = float(run.row["volumetric_efficiency [-]"])
-    if case.options.valves == "reed":
+    if VALVE_MODELS[case.options.valves].moves_reeds:
         for side in ("suction", "discharge"):
             lift = run.cycle[f"{side}_valve_lift [m]"].to_numpy()
             stop = getattr(case.valves, side).stop_height

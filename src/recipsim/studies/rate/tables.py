@@ -28,6 +28,7 @@ import pandas as pd
 from recipsim.case.case import Case
 from recipsim.case.rating import STANDARDS, RatingStandard
 from recipsim.case.refrigerant import case_fluid
+from recipsim.physics.thermo.property_backends import HEOS
 from recipsim.studies.rate.coefficients import (
     PUBLISHED_UNITS,
     Polynomial,
@@ -102,7 +103,7 @@ def conditions_text(standard: RatingStandard) -> str:
 
 def dew_points(case: Case, table: pd.DataFrame) -> tuple[np.ndarray, np.ndarray]:
     """Suction and discharge dew-point temperatures [K] of the rows (nan where unsolved)."""
-    fluid = case_fluid(case.refrigerant, "heos")
+    fluid = case_fluid(case.refrigerant, HEOS.name)
     out = []
     for column in ("suction_pressure [Pa]", "discharge_pressure [Pa]"):
         pressures = pd.to_numeric(table.get(column, pd.Series(np.nan, index=table.index)))
