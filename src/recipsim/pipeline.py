@@ -22,6 +22,8 @@ from typing import Any
 from recipsim.case.case import Case
 from recipsim.case.envelope import check_envelope
 from recipsim.case.load import load_case
+from recipsim.physics.mechanics.crank_trains import CRANK_TRAINS
+from recipsim.physics.speed_models import SPEED_MODELS
 from recipsim.progress import logger
 from recipsim.report.case_report import report_dir, write_case_report
 from recipsim.results.case_run import CaseRun, case_run, summary_only
@@ -59,7 +61,7 @@ def solve_case(case: Case) -> tuple[Case, PeriodicSolution | None, StartupRun | 
     if entry is not None:
         check_step_budget(case.solver)  # before anything is compiled or integrated
     check_envelope(case)
-    if case.options.pressure == "tabulated" and case.options.mechanics == "pinned":
+    if case.options.pressure == "tabulated" and not CRANK_TRAINS[case.options.mechanics].flexible:
         return case, None, None
     if case.solver.start == "rest":
         with explained("building the model"):
@@ -67,7 +69,7 @@ def solve_case(case: Case) -> tuple[Case, PeriodicSolution | None, StartupRun | 
         with explained("integrating the start-up from rest"):
             startup = solve_from_rest(model)
         return case, startup.solution, startup
-    if case.options.speed == "motor_slip":
+    if SPEED_MODELS[case.options.speed].at_motor_load:
         with explained("integrating the periodic state at the motor's slip speed"):
             at_speed = solve_at_motor_speed(case)
         return at_speed.case, at_speed.solution, None

@@ -35,6 +35,7 @@ from recipsim.case.sections import (
 )
 from recipsim.errors import CaseError
 from recipsim.physics.mechanics.tabulated import PressureCurve
+from recipsim.physics.thermo.thermal_models import THERMAL_MODELS
 from recipsim.schema import check_keys, read_table
 
 
@@ -61,7 +62,8 @@ def heat_transfer(raw: dict[str, Any] | None, options: Options, file: str) -> He
     adiabatic or the shell's network gives it; the coefficient [W/(m2 K)] nan: the
     correlation's own."""
     ht = read_table(raw, HEAT_TRANSFER_SPEC, file, "heat_transfer")
-    network = options.thermal == "network"  # the network gives the wall temperature
+    # the network gives the wall temperature
+    network = THERMAL_MODELS[options.thermal].shell_network
     if options.heat_transfer != "adiabatic" and ht["wall_temperature"] is None and not network:
         raise CaseError(
             file,

@@ -13,6 +13,12 @@ import math
 from typing import Any
 
 from recipsim.case.rating import RATING_SPEC
+from recipsim.physics.friction_models import FRICTION_MODELS
+from recipsim.physics.mechanics.crank_trains import CRANK_TRAINS
+from recipsim.physics.mechanics.drives import DRIVES
+from recipsim.physics.motor_models import MOTOR_MODELS
+from recipsim.physics.speed_models import SPEED_MODELS
+from recipsim.physics.thermo.thermal_models import THERMAL_MODELS
 from recipsim.schema import Choice, Field, Flag, Spec, Text
 
 #: the top of the file: the case's name, its description and its refrigerant
@@ -24,35 +30,17 @@ OPTION_SPEC: Spec = {
     "valves": Choice(("ideal", "quasi_static", "reed"), "reed", "valve model"),
     "heat_transfer": Choice(("adiabatic", "annand", "adair"), "adiabatic", "in-cylinder heat"),
     "leakage": Choice(("none", "piston_gap"), "none", "piston-cylinder leakage"),
-    "mechanics": Choice(("pinned", "flexible"), "pinned", "crank train"),
+    "mechanics": CRANK_TRAINS.schema_choice(),
     "bearing_law": Choice(
         ("linear", "short_journal", "finite_journal"),
         "linear",
         "law of the journal bearings (primary, secondary, eccentric) whose table names none",
     ),
-    "drive": Choice(("constant_speed", "torque_profile", "induction_motor"), "constant_speed"),
-    "friction": Choice(
-        ("off", "mean", "films"),
-        None,
-        "mechanical friction: none, mean (Petroff journals, viscous skirt, thrust bearing, oil "
-        "pump: [friction]), or the oil films "
-        "(default: films where a bearing runs on one, else off)",
-    ),
-    "motor": Choice(
-        ("lossless", "equivalent_circuit"), "lossless", "motor losses and electrical power"
-    ),
-    "thermal": Choice(
-        ("fixed_wall", "network"),
-        "fixed_wall",
-        "suction plenum at the inlet state and the given wall temperature, or the shell's "
-        "thermal network ([thermal])",
-    ),
-    "speed": Choice(
-        ("case", "motor_slip"),
-        "case",
-        "crank speed: operating_point.shaft_speed, or the speed at which the equivalent "
-        "circuit carries the cycle's load torque (constant speed, equivalent_circuit motor)",
-    ),
+    "drive": DRIVES.schema_choice(),
+    "friction": FRICTION_MODELS.schema_choice(),
+    "motor": MOTOR_MODELS.schema_choice(),
+    "thermal": THERMAL_MODELS.schema_choice(),
+    "speed": SPEED_MODELS.schema_choice(),
 }
 
 OPERATING_POINT_SPEC: Spec = {

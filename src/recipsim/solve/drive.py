@@ -16,6 +16,7 @@ import numpy as np
 from recipsim.case.case import Case
 from recipsim.model import scenes
 from recipsim.model.build import Model, build_model, cylinder_model
+from recipsim.physics.mechanics.drives import DRIVES
 from recipsim.solve.periodic import sample_outputs, solve_periodic
 
 
@@ -39,5 +40,5 @@ def rigid_crank_pressure(case: Case) -> tuple[np.ndarray, np.ndarray]:
 def build_model_for(case: Case) -> Model:
     """:func:`~recipsim.model.build.build_model` of ``case``, with the rigid crank's
     pressure solved first where the coupled ``torque_profile`` drive needs it."""
-    needs = case.options.pressure == "cylinder" and case.options.drive == "torque_profile"
+    needs = case.options.pressure == "cylinder" and DRIVES[case.options.drive].torque_table
     return build_model(case, rigid_crank_pressure(case) if needs else None)

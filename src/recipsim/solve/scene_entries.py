@@ -19,6 +19,7 @@ from typing import TYPE_CHECKING, Any
 from numba import types
 
 from recipsim.model.scenes import SCENE_COUPLED, SCENE_CYLINDER, SCENE_MECHANISM
+from recipsim.physics.mechanics.crank_trains import CRANK_TRAINS
 from recipsim.physics.thermo.cylinder import I_SCENE
 from recipsim.physics.thermo.properties import PROPS_TYPE
 from recipsim.solve.integrator import (
@@ -110,11 +111,12 @@ def entry_name(options: Options, solver: SolverSettings) -> str | None:
     pressure). ``"dopri5_stiff"`` starts with the explicit entry (the one with the
     W-step compiles where a stretch turns stiff), ``"ros34pw2"`` with the W-step's."""
     if options.pressure == "tabulated":
-        if options.mechanics != "flexible":
+        if not CRANK_TRAINS[options.mechanics].flexible:
             return None
         scene = "integrate_mechanism"
     else:
-        scene = "integrate_cylinder" if options.mechanics == "pinned" else "integrate_coupled"
+        flexible = CRANK_TRAINS[options.mechanics].flexible
+        scene = "integrate_coupled" if flexible else "integrate_cylinder"
     return scene + "_w" if solver.method == "ros34pw2" else scene
 
 

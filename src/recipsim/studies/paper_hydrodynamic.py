@@ -27,6 +27,7 @@ from typing import Any
 import numpy as np
 
 from recipsim.case.load import Case
+from recipsim.physics.mechanics.drives import CONSTANT_SPEED
 from recipsim.physics.mechanics.tabulated import PressureCurve
 from recipsim.pipeline import simulate_case
 from recipsim.studies.paper_load_run import LoadRun, tabulated_case
@@ -82,7 +83,7 @@ def hydrodynamic_case(
         If a journal lacks its film data.
     """
     changes: dict[str, Any] = {
-        "options.drive": "constant_speed",
+        "options.drive": CONSTANT_SPEED.name,
         "solver.method": SOLVER_METHOD,
         "solver.samples_per_revolution": samples_per_revolution,
     }
