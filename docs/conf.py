@@ -47,6 +47,7 @@ extensions = [
     "numpydoc",
     "myst_nb",  # MyST Markdown (myst-parser) and notebooks, executed at build time
     "case_reference",
+    "model_slots",
 ]
 source_suffix = {".md": "myst-nb", ".ipynb": "myst-nb", ".rst": "restructuredtext"}
 root_doc = "index"
