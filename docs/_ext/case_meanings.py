@@ -9,8 +9,6 @@ MEANINGS = {
     "description": "one line for people",
     "extends": "base case deep-merged under this one (``name`` and ``description`` are not "
     "inherited)",
-    "options.drive": "what turns the crank; the speed is a result for the last two "
-    "(flexible mechanics only)",
     "operating_point.evaporating_temperature": "dew point at the suction pressure",
     "operating_point.condensing_temperature": "bubble point at the discharge pressure",
     "operating_point.suction_pressure": "suction plenum pressure (instead of the evaporating "

@@ -333,25 +333,6 @@ def reference_rst() -> list[str]:
     return lines
 
 
-def all_slots_rst() -> list[str]:
-    """Every model slot's choices (:mod:`recipsim.slots`) as reStructuredText lines."""
-    from model_slots import slot_lines
-
-    from recipsim.case import case_schema  # noqa: F401  (imports every option's registry)
-    from recipsim.slots import registered
-
-    heading = "Model choices"
-    lines = [heading, "-" * len(heading), ""]
-    lines += [
-        "Each choice of a model slot as its module declares it (its registry: "
-        ":mod:`recipsim.slots`).",
-        "",
-    ]
-    for slot in registered():
-        lines += slot_lines(slot)
-    return lines
-
-
 class CaseReference(SphinxDirective):
     """``.. case-reference::``: the generated tables."""
 
@@ -360,7 +341,7 @@ class CaseReference(SphinxDirective):
     def run(self) -> list[nodes.Node]:
         container = nodes.container()
         self.state.nested_parse(
-            StringList(reference_rst() + all_slots_rst(), source="case-reference"),
+            StringList(reference_rst(), source="case-reference"),
             0,
             container,
             match_titles=True,

@@ -1,6 +1,7 @@
 """Sphinx extension: a model slot's choices, generated from its registry.
 
-``.. model-slot:: recipsim.physics.thermo.valve_models:VALVE_MODELS`` writes the slot's
+``.. model-slot:: recipsim.physics.thermo.valve_models:VALVE_MODELS`` (or
+``...valve_models.VALVE_MODELS``) writes the slot's
 case key, what it models, and one row per choice (name, what it models, source), read
 from the :class:`recipsim.slots.Slot` object named: a choice added to the registry
 appears without editing the documentation.
@@ -34,8 +35,8 @@ def slot_lines(slot: Any) -> list[str]:
 
 
 def slot_rst(target: str) -> list[str]:
-    """The slot ``module:NAME`` as reStructuredText lines."""
-    module, name = target.split(":")
+    """The slot ``module:NAME`` (or ``module.NAME``) as reStructuredText lines."""
+    module, _, name = target.rpartition(":") if ":" in target else target.rpartition(".")
     return slot_lines(getattr(importlib.import_module(module), name))
 
 

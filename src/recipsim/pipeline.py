@@ -23,6 +23,8 @@ from recipsim.case.case import Case
 from recipsim.case.envelope import check_envelope
 from recipsim.case.load import load_case
 from recipsim.physics.thermo.pressure_sources import PRESSURE_SOURCES
+from recipsim.physics.mechanics.crank_trains import CRANK_TRAINS
+from recipsim.physics.speed_models import SPEED_MODELS
 from recipsim.progress import logger
 from recipsim.report.case_report import report_dir, write_case_report
 from recipsim.results.case_run import CaseRun, case_run, summary_only
@@ -62,7 +64,7 @@ def solve_case(case: Case) -> tuple[Case, PeriodicSolution | None, StartupRun | 
     check_envelope(case)
     if (
         not PRESSURE_SOURCES[case.options.pressure].solves_gas
-        and case.options.mechanics == "pinned"
+        and not CRANK_TRAINS[case.options.mechanics].flexible
     ):
         return case, None, None
     if case.solver.start == "rest":
@@ -71,7 +73,7 @@ def solve_case(case: Case) -> tuple[Case, PeriodicSolution | None, StartupRun | 
         with explained("integrating the start-up from rest"):
             startup = solve_from_rest(model)
         return case, startup.solution, startup
-    if case.options.speed == "motor_slip":
+    if SPEED_MODELS[case.options.speed].at_motor_load:
         with explained("integrating the periodic state at the motor's slip speed"):
             at_speed = solve_at_motor_speed(case)
         return at_speed.case, at_speed.solution, None

@@ -38,6 +38,7 @@ from recipsim.physics.mechanics.tabulated import PressureCurve
 from recipsim.physics.thermo.heat_transfer import HEAT_TRANSFER
 from recipsim.physics.thermo.pressure_sources import PRESSURE_SOURCES
 from recipsim.physics.thermo.valve_models import VALVE_MODELS
+from recipsim.physics.thermo.thermal_models import THERMAL_MODELS
 from recipsim.schema import check_keys, read_table
 
 
@@ -64,7 +65,8 @@ def heat_transfer(raw: dict[str, Any] | None, options: Options, file: str) -> He
     adiabatic or the shell's network gives it; the coefficient [W/(m2 K)] nan: the
     correlation's own."""
     ht = read_table(raw, HEAT_TRANSFER_SPEC, file, "heat_transfer")
-    network = options.thermal == "network"  # the network gives the wall temperature
+    # the network gives the wall temperature
+    network = THERMAL_MODELS[options.thermal].shell_network
     exchanges = HEAT_TRANSFER[options.heat_transfer].exchanges_heat
     if exchanges and ht["wall_temperature"] is None and not network:
         raise CaseError(

@@ -19,6 +19,12 @@ from recipsim.physics.thermo.leakage_models import GAP_LAWS, LEAKAGE
 from recipsim.physics.thermo.pressure_sources import PRESSURE_SOURCES
 from recipsim.physics.thermo.property_backends import PROPERTY_BACKENDS
 from recipsim.physics.thermo.valve_models import VALVE_MODELS
+from recipsim.physics.friction_models import FRICTION_MODELS
+from recipsim.physics.mechanics.crank_trains import CRANK_TRAINS
+from recipsim.physics.mechanics.drives import DRIVES
+from recipsim.physics.motor_models import MOTOR_MODELS
+from recipsim.physics.speed_models import SPEED_MODELS
+from recipsim.physics.thermo.thermal_models import THERMAL_MODELS
 from recipsim.schema import Choice, Field, Flag, Spec, Text
 
 #: the top of the file: the case's name, its description and its refrigerant
@@ -30,31 +36,13 @@ OPTION_SPEC: Spec = {
     "valves": VALVE_MODELS.schema_choice(),
     "heat_transfer": HEAT_TRANSFER.schema_choice(),
     "leakage": LEAKAGE.schema_choice(),
-    "mechanics": Choice(("pinned", "flexible"), "pinned", "crank train"),
+    "mechanics": CRANK_TRAINS.schema_choice(),
     "bearing_law": BEARING_LAWS.schema_choice(JOURNAL_LAWS),
-    "drive": Choice(("constant_speed", "torque_profile", "induction_motor"), "constant_speed"),
-    "friction": Choice(
-        ("off", "mean", "films"),
-        None,
-        "mechanical friction: none, mean (Petroff journals, viscous skirt, thrust bearing, oil "
-        "pump: [friction]), or the oil films "
-        "(default: films where a bearing runs on one, else off)",
-    ),
-    "motor": Choice(
-        ("lossless", "equivalent_circuit"), "lossless", "motor losses and electrical power"
-    ),
-    "thermal": Choice(
-        ("fixed_wall", "network"),
-        "fixed_wall",
-        "suction plenum at the inlet state and the given wall temperature, or the shell's "
-        "thermal network ([thermal])",
-    ),
-    "speed": Choice(
-        ("case", "motor_slip"),
-        "case",
-        "crank speed: operating_point.shaft_speed, or the speed at which the equivalent "
-        "circuit carries the cycle's load torque (constant speed, equivalent_circuit motor)",
-    ),
+    "drive": DRIVES.schema_choice(),
+    "friction": FRICTION_MODELS.schema_choice(),
+    "motor": MOTOR_MODELS.schema_choice(),
+    "thermal": THERMAL_MODELS.schema_choice(),
+    "speed": SPEED_MODELS.schema_choice(),
 }
 
 OPERATING_POINT_SPEC: Spec = {

@@ -18,11 +18,16 @@ from recipsim.case.sections import (
 )
 from recipsim.errors import CaseError
 from recipsim.physics.thermo.valve_models import VALVE_MODELS
+from recipsim.physics.mechanics.crank_trains import CRANK_TRAINS
+from recipsim.physics.mechanics.drives import DRIVES
+from recipsim.physics.motor_models import MOTOR_MODELS
+from recipsim.physics.speed_models import SPEED_MODELS
+from recipsim.physics.thermo.thermal_models import THERMAL_MODELS
 
 
 def check_solver(solver: SolverSettings, options: Options, file: str) -> None:
     """Refuse a start-up from rest the options cannot run, and a revolution range upside down."""
-    if solver.start == "rest" and options.drive != "induction_motor":
+    if solver.start == "rest" and not DRIVES[options.drive].motor_curve:
         raise CaseError(
             file,
             "solver.start",
@@ -30,7 +35,7 @@ def check_solver(solver: SolverSettings, options: Options, file: str) -> None:
             f"options.drive = 'induction_motor' (with options.mechanics = 'flexible'), "
             f"not {options.drive!r}; allowed with this drive: 'periodic'",
         )
-    if solver.start == "rest" and options.thermal == "network":
+    if solver.start == "rest" and THERMAL_MODELS[options.thermal].shell_network:
         raise CaseError(
             file,
             "solver.start",
@@ -43,7 +48,7 @@ def check_solver(solver: SolverSettings, options: Options, file: str) -> None:
 
 def check_shell_pressure(op: OperatingPoint, options: Options, file: str) -> None:
     """The shell's thermal network models a low-side shell: at the suction pressure."""
-    if options.thermal == "network" and op.shell_pressure != op.suction_pressure:
+    if THERMAL_MODELS[options.thermal].shell_network and op.shell_pressure != op.suction_pressure:
         raise CaseError(
             file,
             "operating_point.shell_pressure",
@@ -85,7 +90,7 @@ def check_buildable(geometry: Geometry, valves: Valves, options: Options, file: 
 
 def check_supported(options: Options, file: str) -> None:
     """Refuse option combinations this version cannot simulate, before integrating."""
-    if options.mechanics == "pinned" and options.drive != "constant_speed":
+    if not CRANK_TRAINS[options.mechanics].flexible and DRIVES[options.drive].free_speed:
         raise CaseError(
             file,
             "options.drive",
@@ -93,8 +98,8 @@ def check_supported(options: Options, file: str) -> None:
             "at constant speed by definition: use options.drive = 'constant_speed' or "
             "options.mechanics = 'flexible'",
         )
-    if options.speed == "motor_slip" and (
-        options.drive != "constant_speed" or options.motor != "equivalent_circuit"
+    if SPEED_MODELS[options.speed].at_motor_load and (
+        DRIVES[options.drive].free_speed or not MOTOR_MODELS[options.motor].circuit
     ):
         raise CaseError(
             file,

@@ -15,8 +15,10 @@ from typing import Any
 
 from recipsim.case.motor_losses import CIRCUIT_SPEC, motor_circuit_from_table
 from recipsim.errors import CaseError
+from recipsim.physics.mechanics.drives import DRIVES
 from recipsim.physics.motor import MotorSpec, kloss
 from recipsim.physics.motor_circuit import MotorCircuit
+from recipsim.physics.motor_models import MOTOR_MODELS
 from recipsim.schema import Field, Spec, read_table
 
 CURVE_SPEC: Spec = {
@@ -198,10 +200,10 @@ def case_motor(
     """
     raw = matched_to_displacement(raw, swept_volume, file)
     if raw is None:
-        if drive == "induction_motor" or motor == "equivalent_circuit":
-            need = "options.drive = 'induction_motor'"
-            if drive != "induction_motor":
-                need = "options.motor = 'equivalent_circuit'"
+        if DRIVES[drive].motor_curve or MOTOR_MODELS[motor].circuit:
+            need = f"options.drive = {drive!r}"
+            if not DRIVES[drive].motor_curve:
+                need = f"options.motor = {motor!r}"
             raise CaseError(
                 file,
                 "motor",
@@ -212,9 +214,9 @@ def case_motor(
         return None, None
     values = read_motor_table(raw, file)
     spec = None
-    if drive == "induction_motor" or all(values[k] is not None for k in CURVE_REQUIRED):
+    if DRIVES[drive].motor_curve or all(values[k] is not None for k in CURVE_REQUIRED):
         spec = motor_from_table(raw, file)
-    if motor != "equivalent_circuit":
+    if not MOTOR_MODELS[motor].circuit:
         return spec, None
     return spec, motor_circuit_from_table(values, raw, file)
 
@@ -232,7 +234,7 @@ def check_motor_speed(
     """
     if (
         circuit is not None
-        and drive == "constant_speed"
+        and not DRIVES[drive].free_speed
         and shaft_speed >= circuit.synchronous_speed
     ):
         raise CaseError(

@@ -31,6 +31,8 @@ from typing import Any
 
 from recipsim.errors import CaseError
 from recipsim.physics.mechanics.bearing_laws.registry import BEARING_LAWS
+from recipsim.physics.friction_models import FILM_FRICTION, FRICTION_MODELS, default_friction
+from recipsim.physics.mechanics.crank_trains import CRANK_TRAINS
 from recipsim.physics.motor_circuit import MotorCircuit
 from recipsim.physics.motor_nameplate import MotorNameplate, motor_circuit_from_nameplate
 from recipsim.schema import Choice, Field, Spec
@@ -238,24 +240,24 @@ def friction_option(options: Any, mechanism: Any, file: str) -> str:
         ``films`` without a film bearing, or ``off``/``mean`` with one (the films'
         friction cannot be switched off or counted twice).
     """
-    films = options.mechanics == "flexible" and any(
+    films = CRANK_TRAINS[options.mechanics].flexible and any(
         BEARING_LAWS[b.law].film for b in mechanism.bearings
     )
     chosen = options.friction
     if chosen is None:
-        return "films" if films else "off"
-    if films and chosen != "films":
+        return default_friction(films).name
+    if films and not FRICTION_MODELS[chosen].on_films:
         raise CaseError(
             file,
             "options.friction",
             f"{chosen!r} with bearings on oil films: their friction is part of the dynamics; "
-            "use 'films', or linear bearing laws",
+            f"use {FILM_FRICTION.name!r}, or linear bearing laws",
         )
-    if chosen == "films" and not films:
+    if FRICTION_MODELS[chosen].on_films and not films:
         raise CaseError(
             file,
             "options.friction",
-            "'films' needs the flexible crank with a bearing on an oil film (short_journal, "
+            f"{chosen!r} needs the flexible crank with a bearing on an oil film (short_journal, "
             "finite_journal, skirt_film); the rigid crank takes 'mean' or 'off'",
         )
     return str(chosen)

@@ -10,6 +10,11 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+from recipsim.physics.friction_models import NO_FRICTION
+from recipsim.physics.motor_models import LOSSLESS
+from recipsim.physics.speed_models import CASE_SPEED
+from recipsim.physics.thermo.thermal_models import FIXED_WALL
+
 
 @dataclass(frozen=True)
 class Options:
@@ -23,12 +28,12 @@ class Options:
     mechanics: str
     bearing_law: str
     drive: str
-    #: "off", "mean" or "films" (resolved from the bearings when the case gives none)
-    friction: str = "off"
-    motor: str = "lossless"
-    thermal: str = "fixed_wall"
-    #: "case" (operating_point.shaft_speed) or "motor_slip" (the motor's speed at load)
-    speed: str = "case"
+    #: a name of ``FRICTION_MODELS`` (resolved from the bearings when the case gives none)
+    friction: str = NO_FRICTION.name
+    motor: str = LOSSLESS.name
+    thermal: str = FIXED_WALL.name
+    #: a name of ``SPEED_MODELS``: the case's shaft speed or the motor's speed at load
+    speed: str = CASE_SPEED.name
 
 
 @dataclass(frozen=True)

@@ -35,6 +35,8 @@ import numpy as np
 from recipsim.case.load import load_case
 from recipsim.cli.options import add_common_options, exit_status, positive_int
 from recipsim.model.build import build_model
+from recipsim.physics.mechanics.crank_trains import CRANK_TRAINS, PINNED
+from recipsim.physics.mechanics.drives import CONSTANT_SPEED, TORQUE_PROFILE
 from recipsim.physics.mechanics.tabulated import PressureCurve
 from recipsim.report.case_report import report_dir
 from recipsim.results.tables import cycle_table
@@ -103,7 +105,11 @@ def run_paper_command(args: argparse.Namespace) -> int:
     else:
         rigid = load_case(
             args.case,
-            [*args.overrides, 'options.mechanics="pinned"', 'options.drive="constant_speed"'],
+            [
+                *args.overrides,
+                f'options.mechanics="{PINNED.name}"',
+                f'options.drive="{CONSTANT_SPEED.name}"',
+            ],
             allow_external_paths=external,
         )
         cycle = cycle_table(solve_periodic(build_model(rigid)))
@@ -114,7 +120,8 @@ def run_paper_command(args: argparse.Namespace) -> int:
         source = "the cylinder pressure of the case on the rigid crank"
 
     out = report_dir(args.out, case.name, args.overrides)  # checked before the study runs
-    drive = case.options.drive if case.options.mechanics == "flexible" else "torque_profile"
+    flexible = CRANK_TRAINS[case.options.mechanics].flexible
+    drive = case.options.drive if flexible else TORQUE_PROFILE.name
     start = args.undamped_start or ("periodic" if args.undamped_revolutions is None else "unloaded")
     study = run_paper_study(
         case,

@@ -37,10 +37,13 @@ from recipsim.model.scene_model import Model, WorkingModel
 from recipsim.model.thermal import ThermalCoupling
 from recipsim.physics.kinematics import piston_displacement
 from recipsim.physics.mechanics import layout as mlay
+from recipsim.physics.mechanics.crank_trains import CRANK_TRAINS
+from recipsim.physics.mechanics.drives import DRIVES
 from recipsim.physics.mechanics.flexible_setup import initial_state, state_scales
 from recipsim.physics.mechanics.tabulated import tabulated_pressure
 from recipsim.physics.thermo import cylinder as cyl
 from recipsim.physics.thermo.pressure_sources import PRESSURE_SOURCES
+from recipsim.physics.thermo.thermal_models import THERMAL_MODELS
 
 if TYPE_CHECKING:
     from recipsim.case.refrigerant import AnyFluid
@@ -84,7 +87,7 @@ def cylinder_model(case: Case) -> Model:
     par, ipar = cylinder_parameters(case, fluid, suction, discharge, shell)
     props = property_callback(case, fluid)
     ipar[cyl.I_PROPS] = cyl.PROPS_HEOS if props.table is None else cyl.PROPS_TABLE
-    network = opts.thermal == "network"
+    network = THERMAL_MODELS[opts.thermal].shell_network
     # with the network, the initial state follows from the predicted suction plenum (below)
     y0, scale = (
         (np.zeros(cyl.N_STATE), np.ones(cyl.N_STATE))
@@ -230,11 +233,12 @@ def build_model(case: Case, drive_pressure: tuple[np.ndarray, np.ndarray] | None
     """
     model = cylinder_model(case)
     opts = case.options
-    if opts.mechanics == "pinned" and PRESSURE_SOURCES[opts.pressure].solves_gas:
+    if not CRANK_TRAINS[opts.mechanics].flexible and PRESSURE_SOURCES[opts.pressure].solves_gas:
         return model
     mpar = case_mechanism_parameters(case)
     scene, p_angles, p_values = _pressure_table(case)
-    if opts.drive == "torque_profile":
+    drive = DRIVES[opts.drive]
+    if drive.torque_table:
         d_angles, d_torques = _drive_table(case, p_angles, p_values, drive_pressure)
     else:
         d_angles, d_torques = np.zeros(1), np.zeros(1)
@@ -252,7 +256,7 @@ def build_model(case: Case, drive_pressure: tuple[np.ndarray, np.ndarray] | None
     ipar[scenes.I_DTAB_N] = d_angles.size
     ipar[scenes.I_BTAB] = scenes.P_TABLES + 2 * p_angles.size + 2 * d_angles.size
     ipar[scenes.I_BTAB_N] = b_tables.size
-    free = opts.drive != "constant_speed"
+    free = drive.free_speed
     ipar[scenes.I_STOP_ON_ANGLE] = 1 if free else 0
     y0, scale, quads = _scene_state(model, scene, mpar, p_angles, p_values)
     return replace(

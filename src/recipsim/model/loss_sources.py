@@ -26,6 +26,7 @@ import numpy as np
 from recipsim.case.load import Case
 from recipsim.case.lubrication import OilSpec, parse_oil
 from recipsim.model.scenes import MQ_BEARINGS, MQ_DRIVE, SCENE_CYLINDER
+from recipsim.physics.friction_models import FRICTION_MODELS
 from recipsim.physics.kinematics import piston_displacement_array, piston_velocity_array
 from recipsim.physics.lubricant import diluted_viscosity, refrigerant_liquid_viscosity
 from recipsim.physics.mean_friction import (
@@ -40,6 +41,7 @@ from recipsim.physics.mean_friction import (
 )
 from recipsim.physics.mechanics import layout as mlay
 from recipsim.physics.motor_circuit import MotorOperatingPoint, motor_operating_point_at_torque
+from recipsim.physics.motor_models import MOTOR_MODELS
 from recipsim.physics.thermo import cylinder as cyl
 from recipsim.physics.thermo.shell_nodes import OIL
 
@@ -214,7 +216,7 @@ def motor_point(
         If the torque exceeds the motor's breakdown torque.
     """
     circuit = case.motor_circuit
-    if case.options.motor == "lossless" or circuit is None:
+    if not MOTOR_MODELS[case.options.motor].circuit or circuit is None:
         return None
     return motor_operating_point_at_torque(circuit, shaft_power / mean_speed, slip_guess)
 
@@ -233,7 +235,7 @@ def revolution_shaft_power(
     else:  # the crank train integrates the drive's work and the bearings' dissipation
         q = model.mechanism_offset + mlay.N_STATE
         drive, films = y_end[q + MQ_DRIVE], y_end[q + MQ_BEARINGS] / duration
-    if case.options.friction == "mean":
+    if FRICTION_MODELS[case.options.friction].mean_laws:
         return drive / duration + mean_friction, mean_friction
     return drive / duration, films
 
@@ -262,7 +264,7 @@ class NetworkLossSources:
     """
 
     def __init__(self, case: Case) -> None:
-        self.friction_on = case.options.friction == "mean"
+        self.friction_on = FRICTION_MODELS[case.options.friction].mean_laws
         self.oil_temperature: float | None = None
         self._slip: float | None = None
         self._friction: tuple[float | None, float] | None = None

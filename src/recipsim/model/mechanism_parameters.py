@@ -8,6 +8,7 @@ import numpy as np
 from recipsim.case.mechanism_spec import CrankGeometry, MechanismSpec
 from recipsim.physics.mechanics import layout as lay
 from recipsim.physics.mechanics.bearing_laws.registry import BEARING_LAWS
+from recipsim.physics.mechanics.drives import CONSTANT_SPEED, DRIVES
 from recipsim.physics.motor import MotorSpec
 
 #: Axis of each bearing (the linear law acts normal to it): rotor, eccentric and pin
@@ -21,7 +22,7 @@ def mechanism_parameters(
     *,
     shell_pressure: float = 0.0,
     speed: float = 0.0,
-    drive: str = "constant_speed",
+    drive: str = CONSTANT_SPEED.name,
     motor: MotorSpec | None = None,
 ) -> np.ndarray:
     """Parameter array of the pinned and flexible models.
@@ -34,7 +35,8 @@ def mechanism_parameters(
         Pressure acting under the piston [Pa].
     speed : float
         Crank speed of the ``constant_speed`` drive [rad/s] (ignored by other drives).
-    drive : {"constant_speed", "torque_profile", "induction_motor"}
+    drive : str
+        A name of :data:`~recipsim.physics.mechanics.drives.DRIVES`.
     motor : MotorSpec, optional
         The torque-speed curve; required by the ``induction_motor`` drive.
 
@@ -43,8 +45,8 @@ def mechanism_parameters(
     numpy.ndarray
         Shape ``(layout.N_PAR,)``.
     """
-    if drive not in lay.DRIVE_CODES:
-        raise ValueError(f"unknown drive {drive!r}; allowed: {', '.join(lay.DRIVE_CODES)}")
+    if drive not in DRIVES:
+        raise ValueError(f"unknown drive {drive!r}; allowed: {', '.join(DRIVES.names)}")
     par = np.zeros(lay.N_PAR)
     _write_crank_and_drive(par, geometry, shell_pressure, speed, drive, motor)
     _write_bodies(par, spec)
@@ -79,10 +81,10 @@ def _write_crank_and_drive(
     par[lay.P_PISTON_AREA] = geometry.piston_area
     par[lay.P_SHELL_PRESSURE] = shell_pressure
     par[lay.P_SPEED] = speed
-    par[lay.P_DRIVE] = lay.DRIVE_CODES[drive]
-    if drive == "induction_motor":
+    par[lay.P_DRIVE] = DRIVES[drive].code
+    if DRIVES[drive].motor_curve:
         if motor is None:
-            raise ValueError("the induction_motor drive needs a MotorSpec")
+            raise ValueError(f"the {drive} drive needs a MotorSpec")
         par[lay.P_MOTOR_SYNC_SPEED] = motor.synchronous_speed
         par[lay.P_MOTOR_BREAKDOWN_TORQUE] = motor.breakdown_torque
         par[lay.P_MOTOR_BREAKDOWN_SLIP] = motor.breakdown_slip

@@ -6,6 +6,7 @@ from __future__ import annotations
 from collections.abc import Mapping
 from typing import TYPE_CHECKING, Any
 
+from recipsim.physics.motor_models import LOSSLESS
 from recipsim.report.figure_kit import fewer_ticks, new_figure
 from recipsim.report.figure_names import TITLE_Y
 from recipsim.results.loss_breakdown import COP_COST_COLUMNS, LOSS_COLUMNS
@@ -36,7 +37,9 @@ def plot_loss_breakdown(row: Mapping[str, Any], ax: Any = None, title: str = "")
     else:
         fig = ax.figure
     total = float(row["motor_electrical_power [W]"])
-    electrical = row.get("motor", "lossless") != "lossless" or float(row["loss_motor [W]"]) > 0
+    electrical = (
+        row.get("motor", LOSSLESS.name) != LOSSLESS.name or float(row["loss_motor [W]"]) > 0
+    )
     top = "electrical input" if electrical else "shaft input (no motor model)"
     labels, lefts, widths, colours = [top], [0.0], [total], ["tab:blue"]
     costs: list[float] = [float("nan")]

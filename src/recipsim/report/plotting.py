@@ -15,6 +15,7 @@ from typing import TYPE_CHECKING, Any
 
 import pandas as pd
 
+from recipsim.physics.mechanics.crank_trains import FLEXIBLE, PINNED
 from recipsim.report.figure_kit import PNG_OPTIONS, angle_axis, fewer_ticks, new_figure
 from recipsim.report.figure_names import FIGURE_NAMES, TITLE_Y, check_figure_names
 from recipsim.report.mechanics_plots import (
@@ -230,9 +231,10 @@ def _figure_makers(
     if "suction_valve_lift [m]" in cycle:  # the gas is simulated (not a tabulated pressure)
         makers.append(("valves", "twin", lambda: plot_valves(cycle)))
     if "bearing_force_primary [N]" in cycle:
-        label = "flexible" if has_orbits(cycle) else "pinned"
+        flexible = has_orbits(cycle)
+        label = (FLEXIBLE if flexible else PINNED).name
         makers.append(("bearing_loads", "panels", lambda: plot_bearing_loads({label: cycle})))
-        if label == "flexible":
+        if flexible:
             # lubricated journals: every film bearing inside its clearance circle
             orbit_bearings = film_bearings(cycle) or ("primary", "secondary")
             # equal-aspect panels: left to the layout engine

@@ -13,6 +13,7 @@ from collections.abc import Mapping
 from typing import Any
 
 from recipsim.physics.thermo.pressure_sources import PRESSURE_SOURCES, PressureSource
+from recipsim.physics.motor_models import LOSSLESS
 from recipsim.results.loss_breakdown import COP_COST_COLUMNS, LOSS_COLUMNS
 
 #: Kelvin at 0 C [K].
@@ -111,7 +112,7 @@ def key_figures(row: Mapping[str, Any]) -> list[tuple[str, str, str]]:
 def _powers(row: Mapping[str, Any], shaft: float, capacity: float) -> list[tuple[str, str, str]]:
     """Electrical power and COP where a motor model is on (``options.motor`` other than
     ``"lossless"``), else said to be the shaft power's; shaft power and its COP."""
-    motor = row.get("motor", "lossless") != "lossless"
+    motor = row.get("motor", LOSSLESS.name) != LOSSLESS.name
     electrical = _value(row, "motor_electrical_power [W]")
     gas = _solves_gas(row)
     rows = [

@@ -47,6 +47,7 @@ from recipsim.model.loss_sources import (
     mean_friction_powers,
     motor_point,
 )
+from recipsim.physics.friction_models import FRICTION_MODELS
 from recipsim.physics.mean_friction import time_mean
 from recipsim.results.sampled import CycleColumns
 
@@ -111,14 +112,14 @@ def friction_columns(
     and viscosity used) of ``options.friction``; ``oil_temperature`` [K]: the thermal
     network's oil node temperature the friction was taken at (None: the fixed film
     temperatures)."""
-    option = case.options.friction
-    if option == "mean":
+    option = FRICTION_MODELS[case.options.friction]
+    if option.mean_laws:
         row = mean_friction_columns(case, cycle, oil_temperature)
         t = friction_film_temperature(case, oil_temperature)
         row["friction_film_temperature [K]"] = t
         row["friction_film_viscosity [Pa*s]"] = film_viscosity(case, t)
         return row
-    if option == "films":
+    if option.on_films:
         return {"friction_power [W]": _film_friction(cycle)}
     return {"friction_power [W]": 0.0}
 
@@ -213,7 +214,8 @@ def loss_columns(
         "motor": case.options.motor,
     }
     row.update(friction_columns(case, cycle, oil_temperature))
-    shaft = drive_power + (row["friction_power [W]"] if case.options.friction == "mean" else 0.0)
+    mean_laws = FRICTION_MODELS[case.options.friction].mean_laws
+    shaft = drive_power + (row["friction_power [W]"] if mean_laws else 0.0)
     row["shaft_power [W]"] = shaft
     row.update(motor_columns(case, shaft, 2.0 * math.pi * freq, rotor_loss))
     return row

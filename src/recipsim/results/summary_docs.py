@@ -12,10 +12,21 @@ like a layout's; split, the README's order would live in two places.
 
 from __future__ import annotations
 
+from typing import Any
+
+from recipsim.physics.friction_models import FRICTION_MODELS
+from recipsim.physics.motor_models import MOTOR_MODELS
 from recipsim.physics.thermo.shell_nodes import TEMPERATURES
 from recipsim.results.column_docs import ColumnDoc
 from recipsim.results.column_docs import column as _c
 from recipsim.results.loss_breakdown import COP_COST_COLUMNS
+from recipsim.slots import Slot
+
+
+def _choices(slot: Slot[Any]) -> str:
+    """The slot's choice names in backticks, the last after "or"."""
+    names = [f"`{name}`" for name in slot.names]
+    return ", ".join(names[:-1]) + " or " + names[-1] if len(names) > 1 else names[0]
 
 
 def _nodes() -> str:
@@ -113,8 +124,8 @@ SUMMARY_DOCS: tuple[ColumnDoc, ...] = (
         "air around the compressor shell (the standard's, or "
         "`operating_point.ambient_temperature`)",
     ),
-    _c("friction", "`options.friction`: `off`, `mean` or `films`"),
-    _c("motor", "`options.motor`: `lossless` or `equivalent_circuit`"),
+    _c("friction", f"`options.friction`: {_choices(FRICTION_MODELS)}"),
+    _c("motor", f"`options.motor`: {_choices(MOTOR_MODELS)}"),
     _c(
         "friction_power [W]",
         "mechanical friction of the bearings and the piston: 0 for `off`; for `mean` the sum "

@@ -35,6 +35,7 @@ from recipsim.case.load import Case
 from recipsim.model.build import scenes
 from recipsim.model.loss_sources import friction_oil_temperature
 from recipsim.model.plenum import isentropic_state
+from recipsim.physics.mechanics.drives import DRIVES
 from recipsim.results.bearings import film_summary, mechanism_summary
 from recipsim.results.cycle import (  # re-exported (__all__): the cycle table is in .cycle
     CYCLE_COLUMNS,
@@ -328,7 +329,7 @@ def _motor_metrics(case: Case, cycle: CycleColumns, freq: float, p_shaft: float)
     """Air-gap power, rotor copper loss and slip of the induction motor drive (NaN for
     other drives). The air-gap power ``omega_s * mean(T)`` (time mean) is the motor's
     input less its stator losses, which are not modelled."""
-    if case.options.drive != "induction_motor" or case.motor is None:
+    if not DRIVES[case.options.drive].motor_curve or case.motor is None:
         return dict.fromkeys(MOTOR_SUMMARY, math.nan)
     sync = case.motor.synchronous_speed
     torque = cycle["shaft_torque [N m]"]

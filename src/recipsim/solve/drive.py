@@ -17,6 +17,7 @@ from recipsim.case.case import Case
 from recipsim.model import scenes
 from recipsim.model.build import Model, build_model, cylinder_model
 from recipsim.physics.thermo.pressure_sources import PRESSURE_SOURCES
+from recipsim.physics.mechanics.drives import DRIVES
 from recipsim.solve.periodic import sample_outputs, solve_periodic
 
 
@@ -41,5 +42,5 @@ def build_model_for(case: Case) -> Model:
     """:func:`~recipsim.model.build.build_model` of ``case``, with the rigid crank's
     pressure solved first where the coupled ``torque_profile`` drive needs it."""
     solves_gas = PRESSURE_SOURCES[case.options.pressure].solves_gas
-    needs = solves_gas and case.options.drive == "torque_profile"
+    needs = solves_gas and DRIVES[case.options.drive].torque_table
     return build_model(case, rigid_crank_pressure(case) if needs else None)

@@ -27,6 +27,7 @@ from recipsim.model.loss_sources import (
     friction_oil_temperature,
     revolution_shaft_power,
 )
+from recipsim.physics.friction_models import FRICTION_MODELS
 from recipsim.physics.motor_circuit import motor_operating_point_at_torque
 from recipsim.solve.drive import build_model_for
 from recipsim.solve.periodic import PeriodicSolution, solve_periodic
@@ -76,7 +77,9 @@ def motor_speed_at_load(model: Model, solution: PeriodicSolution) -> float:
     assert circuit is not None
     rev = solution.final
     friction = 0.0
-    if case.options.friction == "mean":  # the films at the oil temperature the cycle ran with
+    if FRICTION_MODELS[
+        case.options.friction
+    ].mean_laws:  # the films at the oil temperature the cycle ran with
         oil = friction_oil_temperature(solution.model)
         friction = constant_speed_mean_friction(case, oil_temperature=oil)
     shaft, _ = revolution_shaft_power(model, rev.y_end, rev.duration, friction)

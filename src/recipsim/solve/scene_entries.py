@@ -19,6 +19,7 @@ from typing import TYPE_CHECKING, Any
 from numba import types
 
 from recipsim.model.scenes import SCENE_COUPLED, SCENE_CYLINDER, SCENE_MECHANISM
+from recipsim.physics.mechanics.crank_trains import CRANK_TRAINS
 from recipsim.physics.thermo.cylinder import I_SCENE
 from recipsim.physics.thermo.pressure_sources import PRESSURE_SOURCES
 from recipsim.physics.thermo.properties import PROPS_TYPE
@@ -111,11 +112,12 @@ def entry_name(options: Options, solver: SolverSettings) -> str | None:
     pressure). ``"dopri5_stiff"`` starts with the explicit entry (the one with the
     W-step compiles where a stretch turns stiff), ``"ros34pw2"`` with the W-step's."""
     if not PRESSURE_SOURCES[options.pressure].solves_gas:
-        if options.mechanics != "flexible":
+        if not CRANK_TRAINS[options.mechanics].flexible:
             return None
         scene = "integrate_mechanism"
     else:
-        scene = "integrate_cylinder" if options.mechanics == "pinned" else "integrate_coupled"
+        flexible = CRANK_TRAINS[options.mechanics].flexible
+        scene = "integrate_coupled" if flexible else "integrate_cylinder"
     return scene + "_w" if solver.method == "ros34pw2" else scene
 
 

@@ -11,6 +11,8 @@ import numpy as np
 from recipsim.model.build import Model, WorkingModel, scenes
 from recipsim.physics.mechanics import layout as mlay
 from recipsim.physics.thermo.valve_models import VALVE_MODELS
+from recipsim.physics.mechanics.drives import DRIVES
+from recipsim.physics.thermo import cylinder as cyl
 from recipsim.solve.revolution import (
     Revolution,
     _Tally,
@@ -50,7 +52,7 @@ def shooting_unknowns(model: Model, mode: np.ndarray) -> np.ndarray:
                 if mode[i] == 1:  # free reed: lift and velocity are unknowns
                     idx += [model.state_index(f"{reed}_valve_{s}") for s in ("lift", "velocity")]
     if model.scene != 0:
-        speed_unknown = model.free_speed and model.case.options.drive != "torque_profile"
+        speed_unknown = model.free_speed and DRIVES[model.case.options.drive].motor_curve
         fixed = {"crank_angle"} if speed_unknown else {"crank_angle", "crank_speed"}
         idx += [
             model.state_index("mechanism_" + e.name)

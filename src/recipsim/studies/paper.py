@@ -75,6 +75,7 @@ import pandas as pd
 
 from recipsim.atomic import atomic_directory
 from recipsim.model.build import crank_geometry
+from recipsim.physics.mechanics.drives import DRIVES, TORQUE_PROFILE
 from recipsim.physics.mechanics.tabulated import PressureCurve
 from recipsim.studies.paper_hydrodynamic import DEFAULT_LAW, constant_curve, run_hydrodynamic
 from recipsim.studies.paper_linear_runs import flexible_runs, pinned_runs
@@ -104,7 +105,7 @@ def run_paper_study(
     curve: PressureCurve,
     out_dir: str | Path | None,
     *,
-    drive: str = "torque_profile",
+    drive: str = TORQUE_PROFILE.name,
     rtol: float = 1e-6,
     undamped_revolutions: int = 8,
     samples_per_revolution: int = 360,
@@ -247,8 +248,9 @@ def _write_study(
 
 
 def _check_settings(drive: str, undamped_start: str, revolutions: int, samples: int) -> None:
-    if drive not in ("torque_profile", "constant_speed"):
-        raise ValueError(f"drive {drive!r}; allowed: 'torque_profile', 'constant_speed'")
+    allowed = [d.name for d in DRIVES if not d.motor_curve]  # the paper's drives
+    if drive not in allowed:
+        raise ValueError(f"drive {drive!r}; allowed: {', '.join(map(repr, allowed))}")
     if undamped_start not in UNDAMPED_STARTS:
         raise ValueError(f"undamped_start {undamped_start!r}; allowed: {UNDAMPED_STARTS}")
     if revolutions < 1:

@@ -30,6 +30,7 @@ from recipsim.case.load import Case
 from recipsim.physics.mechanics.bearing_laws import finite_journal
 from recipsim.physics.mechanics.bearing_laws.registry import BEARING_LAWS, JOURNAL_LAWS
 from recipsim.physics.mechanics.layout import JOURNAL_NAMES
+from recipsim.physics.mechanics.drives import CONSTANT_SPEED
 from recipsim.physics.mechanics.tabulated import PressureCurve
 from recipsim.pipeline import simulate_case
 from recipsim.studies.paper_load_run import LoadRun, tabulated_case
@@ -88,7 +89,7 @@ def hydrodynamic_case(
         If a journal lacks its film data.
     """
     changes: dict[str, Any] = {
-        "options.drive": "constant_speed",
+        "options.drive": CONSTANT_SPEED.name,
         "solver.method": SOLVER_METHOD,
         "solver.samples_per_revolution": samples_per_revolution,
     }

@@ -28,6 +28,8 @@ from recipsim.model import scenes
 from recipsim.model.build import Model, crank_geometry
 from recipsim.model.pinned import pinned_loads
 from recipsim.physics.mechanics import layout as mlay
+from recipsim.physics.mechanics.crank_trains import FLEXIBLE, PINNED
+from recipsim.physics.mechanics.drives import CONSTANT_SPEED
 from recipsim.physics.mechanics.flexible_setup import initial_state
 from recipsim.physics.mechanics.pinned import PinnedLoads
 from recipsim.physics.mechanics.tabulated import PressureCurve, tabulated_pressure
@@ -73,7 +75,7 @@ def pinned_runs(
         out[name] = (
             table,
             result,
-            RunRecord(name, load, "pinned", "algebraic", 0, True, None, 0, wall),
+            RunRecord(name, load, PINNED.name, "algebraic", 0, True, None, 0, wall),
         )
     return out
 
@@ -95,7 +97,7 @@ def flexible_case(
         return tabulated_case(case, curve, changes, config), "until_periodic"
     changes.update({f"bearings.{name}.damping": 0.0 for name in mlay.BEARING_NAMES})
     if options["undamped_start"] == "periodic":
-        changes["options.drive"] = "constant_speed"
+        changes["options.drive"] = CONSTANT_SPEED.name
         changes["solver.periodic"] = "shooting"
         changes["solver.rtol"] = PERIODIC_RTOL_FACTOR * options["rtol"]
         changes["solver.max_revolutions"] = 2 * options["max_revolutions"]
@@ -141,7 +143,7 @@ def flexible_runs(
         wall = time.perf_counter() - t0
         converged = None if mode == "fixed_revolutions" else result.converged
         record = RunRecord(
-            name, config, "flexible", mode, result.revolutions, converged,
+            name, config, FLEXIBLE.name, mode, result.revolutions, converged,
             result.residual, result.nfev, wall,
         )  # fmt: skip
         out[name] = (result, record)

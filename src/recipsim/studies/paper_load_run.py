@@ -18,6 +18,7 @@ import pandas as pd
 
 from recipsim.case.load import Case
 from recipsim.model.build import Model
+from recipsim.physics.mechanics.crank_trains import FLEXIBLE
 from recipsim.physics.mechanics.layout import BEARING_NAMES
 from recipsim.physics.mechanics.tabulated import PressureCurve
 from recipsim.physics.thermo.pressure_sources import TABULATED
@@ -103,7 +104,7 @@ def tabulated_case(
     The pressure source is set to the curve directly (a curve is data, not a case key);
     ``label`` is appended to the case name.
     """
-    changed = case.with_({"options.mechanics": "flexible", **changes})
+    changed = case.with_({"options.mechanics": FLEXIBLE.name, **changes})
     return replace(
         changed,
         name=case.name + (f"_{label}" if label else ""),

@@ -10,6 +10,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from recipsim.case.mechanism_spec import CrankGeometry, MechanismSpec
+from recipsim.physics.mechanics.drives import CONSTANT_SPEED
 from recipsim.physics.mechanics.layout import BEARING_NAMES
 from recipsim.physics.mechanics.tabulated import PressureCurve
 from recipsim.studies.paper_hydrodynamic import JOURNALS, SOLVER_METHOD
@@ -39,7 +40,7 @@ def hydrodynamic_settings(case: Case, law: str) -> dict[str, Any]:
         "case": case.name,
         "law": law,
         "journals": journals,
-        "drive": "constant_speed",
+        "drive": CONSTANT_SPEED.name,
         "solver": SOLVER_METHOD,
         "description": (
             f"the case `{case.name}` with primary, secondary and eccentric on `{law}` films, "

@@ -48,8 +48,8 @@ from recipsim.physics.mechanics.bodies import (
     rotor_marker,
     rotor_moment,
 )
-from recipsim.physics.mechanics.tabulated import periodic_linear_interpolation, tabulated_pressure
-from recipsim.physics.motor import induction_motor_torque
+from recipsim.physics.mechanics.drives import drive_torque
+from recipsim.physics.mechanics.tabulated import tabulated_pressure
 
 
 @njit(cache=True)
@@ -218,18 +218,7 @@ def flexible_rhs(
     axg = fx_r / m_r
     ayg = fy_r / m_r
     drive = int(par[lay.P_DRIVE])
-    if drive == lay.DRIVE_INDUCTION_MOTOR:
-        torque = induction_motor_torque(
-            wz,
-            par[lay.P_MOTOR_SYNC_SPEED],
-            par[lay.P_MOTOR_BREAKDOWN_TORQUE],
-            par[lay.P_MOTOR_BREAKDOWN_SLIP],
-            par[lay.P_MOTOR_BACKWARD_RATIO],
-        )
-    elif drive == lay.DRIVE_TORQUE_PROFILE:
-        torque = periodic_linear_interpolation(th, drive_angles, drive_torques)
-    else:
-        torque = 0.0
+    torque = drive_torque(drive, th, wz, par, drive_angles, drive_torques)
     spin_rest = i_p * (aldd * sb + ald * bed * cb)  # spin terms of the tilting rotor
     m_u = par[lay.P_COUNTERWEIGHT_MASS]
     free_spin = drive != lay.DRIVE_CONSTANT_SPEED

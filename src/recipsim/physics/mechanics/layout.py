@@ -126,15 +126,10 @@ P_DETAILED_OUTPUTS = _p(
 P_BEARINGS = PAR.add_rows(BEARING, BEARING_NAMES)
 N_PAR = PAR.size
 
-#: Drive codes (``par[P_DRIVE]``).
+#: Drive codes (``par[P_DRIVE]``), the drives' ``code`` in :mod:`.drives`.
 DRIVE_CONSTANT_SPEED = 0
 DRIVE_TORQUE_PROFILE = 1
 DRIVE_INDUCTION_MOTOR = 2
-DRIVE_CODES: dict[str, int] = {
-    "constant_speed": DRIVE_CONSTANT_SPEED,
-    "torque_profile": DRIVE_TORQUE_PROFILE,
-    "induction_motor": DRIVE_INDUCTION_MOTOR,
-}
 
 # ---------------------------------------------------------------------------- state
 #: Coordinates, then their time derivatives in the same order.

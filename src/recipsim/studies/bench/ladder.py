@@ -42,6 +42,12 @@ from recipsim.errors import RecipsimError
 from recipsim.physics.thermo.pressure_sources import PRESSURE_SOURCES
 from recipsim.physics.thermo.property_backends import HEOS, TABLE
 from recipsim.physics.thermo.valve_models import VALVE_MODELS
+from recipsim.physics.friction_models import NO_FRICTION
+from recipsim.physics.mechanics.crank_trains import CRANK_TRAINS, PINNED
+from recipsim.physics.mechanics.drives import CONSTANT_SPEED, DRIVES
+from recipsim.physics.motor_models import LOSSLESS
+from recipsim.physics.speed_models import CASE_SPEED
+from recipsim.physics.thermo.thermal_models import FIXED_WALL
 
 DOPRI5 = "dopri5"
 #: the compiled DOPRI5 switching to the Rosenbrock-W step on stiff stretches
@@ -149,7 +155,12 @@ def _table(
 
 #: The loss chain's options of the indicated machine (lossless motor, no friction,
 #: adiabatic shell at the line state, the case's speed).
-INDICATED = {"thermal": "fixed_wall", "motor": "lossless", "friction": "off", "speed": "case"}
+INDICATED = {
+    "thermal": FIXED_WALL.name,
+    "motor": LOSSLESS.name,
+    "friction": NO_FRICTION.name,
+    "speed": CASE_SPEED.name,
+}
 
 
 def case_loss_chain(case: Case) -> dict[str, str]:
@@ -166,11 +177,11 @@ def lower_fidelity(case: Case) -> list[tuple[str, tuple[str, ...]]]:
     if case_loss_chain(case) != INDICATED:
         out.append(("indicated", tuple(f"options.{k}={v}" for k, v in INDICATED.items())))
     solves_gas = PRESSURE_SOURCES[case.options.pressure].solves_gas
-    if case.options.mechanics == "flexible" and solves_gas:
-        extra: tuple[str, ...] = ("options.mechanics=pinned",)
-        if case.options.drive != "constant_speed":  # the rigid crank turns at constant speed
-            extra += ("options.drive=constant_speed",)
-        out.append(("mechanics=pinned", extra))
+    if CRANK_TRAINS[case.options.mechanics].flexible and solves_gas:
+        extra: tuple[str, ...] = (f"options.mechanics={PINNED.name}",)
+        if DRIVES[case.options.drive].free_speed:  # the rigid crank turns at constant speed
+            extra += (f"options.drive={CONSTANT_SPEED.name}",)
+        out.append((f"mechanics={PINNED.name}", extra))
     return out
 
 

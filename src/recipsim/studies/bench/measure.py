@@ -27,6 +27,7 @@ import numpy as np
 from recipsim.case.case import Case
 from recipsim.case.load import load_case
 from recipsim.errors import CaseError, RecipsimError
+from recipsim.physics.speed_models import SPEED_MODELS
 from recipsim.results.tables import cycle_table, summary
 from recipsim.solve.drive import build_model_for
 from recipsim.solve.motor_speed import solve_at_motor_speed
@@ -122,11 +123,11 @@ def solve(model: Any, integrator: str) -> Any:
         # the rung names the compiled integrator, whatever the case file's solver.method
         solver = dataclasses.replace(model.case.solver, method=integrator)
         model = dataclasses.replace(model, case=dataclasses.replace(model.case, solver=solver))
-        if model.case.options.speed == "motor_slip":  # as `recipsim run` solves it
+        if SPEED_MODELS[model.case.options.speed].at_motor_load:  # as `recipsim run` solves it
             at_speed = solve_at_motor_speed(model.case)  # builds a model per speed
             return dataclasses.replace(at_speed.solution, revolutions=at_speed.revolutions)
         return solve_periodic(model)
-    if model.case.options.speed == "motor_slip":
+    if SPEED_MODELS[model.case.options.speed].at_motor_load:
         raise CaseError(
             model.case.path, "options.speed", "the solve_ivp driver solves at the case's speed"
         )

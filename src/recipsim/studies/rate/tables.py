@@ -29,6 +29,7 @@ from recipsim.case.case import Case
 from recipsim.case.rating import STANDARDS, RatingStandard
 from recipsim.case.refrigerant import case_fluid
 from recipsim.physics.thermo.property_backends import HEOS
+from recipsim.physics.motor_models import MOTOR_MODELS
 from recipsim.studies.rate.coefficients import (
     PUBLISHED_UNITS,
     Polynomial,
@@ -57,7 +58,7 @@ class Sources:
 def quantity_sources(case: Case) -> Sources:
     """The summary columns of the rated quantities for ``case``'s options."""
     motor = case.options.motor
-    if motor == "lossless":
+    if not MOTOR_MODELS[motor].circuit:
         power, current = "shaft_power [W]", None
         notes = {
             "power_input": "shaft power: the case has no motor model (options.motor = lossless)",
