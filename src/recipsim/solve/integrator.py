@@ -33,8 +33,9 @@ At tight tolerances DOPRI5's steps stay inside its stability region, the test ne
 fires and the integration is pure DOPRI5. ``stats`` records whether a run ended on
 W-steps: a revolution continues with the method its predecessor ended with
 (:data:`METHOD_AUTO_IN_W`, :func:`recipsim.solve.revolution.integrate_revolution`), since
-the test misses a strongly damped mode that holds DOPRI5's step below its boundary. :data:`METHOD_DOPRI5` never switches,
-:data:`METHOD_ROSW` uses the W-method throughout (tests).
+the test misses a strongly damped mode that holds DOPRI5's step below its boundary.
+:data:`METHOD_DOPRI5` never switches, :data:`METHOD_ROSW` uses the W-method throughout
+(tests).
 
 Size (over the project's 400 lines): the loop of :func:`scene_entry` is one compiled
 function (the step, the events, the samples, the method switch and the interrupt check
