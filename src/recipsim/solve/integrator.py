@@ -30,8 +30,12 @@ It returns to DOPRI5 once the step the W-method takes would be inside DOPRI5's
 stability region (``h * rho(J) <`` :data:`.step_control.BACK_TO_DOPRI5`, ``rho`` bounded by the
 scaled infinity norm of the Jacobian) on :data:`.step_control.NONSTIFF_AFTER` consecutive steps.
 At tight tolerances DOPRI5's steps stay inside its stability region, the test never
-fires and the integration is pure DOPRI5. :data:`METHOD_DOPRI5` never switches,
-:data:`METHOD_ROSW` uses the W-method throughout (tests).
+fires and the integration is pure DOPRI5. ``stats`` records whether a run ended on
+W-steps: a revolution continues with the method its predecessor ended with
+(:data:`METHOD_AUTO_IN_W`, :func:`recipsim.solve.revolution.integrate_revolution`), since
+the test misses a strongly damped mode that holds DOPRI5's step below its boundary.
+:data:`METHOD_DOPRI5` never switches, :data:`METHOD_ROSW` uses the W-method throughout
+(tests).
 
 Size (over the project's 400 lines): the loop of :func:`scene_entry` is one compiled
 function (the step, the events, the samples, the method switch and the interrupt check
@@ -97,6 +101,7 @@ ST_H = STATS.add("step", "s", "last step size")
 ST_NSAMPLES = STATS.add("samples", "count", "output samples written")
 ST_NSTIFF = STATS.add("stiff_steps", "count", "accepted Rosenbrock-W steps")
 ST_NJAC = STATS.add("jacobians", "count", "finite-difference Jacobians")
+ST_IN_W = STATS.add("ended_in_w_step", "-", "1 if the run ended taking Rosenbrock-W steps, else 0")
 N_STATS = STATS.size
 
 DONE = 0
@@ -154,10 +159,10 @@ def _advance(t, h, last, t1, y, ynew, k1, k7, g_old, g_new) -> float:
 
 
 @njit(cache=True)
-def _write_stats(stats, result, t, h, i_sample, counts) -> None:
+def _write_stats(stats, result, t, h, i_sample, counts, use_w) -> None:
     """Fill ``stats`` (see ``ST_*``) from the run's status, last time and step [s], the
-    number of samples recorded and ``counts`` = (nfev, accepted, rejected, events,
-    W-steps, Jacobians)."""
+    number of samples recorded, ``counts`` = (nfev, accepted, rejected, events,
+    W-steps, Jacobians) and whether it ended taking W-steps."""
     stats[ST_STATUS] = result
     stats[ST_NFEV] = counts[0]
     stats[ST_NACCEPT] = counts[1]
@@ -168,6 +173,7 @@ def _write_stats(stats, result, t, h, i_sample, counts) -> None:
     stats[ST_NSAMPLES] = i_sample
     stats[ST_NSTIFF] = counts[4]
     stats[ST_NJAC] = counts[5]
+    stats[ST_IN_W] = 1.0 if use_w else 0.0
 
 
 def scene_entry(name: str, code: int, w_entry: int) -> Any:
@@ -400,7 +406,7 @@ def scene_entry(name: str, code: int, w_entry: int) -> Any:
             if to_w:
                 jac_age = -1
 
-        _write_stats(stats, result, t, h, i_sample, counts)
+        _write_stats(stats, result, t, h, i_sample, counts, use_w)
 
     return entry
 
