@@ -34,6 +34,7 @@ each again from the cache just written.
 from __future__ import annotations
 
 import argparse
+import functools
 import json
 import os
 import statistics
@@ -45,12 +46,19 @@ import warnings
 from typing import Any
 
 import numpy as np
-from numba import cfunc, njit, types
+from numba import carray, cfunc, njit, types
 from numba.core.errors import NumbaExperimentalFeatureWarning
-from numba.extending import overload
+from numba.extending import intrinsic, overload
 
 from recipsim.model import scenes
-from recipsim.model.scenes import SCENE_CYLINDER, event_action_for, event_values_for, rhs_for
+from recipsim.model.scenes import (
+    N_AUX,
+    N_EVENTS,
+    SCENE_CYLINDER,
+    event_action_for,
+    event_values_for,
+    rhs_for,
+)
 from recipsim.physics.thermo.cylinder import I_SCENE
 from recipsim.physics.thermo.properties import PROPS_TYPE
 from recipsim.physics.thermo.property_slots import SIGNAL_CHECK
@@ -90,51 +98,108 @@ from recipsim.solve.step_control import (
 )
 from recipsim.solve.w_gate import EXPLICIT, WITH_W_STEP, refresh_jacobian_in
 
+#: numba calls first-class function types experimental; every call here uses them
+warnings.simplefilter("ignore", NumbaExperimentalFeatureWarning)
+
 # ---- the fixed signatures of a scene's functions ---------------------------------------
 _F1 = types.Array(types.float64, 1, "C")
 _I1 = types.Array(types.int64, 1, "C")
-#: ``rhs(t, y, mode, par, ipar, props, pbuf, dydt, aux) -> status``
-RHS_SIGNATURE = types.int64(types.float64, _F1, _I1, _F1, _I1, PROPS_TYPE, _F1, _F1, _F1)
-#: ``event_values(y, mode, par, ipar, aux, g)``
-EVENT_VALUES_SIGNATURE = types.none(_F1, _I1, _F1, _I1, _F1, _F1)
-#: ``event_action(k, y, mode, par, ipar, aux) -> ends the integration``
-EVENT_ACTION_SIGNATURE = types.boolean(types.int64, _F1, _I1, _F1, _I1, _F1)
-#: numba's type of a scene's ``(rhs, event_values, event_action)`` tuple
-SCENE_FUNCTIONS_TYPE = types.Tuple(
-    (
-        types.FunctionType(RHS_SIGNATURE),
-        types.FunctionType(EVENT_VALUES_SIGNATURE),
-        types.FunctionType(EVENT_ACTION_SIGNATURE),
-    )
-)
+_N = types.int64
+_PF, _PI = types.CPointer(types.float64), types.CPointer(types.int64)
+
+# Two calling conventions. ``ARRAYS``: numba arrays, as the inlined code passes them
+# (each array travels as numba's array structure, by value). ``POINTERS``: numbalsoda's
+# C convention, a data pointer and a length per array (``carray`` inside the cfunc).
+ARRAYS = "arrays"
+POINTERS = "pointers"
+SIGNATURES = {
+    ARRAYS: (
+        # rhs(t, y, mode, par, ipar, props, pbuf, dydt, aux) -> status
+        types.int64(types.float64, _F1, _I1, _F1, _I1, PROPS_TYPE, _F1, _F1, _F1),
+        # event_values(y, mode, par, ipar, aux, g)
+        types.none(_F1, _I1, _F1, _I1, _F1, _F1),
+        # event_action(k, y, mode, par, ipar, aux) -> ends the integration
+        types.boolean(types.int64, _F1, _I1, _F1, _I1, _F1),
+    ),
+    POINTERS: (
+        # rhs(t, y, n, mode, n_mode, par, n_par, ipar, n_ipar, props, pbuf, n_pbuf, dydt,
+        # aux): dydt has n entries, aux N_AUX
+        types.int64(
+            types.float64, _PF, _N, _PI, _N, _PF, _N, _PI, _N, PROPS_TYPE, _PF, _N, _PF, _PF
+        ),
+        # event_values(y, n, mode, n_mode, par, n_par, ipar, n_ipar, aux, g): g N_EVENTS
+        types.none(_PF, _N, _PI, _N, _PF, _N, _PI, _N, _PF, _PF),
+        # event_action(k, y, n, mode, n_mode, par, n_par, ipar, n_ipar, aux)
+        types.boolean(types.int64, _PF, _N, _PI, _N, _PF, _N, _PI, _N, _PF),
+    ),
+}
+#: numba's type of a scene's ``(rhs, event_values, event_action)`` tuple, per convention
+SCENE_FUNCTIONS_TYPES = {
+    abi: types.Tuple(tuple(types.FunctionType(sig) for sig in sigs))
+    for abi, sigs in SIGNATURES.items()
+}
 #: the separate entry's argument types: the scene's functions, then the inlined entry's
-SEPARATE_SIGNATURE = (SCENE_FUNCTIONS_TYPE, *ENTRY_SIGNATURE)
+SEPARATE_SIGNATURES = {abi: (t, *ENTRY_SIGNATURE) for abi, t in SCENE_FUNCTIONS_TYPES.items()}
 
 
-def _through_pointers(code: Any) -> bool:
-    return isinstance(code, types.BaseTuple)
+def _convention(code: Any) -> str | None:
+    """The calling convention of the scene functions' tuple type ``code`` (None for the
+    project's compile-time scene code)."""
+    for abi, tuple_type in SCENE_FUNCTIONS_TYPES.items():
+        if code == tuple_type:
+            return abi
+    return None
+
+
+@intrinsic
+def _data(typingctx, array):  # type: ignore[no-untyped-def]
+    """The data pointer of a numba array."""
+
+    def codegen(context, builder, signature, args):  # type: ignore[no-untyped-def]
+        return context.make_array(signature.args[0])(context, builder, args[0]).data
+
+    return types.CPointer(array.dtype)(array), codegen
 
 
 @overload(rhs_for)
 def _rhs_for_pointer(code, t, y, mode, par, ipar, props, pbuf, dydt, aux):  # type: ignore[no-untyped-def]
-    if _through_pointers(code):
+    abi = _convention(code)
+    if abi == ARRAYS:
         return lambda code, t, y, mode, par, ipar, props, pbuf, dydt, aux: code[0](
             t, y, mode, par, ipar, props, pbuf, dydt, aux
         )
+    if abi == POINTERS:
+        return lambda code, t, y, mode, par, ipar, props, pbuf, dydt, aux: code[0](
+            t, _data(y), y.shape[0], _data(mode), mode.shape[0], _data(par), par.shape[0],
+            _data(ipar), ipar.shape[0], props, _data(pbuf), pbuf.shape[0], _data(dydt),
+            _data(aux),
+        )  # fmt: skip
     return None
 
 
 @overload(event_values_for)
 def _event_values_for_pointer(code, y, mode, par, ipar, aux, g):  # type: ignore[no-untyped-def]
-    if _through_pointers(code):
+    abi = _convention(code)
+    if abi == ARRAYS:
         return lambda code, y, mode, par, ipar, aux, g: code[1](y, mode, par, ipar, aux, g)
+    if abi == POINTERS:
+        return lambda code, y, mode, par, ipar, aux, g: code[1](
+            _data(y), y.shape[0], _data(mode), mode.shape[0], _data(par), par.shape[0],
+            _data(ipar), ipar.shape[0], _data(aux), _data(g),
+        )  # fmt: skip
     return None
 
 
 @overload(event_action_for)
 def _event_action_for_pointer(code, k, y, mode, par, ipar, aux):  # type: ignore[no-untyped-def]
-    if _through_pointers(code):
+    abi = _convention(code)
+    if abi == ARRAYS:
         return lambda code, k, y, mode, par, ipar, aux: code[2](k, y, mode, par, ipar, aux)
+    if abi == POINTERS:
+        return lambda code, k, y, mode, par, ipar, aux: code[2](
+            k, _data(y), y.shape[0], _data(mode), mode.shape[0], _data(par), par.shape[0],
+            _data(ipar), ipar.shape[0], _data(aux),
+        )  # fmt: skip
     return None
 
 
@@ -156,21 +221,45 @@ def cylinder_event_action_c(k, y, mode, par, ipar, aux):  # type: ignore[no-unty
     return _CYLINDER_EVENT_ACTION(k, y, mode, par, ipar, aux)
 
 
-_SCENE_FUNCTIONS: dict[int, tuple[Any, Any, Any]] = {}
+def cylinder_rhs_p(t, y, n, mode, n_mode, par, n_par, ipar, n_ipar, props, pbuf, n_pbuf, dydt, aux):  # type: ignore[no-untyped-def]  # noqa: E501
+    return _CYLINDER_RHS(
+        t, carray(y, n), carray(mode, n_mode), carray(par, n_par), carray(ipar, n_ipar),
+        props, carray(pbuf, n_pbuf), carray(dydt, n), carray(aux, N_AUX),
+    )  # fmt: skip
 
 
-def scene_functions(code: int = SCENE_CYLINDER) -> tuple[Any, Any, Any]:
-    """The scene's ``(rhs, event_values, event_action)`` as cfuncs (compiled, or loaded
-    from numba's cache, at the first call)."""
+def cylinder_event_values_p(y, n, mode, n_mode, par, n_par, ipar, n_ipar, aux, g):  # type: ignore[no-untyped-def]
+    _CYLINDER_EVENT_VALUES(
+        carray(y, n), carray(mode, n_mode), carray(par, n_par), carray(ipar, n_ipar),
+        carray(aux, N_AUX), carray(g, N_EVENTS),
+    )  # fmt: skip
+
+
+def cylinder_event_action_p(k, y, n, mode, n_mode, par, n_par, ipar, n_ipar, aux):  # type: ignore[no-untyped-def]
+    return _CYLINDER_EVENT_ACTION(
+        k, carray(y, n), carray(mode, n_mode), carray(par, n_par), carray(ipar, n_ipar),
+        carray(aux, N_AUX),
+    )  # fmt: skip
+
+
+_PYTHON_FUNCTIONS = {
+    ARRAYS: (cylinder_rhs_c, cylinder_event_values_c, cylinder_event_action_c),
+    POINTERS: (cylinder_rhs_p, cylinder_event_values_p, cylinder_event_action_p),
+}
+_SCENE_FUNCTIONS: dict[tuple[int, str], tuple[Any, ...]] = {}
+
+
+def scene_functions(code: int = SCENE_CYLINDER, abi: str = ARRAYS) -> tuple[Any, ...]:
+    """The scene's ``(rhs, event_values, event_action)`` as cfuncs of the calling
+    convention ``abi`` (compiled, or loaded from numba's cache, at the first call)."""
     if code != SCENE_CYLINDER:
         raise NotImplementedError("only the cylinder scene is wired up in this experiment")
-    if code not in _SCENE_FUNCTIONS:
-        _SCENE_FUNCTIONS[code] = (
-            cfunc(RHS_SIGNATURE, cache=True)(cylinder_rhs_c),
-            cfunc(EVENT_VALUES_SIGNATURE, cache=True)(cylinder_event_values_c),
-            cfunc(EVENT_ACTION_SIGNATURE, cache=True)(cylinder_event_action_c),
+    if (code, abi) not in _SCENE_FUNCTIONS:
+        _SCENE_FUNCTIONS[code, abi] = tuple(
+            cfunc(sig, cache=True)(function)
+            for sig, function in zip(SIGNATURES[abi], _PYTHON_FUNCTIONS[abi], strict=True)
         )
-    return _SCENE_FUNCTIONS[code]
+    return _SCENE_FUNCTIONS[code, abi]
 
 
 # ---- the integrator entry, one for every scene -------------------------------------------
@@ -370,12 +459,13 @@ integrate_separate_explicit = separate_entry("integrate_separate_explicit", EXPL
 integrate_separate_w = separate_entry("integrate_separate_w", WITH_W_STEP)
 
 
-def integrate_separate(*args: Any, method: int = METHOD_DOPRI5) -> None:
-    """:func:`recipsim.solve.scene_entries.integrate` through the separate entries: the
-    explicit one, handing a stiff stretch over to the one with the W-step."""
+def integrate_separate(*args: Any, method: int = METHOD_DOPRI5, abi: str = ARRAYS) -> None:
+    """:func:`recipsim.solve.scene_entries.integrate` through the separate entries with
+    the scene's functions of calling convention ``abi``: the explicit entry, handing a
+    stiff stretch over to the one with the W-step."""
     if len(args) == 18:
         args = (*args, method)
-    fns = scene_functions(int(args[5][I_SCENE]))
+    fns = scene_functions(int(args[5][I_SCENE]), abi)
     if args[18] == METHOD_ROSW or args[18] == METHOD_AUTO_IN_W:
         integrate_separate_w(fns, *args)
         return
@@ -389,15 +479,20 @@ def integrate_separate(*args: Any, method: int = METHOD_DOPRI5) -> None:
     stats[_ADDED_COUNTS] += counted
 
 
-def use_entries(separate: bool) -> None:
-    """Have the periodic solve (and the start-up) integrate through the separate entries
-    or through the project's inlined ones."""
-    chosen = integrate_separate if separate else integrate
+INLINED = "inlined"
+#: the entries compared: the project's, and the separate one in either convention
+ENTRIES = (INLINED, ARRAYS, POINTERS)
+
+
+def use_entries(entry: str) -> None:
+    """Have the periodic solve (and the start-up) integrate through ``entry`` (one of
+    :data:`ENTRIES`)."""
+    chosen = integrate if entry == INLINED else functools.partial(integrate_separate, abi=entry)
     revolution.integrate = chosen  # type: ignore[attr-defined]
     startup.integrate_scene = chosen  # type: ignore[attr-defined]
 
 
-# ---- the solve: the bench's rungs through either entry ---------------------------------
+# ---- the solve: the bench's rungs through each entry -----------------------------------
 #: the rungs measured (names of the bench's full ladder): the case as shipped (table
 #: properties, DOPRI5 with the W-step on stiff stretches, 5 deg steps at most) and pure
 #: DOPRI5 on both property backends
@@ -409,8 +504,9 @@ RUNGS = (
 
 
 def measure_solves(case_name: str, rounds: int, repeats: int) -> list[dict[str, Any]]:
-    """Each rung of :data:`RUNGS`, ``rounds`` times through each entry (alternating which
-    goes first), ``repeats`` timed solves each; errors against the bench's reference."""
+    """Each rung of :data:`RUNGS`, ``rounds`` times through each entry (the order
+    rotating), ``repeats`` timed solves each at least (the bench's minimum time per
+    rung); errors against the bench's reference."""
     from recipsim.case.files import find_case_file
     from recipsim.case.load import load_case
     from recipsim.cli.bench import MIN_TIME
@@ -421,70 +517,89 @@ def measure_solves(case_name: str, rounds: int, repeats: int) -> list[dict[str, 
     path = find_case_file(case_name)
     base = load_case(path)
     ladder = {r.name: r for r in build_ladder(base, baseline=False)}
-    use_entries(separate=False)
+    use_entries(INLINED)
     ref = run_rung(path, [], Rung("reference", overrides=reference_overrides()), base, 1)
     print(f"reference: {ref.status}, {ref.revolutions} revolutions", flush=True)
     rows = []
     for name in RUNGS:
-        warmed: dict[bool, set[tuple[str, ...]]] = {False: set(), True: set()}
-        outcomes: dict[bool, list[Any]] = {False: [], True: []}
+        warmed: dict[str, set[tuple[str, ...]]] = {entry: set() for entry in ENTRIES}
+        outcomes: dict[str, list[Any]] = {entry: [] for entry in ENTRIES}
         for k in range(rounds):
-            for separate in (k % 2 == 0, k % 2 != 0):
-                use_entries(separate)
+            for entry in ENTRIES[k % 3 :] + ENTRIES[: k % 3]:
+                use_entries(entry)
                 out = run_rung(
                     path,
                     [],
                     ladder[name],
                     base,
                     repeats,
-                    warmed=warmed[separate],
+                    warmed=warmed[entry],
                     min_time=MIN_TIME,
                 )
-                outcomes[separate].append(out)
-        for separate in (False, True):
-            runs = outcomes[separate]
-            last = runs[-1]
-            errors = error_columns(last.quantities, ref.quantities, last.trace, ref.trace)
-            cpu = [c for out in runs for c in out.cpu_times]
-            wall = [w for out in runs for w in out.wall_times]
-            rows.append(
-                {
-                    "rung": name,
-                    "entry": "separate" if separate else "inlined",
-                    "status": last.status,
-                    "median_cpu_time [s]": statistics.median(cpu),
-                    "median_wall_time [s]": statistics.median(wall),
-                    "solves": len(cpu),
-                    "rhs_evaluations": last.rhs_evaluations,
-                    "revolutions": last.revolutions,
-                    "cycle_residual": last.residual,
-                    "max_error [-]": errors[MAX_ERROR],
-                    "quantities": last.quantities,
-                }
-            )
+                outcomes[entry].append(out)
+        for entry in ENTRIES:
+            rows.append(_solve_row(name, entry, outcomes[entry], ref, error_columns, MAX_ERROR))
             print(json.dumps({k: v for k, v in rows[-1].items() if k != "quantities"}), flush=True)
-        same = rows[-2]["quantities"], rows[-1]["quantities"]
-        diff = max(abs(same[1][q] / same[0][q] - 1.0) for q in same[0] if same[0][q])
-        print(f"  {name}: largest relative difference inlined/separate {diff:.1e}", flush=True)
+        inlined = rows[-3]["quantities"]
+        diff = max(
+            abs(row["quantities"][q] / inlined[q] - 1.0)
+            for row in rows[-2:]
+            for q in inlined
+            if inlined[q]
+        )
+        print(f"  {name}: largest relative difference from the inlined entry {diff:.1e}")
     return rows
 
 
+def _solve_row(  # type: ignore[no-untyped-def]
+    name: str, entry: str, runs: list[Any], ref: Any, error_columns, max_error: str
+) -> dict[str, Any]:
+    last = runs[-1]
+    errors = error_columns(last.quantities, ref.quantities, last.trace, ref.trace)
+    cpu = [c for out in runs for c in out.cpu_times]
+    wall = [w for out in runs for w in out.wall_times]
+    return {
+        "rung": name,
+        "entry": entry,
+        "status": last.status,
+        "median_cpu_time [s]": statistics.median(cpu),
+        "median_wall_time [s]": statistics.median(wall),
+        "solves": len(cpu),
+        "rhs_evaluations": last.rhs_evaluations,
+        "revolutions": last.revolutions,
+        "cycle_residual": last.residual,
+        "max_error [-]": errors[max_error],
+        "quantities": last.quantities,
+    }
+
+
 # ---- compile times: each piece in its own interpreter, a fresh numba cache ---------------
+#: what each piece compiles
+PIECES = {
+    "inlined": "the project's explicit cylinder entry (loop + scene inlined)",
+    "inlined_w": "the project's cylinder entry with the W-step",
+    "separate_arrays": "the separate explicit entry (every scene), array convention",
+    "separate_pointers": "the separate explicit entry (every scene), pointer convention",
+    "separate_w_arrays": "the separate entry with the W-step, array convention",
+    "scene_arrays": "the cylinder scene's three cfuncs, array convention",
+    "scene_pointers": "the cylinder scene's three cfuncs, pointer convention",
+}
+
+
 def _compile_piece(piece: str) -> None:
     """Compile ``piece`` (or load it from the cache) and print its wall and CPU time."""
     from recipsim.solve.scene_entries import compile_entry
 
     t0, c0 = time.perf_counter(), time.process_time()
-    if piece == "inlined":
-        compile_entry("integrate_cylinder")
-    elif piece == "inlined_w":
-        compile_entry("integrate_cylinder_w")
-    elif piece == "separate":
-        integrate_separate_explicit.compile(SEPARATE_SIGNATURE)
-    elif piece == "separate_w":
-        integrate_separate_w.compile(SEPARATE_SIGNATURE)
-    elif piece == "scene":
-        scene_functions()
+    if piece.startswith("inlined"):
+        compile_entry(piece.replace("inlined", "integrate_cylinder"))
+    elif piece.startswith("separate_w_"):
+        integrate_separate_w.compile(SEPARATE_SIGNATURES[piece.removeprefix("separate_w_")])
+    elif piece.startswith("separate_"):
+        abi = piece.removeprefix("separate_")
+        integrate_separate_explicit.compile(SEPARATE_SIGNATURES[abi])
+    elif piece.startswith("scene_"):
+        scene_functions(SCENE_CYLINDER, piece.removeprefix("scene_"))
     else:
         raise ValueError(piece)
     wall, cpu = time.perf_counter() - t0, time.process_time() - c0
@@ -512,17 +627,14 @@ def measure_compiles(pieces: tuple[str, ...]) -> list[dict[str, Any]]:
 
 
 def main(argv: list[str] | None = None) -> None:
-    warnings.simplefilter("ignore", NumbaExperimentalFeatureWarning)  # first-class functions
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser = argparse.ArgumentParser(description=(__doc__ or "").splitlines()[0])
     parser.add_argument("what", choices=("solve", "compile", "_piece"))
     parser.add_argument("piece", nargs="?", default="")
     parser.add_argument("--case", default="reference_r134a_lbp_ideal")
-    parser.add_argument("--rounds", type=int, default=4)
+    parser.add_argument("--rounds", type=int, default=3)
     parser.add_argument("--repeats", type=int, default=5)
     parser.add_argument(
-        "--pieces",
-        default="inlined,separate,scene",
-        help="comma-separated: " + "inlined, inlined_w, separate, separate_w, scene",
+        "--pieces", default=",".join(PIECES), help="comma-separated, of: " + ", ".join(PIECES)
     )
     parser.add_argument("--json", help="also write the rows to this file")
     args = parser.parse_args(argv)
