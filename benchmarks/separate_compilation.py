@@ -249,15 +249,46 @@ _PYTHON_FUNCTIONS = {
 _SCENE_FUNCTIONS: dict[tuple[int, str], tuple[Any, ...]] = {}
 
 
+def _pointer_wrappers(code: int) -> tuple[Any, Any, Any]:
+    """The pointer convention's wrappers of any scene's functions (closures: compiled,
+    not cached; the cylinder scene's module-level ones above are cached)."""
+    rhs, values, action = (scenes._BY_SCENE[k][code] for k in scenes._BY_SCENE)
+
+    def rhs_p(t, y, n, mode, n_mode, par, n_par, ipar, n_ipar, props, pbuf, n_pbuf, dydt, aux):  # type: ignore[no-untyped-def]  # noqa: E501
+        return rhs(
+            t, carray(y, n), carray(mode, n_mode), carray(par, n_par), carray(ipar, n_ipar),
+            props, carray(pbuf, n_pbuf), carray(dydt, n), carray(aux, N_AUX),
+        )  # fmt: skip
+
+    def values_p(y, n, mode, n_mode, par, n_par, ipar, n_ipar, aux, g):  # type: ignore[no-untyped-def]
+        values(
+            carray(y, n), carray(mode, n_mode), carray(par, n_par), carray(ipar, n_ipar),
+            carray(aux, N_AUX), carray(g, N_EVENTS),
+        )  # fmt: skip
+
+    def action_p(k, y, n, mode, n_mode, par, n_par, ipar, n_ipar, aux):  # type: ignore[no-untyped-def]
+        return action(
+            k, carray(y, n), carray(mode, n_mode), carray(par, n_par), carray(ipar, n_ipar),
+            carray(aux, N_AUX),
+        )  # fmt: skip
+
+    return rhs_p, values_p, action_p
+
+
 def scene_functions(code: int = SCENE_CYLINDER, abi: str = ARRAYS) -> tuple[Any, ...]:
     """The scene's ``(rhs, event_values, event_action)`` as cfuncs of the calling
-    convention ``abi`` (compiled, or loaded from numba's cache, at the first call)."""
-    if code != SCENE_CYLINDER:
-        raise NotImplementedError("only the cylinder scene is wired up in this experiment")
+    convention ``abi`` (compiled, or loaded from numba's cache, at the first call):
+    every scene in the pointer convention, the cylinder scene in both."""
     if (code, abi) not in _SCENE_FUNCTIONS:
+        if code == SCENE_CYLINDER:
+            functions, cache = _PYTHON_FUNCTIONS[abi], True
+        elif abi == POINTERS:
+            functions, cache = _pointer_wrappers(code), False
+        else:
+            raise NotImplementedError("the array convention is wired up for the cylinder only")
         _SCENE_FUNCTIONS[code, abi] = tuple(
-            cfunc(sig, cache=True)(function)
-            for sig, function in zip(SIGNATURES[abi], _PYTHON_FUNCTIONS[abi], strict=True)
+            cfunc(sig, cache=cache)(function)
+            for sig, function in zip(SIGNATURES[abi], functions, strict=True)
         )
     return _SCENE_FUNCTIONS[code, abi]
 
@@ -503,7 +534,13 @@ RUNGS = (
 )
 
 
-def measure_solves(case_name: str, rounds: int, repeats: int) -> list[dict[str, Any]]:
+def measure_solves(
+    case_name: str,
+    rounds: int,
+    repeats: int,
+    rungs: tuple[str, ...] = RUNGS,
+    entries: tuple[str, ...] = ENTRIES,
+) -> list[dict[str, Any]]:
     """Each rung of :data:`RUNGS`, ``rounds`` times through each entry (the order
     rotating), ``repeats`` timed solves each at least (the bench's minimum time per
     rung); errors against the bench's reference."""
@@ -521,11 +558,12 @@ def measure_solves(case_name: str, rounds: int, repeats: int) -> list[dict[str, 
     ref = run_rung(path, [], Rung("reference", overrides=reference_overrides()), base, 1)
     print(f"reference: {ref.status}, {ref.revolutions} revolutions", flush=True)
     rows = []
-    for name in RUNGS:
-        warmed: dict[str, set[tuple[str, ...]]] = {entry: set() for entry in ENTRIES}
-        outcomes: dict[str, list[Any]] = {entry: [] for entry in ENTRIES}
+    for name in rungs:
+        warmed: dict[str, set[tuple[str, ...]]] = {entry: set() for entry in entries}
+        outcomes: dict[str, list[Any]] = {entry: [] for entry in entries}
         for k in range(rounds):
-            for entry in ENTRIES[k % 3 :] + ENTRIES[: k % 3]:
+            shift = k % len(entries)
+            for entry in entries[shift:] + entries[:shift]:
                 use_entries(entry)
                 out = run_rung(
                     path,
@@ -537,13 +575,13 @@ def measure_solves(case_name: str, rounds: int, repeats: int) -> list[dict[str, 
                     min_time=MIN_TIME,
                 )
                 outcomes[entry].append(out)
-        for entry in ENTRIES:
+        for entry in entries:
             rows.append(_solve_row(name, entry, outcomes[entry], ref, error_columns, MAX_ERROR))
             print(json.dumps({k: v for k, v in rows[-1].items() if k != "quantities"}), flush=True)
-        inlined = rows[-3]["quantities"]
+        inlined = rows[-len(entries)]["quantities"]
         diff = max(
             abs(row["quantities"][q] / inlined[q] - 1.0)
-            for row in rows[-2:]
+            for row in rows[-len(entries) :]
             for q in inlined
             if inlined[q]
         )
@@ -636,13 +674,18 @@ def main(argv: list[str] | None = None) -> None:
     parser.add_argument(
         "--pieces", default=",".join(PIECES), help="comma-separated, of: " + ", ".join(PIECES)
     )
+    parser.add_argument("--rungs", default=",".join(RUNGS), help="comma-separated rung names")
+    parser.add_argument(
+        "--entries", default=",".join(ENTRIES), help="comma-separated, of: " + ", ".join(ENTRIES)
+    )
     parser.add_argument("--json", help="also write the rows to this file")
     args = parser.parse_args(argv)
     if args.what == "_piece":
         _compile_piece(args.piece)
         return
     if args.what == "solve":
-        rows = measure_solves(args.case, args.rounds, args.repeats)
+        rungs, entries = tuple(args.rungs.split(",")), tuple(args.entries.split(","))
+        rows = measure_solves(args.case, args.rounds, args.repeats, rungs, entries)
     else:
         rows = measure_compiles(tuple(args.pieces.split(",")))
     if args.json:
