@@ -22,9 +22,9 @@ from typing import Any
 from recipsim.case.case import Case
 from recipsim.case.envelope import check_envelope
 from recipsim.case.load import load_case
-from recipsim.physics.thermo.pressure_sources import PRESSURE_SOURCES
 from recipsim.physics.mechanics.crank_trains import CRANK_TRAINS
 from recipsim.physics.speed_models import SPEED_MODELS
+from recipsim.physics.thermo.pressure_sources import PRESSURE_SOURCES
 from recipsim.progress import logger
 from recipsim.report.case_report import report_dir, write_case_report
 from recipsim.results.case_run import CaseRun, case_run, summary_only

@@ -37,8 +37,8 @@ from recipsim.errors import CaseError
 from recipsim.physics.mechanics.tabulated import PressureCurve
 from recipsim.physics.thermo.heat_transfer import HEAT_TRANSFER
 from recipsim.physics.thermo.pressure_sources import PRESSURE_SOURCES
-from recipsim.physics.thermo.valve_models import VALVE_MODELS
 from recipsim.physics.thermo.thermal_models import THERMAL_MODELS
+from recipsim.physics.thermo.valve_models import VALVE_MODELS
 from recipsim.schema import check_keys, read_table
 
 

@@ -13,18 +13,18 @@ import math
 from typing import Any
 
 from recipsim.case.rating import RATING_SPEC
-from recipsim.physics.mechanics.bearing_laws.registry import BEARING_LAWS, JOURNAL_LAWS
-from recipsim.physics.thermo.heat_transfer import ANNAND, HEAT_TRANSFER
-from recipsim.physics.thermo.leakage_models import GAP_LAWS, LEAKAGE
-from recipsim.physics.thermo.pressure_sources import PRESSURE_SOURCES
-from recipsim.physics.thermo.property_backends import PROPERTY_BACKENDS
-from recipsim.physics.thermo.valve_models import VALVE_MODELS
 from recipsim.physics.friction_models import FRICTION_MODELS
+from recipsim.physics.mechanics.bearing_laws.registry import BEARING_LAWS, JOURNAL_LAWS
 from recipsim.physics.mechanics.crank_trains import CRANK_TRAINS
 from recipsim.physics.mechanics.drives import DRIVES
 from recipsim.physics.motor_models import MOTOR_MODELS
 from recipsim.physics.speed_models import SPEED_MODELS
+from recipsim.physics.thermo.heat_transfer import ANNAND, HEAT_TRANSFER
+from recipsim.physics.thermo.leakage_models import GAP_LAWS, LEAKAGE
+from recipsim.physics.thermo.pressure_sources import PRESSURE_SOURCES
+from recipsim.physics.thermo.property_backends import PROPERTY_BACKENDS
 from recipsim.physics.thermo.thermal_models import THERMAL_MODELS
+from recipsim.physics.thermo.valve_models import VALVE_MODELS
 from recipsim.schema import Choice, Field, Flag, Spec, Text
 
 #: the top of the file: the case's name, its description and its refrigerant

@@ -17,12 +17,12 @@ from recipsim.case.sections import (
     ValveSpec,
 )
 from recipsim.errors import CaseError
-from recipsim.physics.thermo.valve_models import VALVE_MODELS
 from recipsim.physics.mechanics.crank_trains import CRANK_TRAINS
 from recipsim.physics.mechanics.drives import DRIVES
 from recipsim.physics.motor_models import MOTOR_MODELS
 from recipsim.physics.speed_models import SPEED_MODELS
 from recipsim.physics.thermo.thermal_models import THERMAL_MODELS
+from recipsim.physics.thermo.valve_models import VALVE_MODELS
 
 
 def check_solver(solver: SolverSettings, options: Options, file: str) -> None:

@@ -30,8 +30,8 @@ from functools import lru_cache
 from typing import Any
 
 from recipsim.errors import CaseError
-from recipsim.physics.mechanics.bearing_laws.registry import BEARING_LAWS
 from recipsim.physics.friction_models import FILM_FRICTION, FRICTION_MODELS, default_friction
+from recipsim.physics.mechanics.bearing_laws.registry import BEARING_LAWS
 from recipsim.physics.mechanics.crank_trains import CRANK_TRAINS
 from recipsim.physics.motor_circuit import MotorCircuit
 from recipsim.physics.motor_nameplate import MotorNameplate, motor_circuit_from_nameplate

@@ -12,8 +12,8 @@ import math
 from collections.abc import Mapping
 from typing import Any
 
-from recipsim.physics.thermo.pressure_sources import PRESSURE_SOURCES, PressureSource
 from recipsim.physics.motor_models import LOSSLESS
+from recipsim.physics.thermo.pressure_sources import PRESSURE_SOURCES, PressureSource
 from recipsim.results.loss_breakdown import COP_COST_COLUMNS, LOSS_COLUMNS
 
 #: Kelvin at 0 C [K].

@@ -16,8 +16,8 @@ import numpy as np
 from recipsim.case.case import Case
 from recipsim.model import scenes
 from recipsim.model.build import Model, build_model, cylinder_model
-from recipsim.physics.thermo.pressure_sources import PRESSURE_SOURCES
 from recipsim.physics.mechanics.drives import DRIVES
+from recipsim.physics.thermo.pressure_sources import PRESSURE_SOURCES
 from recipsim.solve.periodic import sample_outputs, solve_periodic
 
 

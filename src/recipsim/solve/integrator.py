@@ -59,6 +59,7 @@ from typing import Any
 import numpy as np
 from numba import njit
 
+from recipsim.model import scene_functions as scene_functions  # the pointer calls' overloads
 from recipsim.model.scenes import (
     event_action_for,
     event_values_for,
@@ -115,6 +116,10 @@ SIGNAL_CHECK_STEPS = 2048
 
 #: accepted steps in a row at one instant (events) before the run stops as chattering
 MAX_EVENTS_AT_ONE_INSTANT = 50
+
+#: ``code`` of :func:`scene_entry` for the entry that takes the scene's functions as
+#: its first argument (every scene of :data:`recipsim.model.scene_functions.POINTER_SCENES`)
+SCENE_AS_ARGUMENT = -1
 
 
 @njit(cache=True, inline="always")
@@ -178,12 +183,19 @@ def scene_entry(name: str, code: int, w_entry: int) -> Any:
     inlining copies the loop's IR block by block with its whole scope, which every
     entry's compilation would pay for.
 
+    With ``code`` = :data:`SCENE_AS_ARGUMENT` the entry takes the scene's functions as
+    its first argument (:func:`recipsim.model.scene_functions.scene_functions`, called
+    through pointers) and serves every scene of
+    :data:`recipsim.model.scene_functions.POINTER_SCENES`; else the loop is compiled
+    with the scene's code, its functions inlined, under an entry of the arguments below.
+
     Parameters
     ----------
     name : str
-        The entry's name (``integrate_cylinder``, ...: :mod:`.scene_entries`).
+        The entry's name (``integrate_scene``, ...: :mod:`.scene_entries`).
     code : int
-        The scene (``SCENE_*`` of :mod:`recipsim.model.scenes`), ``ipar[I_SCENE]``.
+        The scene (``SCENE_*`` of :mod:`recipsim.model.scenes`), ``ipar[I_SCENE]``, or
+        :data:`SCENE_AS_ARGUMENT`.
     w_entry : int
         :data:`.w_gate.WITH_W_STEP` for an entry that takes Rosenbrock-W steps,
         :data:`.w_gate.EXPLICIT` for one that runs DOPRI5 only: there
@@ -193,8 +205,9 @@ def scene_entry(name: str, code: int, w_entry: int) -> Any:
     """
 
     @njit(cache=True)
-    @_named(name)
+    @_named(name if code == SCENE_AS_ARGUMENT else name + "_loop")
     def entry(  # type: ignore[no-untyped-def]
+        code,
         t0,
         t1,
         y,
@@ -219,6 +232,9 @@ def scene_entry(name: str, code: int, w_entry: int) -> Any:
 
         Parameters
         ----------
+        code : int or tuple
+            The scene: its compile-time code, or its functions
+            (:data:`recipsim.model.scene_functions.SCENE_FUNCTIONS_TYPE`).
         t0, t1 : float
             Start and end time [s].
         y : ndarray
@@ -401,6 +417,26 @@ def scene_entry(name: str, code: int, w_entry: int) -> Any:
                 jac_age = -1
 
         _write_stats(stats, result, t, h, i_sample, counts)
+
+    if code == SCENE_AS_ARGUMENT:
+        return entry
+    return _with_scene(name, code, entry)
+
+
+def _with_scene(name: str, code: int, loop: Any) -> Any:
+    """The entry ``name`` that runs ``loop`` for scene ``code``, a compile-time constant
+    (passed on as numba's literal: every argument spelled out, a ``*args`` would lose it)."""
+
+    @njit(cache=True)
+    @_named(name)
+    def entry(  # type: ignore[no-untyped-def]
+        t0, t1, y, mode, par, ipar, props, pbuf, rtol, atol, scale, n_err, h_init, h_max,
+        sample_times, samples, sample_modes, stats, method,
+    ):  # fmt: skip
+        loop(
+            code, t0, t1, y, mode, par, ipar, props, pbuf, rtol, atol, scale, n_err, h_init,
+            h_max, sample_times, samples, sample_modes, stats, method,
+        )  # fmt: skip
 
     return entry
 

@@ -10,9 +10,8 @@ import numpy as np
 
 from recipsim.model.build import Model, WorkingModel, scenes
 from recipsim.physics.mechanics import layout as mlay
-from recipsim.physics.thermo.valve_models import VALVE_MODELS
 from recipsim.physics.mechanics.drives import DRIVES
-from recipsim.physics.thermo import cylinder as cyl
+from recipsim.physics.thermo.valve_models import VALVE_MODELS
 from recipsim.solve.revolution import (
     Revolution,
     _Tally,

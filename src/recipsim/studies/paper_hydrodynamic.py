@@ -29,8 +29,8 @@ import numpy as np
 from recipsim.case.load import Case
 from recipsim.physics.mechanics.bearing_laws import finite_journal
 from recipsim.physics.mechanics.bearing_laws.registry import BEARING_LAWS, JOURNAL_LAWS
-from recipsim.physics.mechanics.layout import JOURNAL_NAMES
 from recipsim.physics.mechanics.drives import CONSTANT_SPEED
+from recipsim.physics.mechanics.layout import JOURNAL_NAMES
 from recipsim.physics.mechanics.tabulated import PressureCurve
 from recipsim.pipeline import simulate_case
 from recipsim.studies.paper_load_run import LoadRun, tabulated_case

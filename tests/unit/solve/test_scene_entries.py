@@ -1,7 +1,8 @@
 """Each scene compiles on its own: the scene reaches the integrator as a compile-time
-constant, a pinned case compiles no flexible crank train nor, where no stretch turns
-stiff, the Rosenbrock-W step, and a second process loads the compiled integrator from
-numba's cache instead of compiling it again."""
+constant or as its own compiled functions (the cylinder scene, through pointers), a
+pinned case compiles no flexible crank train nor, where no stretch turns stiff, the
+Rosenbrock-W step, and a second process loads the compiled integrator from numba's cache
+instead of compiling it again."""
 
 from __future__ import annotations
 
@@ -25,9 +26,9 @@ from recipsim.model import scenes
 case = load_case("reference_r134a_lbp").with_(
     {"solver.min_revolutions": 1, "solver.max_revolutions": 1})
 simulate_case(case)
-entry = scene_entries.integrate_cylinder
+entry = scene_entries.integrate_scene
 print(json.dumps({
-    "signatures_as_ahead": entry.signatures == [scene_entries.ENTRY_SIGNATURE],
+    "signatures_as_ahead": entry.signatures == [scene_entries.SCENE_ENTRY_SIGNATURE],
     "hits": sum(entry.stats.cache_hits.values()),
     "misses": sum(entry.stats.cache_misses.values()),
     "compiled": {f.__name__: len(f.signatures) for f in (
@@ -78,11 +79,12 @@ def test_a_pinned_case_compiles_its_scene_only_and_a_second_process_loads_it(tmp
     assert set(first["compiled"].values()) == {0}
     assert second["hits"] == 1 and second["misses"] == 0
     names = {p.name.split("-")[0] for p in (tmp_path / "numba").rglob("*.nbi")}
-    assert "integrator.integrate_cylinder" in names
+    assert {"integrator.integrate_scene", "scene_functions.cylinder_rhs_pointer"} <= names
     other_scenes = {"integrator.integrate_coupled", "scenes.mechanism_rhs", "scenes.coupled_rhs"}
     assert not other_scenes & names
+    assert not any(name.startswith("scene_functions.coupled_") for name in names)
     # "dopri5_stiff", whose stiffness test never fires on this case: no W-method compiled
-    assert not {"integrator.integrate_cylinder_w", "stiff.w_step", "stiff.jacobian_fd"} & names
+    assert not {"integrator.integrate_scene_w", "stiff.w_step", "stiff.jacobian_fd"} & names
     assert not any(name.startswith("flexible.") for name in names)
 
 
@@ -92,7 +94,7 @@ from recipsim.case.load import load_case
 from recipsim.model.build import build_model
 from recipsim.solve.integrator import N_STATS, ST_NACCEPT, ST_STATUS, METHOD_AUTO, METHOD_ROSW
 from recipsim.solve.scene_entries import compile_entry, integrate
-compile_entry("integrate_cylinder")  # nothing to compile
+compile_entry("integrate_scene")  # nothing to compile
 m = build_model(load_case("reference_r134a_lbp")).for_solve()
 for method in (METHOD_AUTO, METHOD_ROSW):
     y, mode, stats = m.y0.copy(), m.mode0.copy(), np.zeros(N_STATS)

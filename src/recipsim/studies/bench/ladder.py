@@ -39,15 +39,15 @@ from recipsim.case.case import Case
 from recipsim.case.case_schema import SOLVER_SPEC
 from recipsim.case.overrides import parse_override
 from recipsim.errors import RecipsimError
-from recipsim.physics.thermo.pressure_sources import PRESSURE_SOURCES
-from recipsim.physics.thermo.property_backends import HEOS, TABLE
-from recipsim.physics.thermo.valve_models import VALVE_MODELS
 from recipsim.physics.friction_models import NO_FRICTION
 from recipsim.physics.mechanics.crank_trains import CRANK_TRAINS, PINNED
 from recipsim.physics.mechanics.drives import CONSTANT_SPEED, DRIVES
 from recipsim.physics.motor_models import LOSSLESS
 from recipsim.physics.speed_models import CASE_SPEED
+from recipsim.physics.thermo.pressure_sources import PRESSURE_SOURCES
+from recipsim.physics.thermo.property_backends import HEOS, TABLE
 from recipsim.physics.thermo.thermal_models import FIXED_WALL
+from recipsim.physics.thermo.valve_models import VALVE_MODELS
 
 DOPRI5 = "dopri5"
 #: the compiled DOPRI5 switching to the Rosenbrock-W step on stiff stretches

@@ -28,8 +28,8 @@ import pandas as pd
 from recipsim.case.case import Case
 from recipsim.case.rating import STANDARDS, RatingStandard
 from recipsim.case.refrigerant import case_fluid
-from recipsim.physics.thermo.property_backends import HEOS
 from recipsim.physics.motor_models import MOTOR_MODELS
+from recipsim.physics.thermo.property_backends import HEOS
 from recipsim.studies.rate.coefficients import (
     PUBLISHED_UNITS,
     Polynomial,
