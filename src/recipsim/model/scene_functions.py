@@ -1,40 +1,40 @@
 """A scene's functions compiled on their own, called by the integrator through pointers.
 
 A scene (:mod:`recipsim.model.scenes`) is a right-hand side, its event functions and its
-event actions. For the scenes in :data:`POINTER_SCENES` each of the three is compiled
-(and cached by numba) as a ``numba.cfunc`` of its own, behind a fixed C signature, and
-the compiled integrator (:mod:`recipsim.solve.integrator`) receives the three as
-first-class functions, ``(rhs, event_values, event_action)``, and calls them through
-their addresses: the integrator is compiled once for every such scene, and a scene's
-physics compiles without the integrator's loop. This is numbalsoda's convention: each
-array travels as a data pointer and a length (``numba.carray`` makes the array again
-inside), the state's derivative has the state's length, ``aux`` :data:`.scenes.N_AUX`
-entries and the event values :data:`.scenes.N_EVENTS`:
+event actions. Each of the three is compiled (and cached by numba) on its own, as a
+``numba.cfunc`` behind a fixed C signature, and the compiled integrator
+(:mod:`recipsim.solve.integrator`) receives the three as first-class functions
+(:class:`SceneFunctions`) and calls them through their addresses: the integrator is
+compiled once for every scene, and a scene's physics compiles without the integrator's
+loop. This is numbalsoda's convention: each array travels as a data pointer and a length
+(``numba.carray`` makes the array again inside), the state's derivative has the state's
+length, ``aux`` :data:`.scenes.N_AUX` entries and the event values
+:data:`.scenes.N_EVENTS`:
 
 - ``rhs(t, y, n, mode, n_mode, par, n_par, ipar, n_ipar, props, pbuf, n_pbuf, dydt,
   aux) -> status`` (:data:`RHS_SIGNATURE`; ``props`` the property callback);
 - ``event_values(y, n, mode, n_mode, par, n_par, ipar, n_ipar, aux, g)``;
 - ``event_action(k, y, n, mode, n_mode, par, n_par, ipar, n_ipar, aux) -> ends``.
 
-Measured on the cylinder scene (``benchmarks/separate_compilation.py``), the call
-through the pointer costs nothing: the arrays rebuilt by ``carray`` carry no reference
-count, which the scene's own slicing then does not update, and the solve is 3-17 %
-faster than with the scene inlined into the integrator, to the same bits. Passing numba's
-array structures through the pointer instead is 9-26 % slower.
+Measured on every scene (``benchmarks/separate_compilation.py``, ``docs/speed.md``), the
+call through the pointer costs less than the scene compiled into the integrator's loop:
+the arrays rebuilt by ``carray`` carry no reference count, which the scene's own slicing
+then does not update. The solve is 3-47 % faster, to the same bits. Passing numba's array
+structures through the pointer instead is 9-26 % slower than the inlined scene.
 
 Overloads of :func:`.scenes.rhs_for`, :func:`.scenes.event_values_for` and
-:func:`.scenes.event_action_for` for the functions' tuple (:data:`SCENE_FUNCTIONS_TYPE`)
-make the calls, so the integrator's step, event location and W-step code take either a
-scene's compile-time code or its functions. Without the JIT (``NUMBA_DISABLE_JIT=1``)
-:func:`scene_functions` hands back the scene's code, and the plain-Python bodies of
-those functions dispatch on it.
+:func:`.scenes.event_action_for` for :data:`SCENE_FUNCTIONS_TYPE` make the calls, so the
+integrator's step, event location and W-step code are written once for either a scene's
+functions or its compile-time code. Without the JIT (``NUMBA_DISABLE_JIT=1``)
+:func:`scene_functions` hands back the scene's code, and the plain-Python bodies of those
+functions dispatch on it.
 """
 
 from __future__ import annotations
 
 from typing import Any, NamedTuple
 
-from numba import carray, cfunc, types
+from numba import carray, cfunc, njit, types
 from numba.core import config
 from numba.extending import intrinsic, overload
 
@@ -42,15 +42,12 @@ from recipsim.model.scenes import _BY_SCENE as BY_SCENE
 from recipsim.model.scenes import (
     N_AUX,
     N_EVENTS,
-    SCENE_CYLINDER,
     event_action_for,
     event_values_for,
     rhs_for,
 )
 from recipsim.physics.thermo.properties import PROPS_TYPE
 
-#: the scenes whose functions reach the integrator through pointers
-POINTER_SCENES = (SCENE_CYLINDER,)
 #: each scene's name in its functions' names (numba caches each under its name)
 SCENE_NAMES = ("cylinder", "mechanism", "coupled")
 
@@ -89,51 +86,74 @@ def scene_functions(code: int) -> Any:
     if getattr(config, "DISABLE_JIT", False):
         return code
     if code not in _COMPILED:
-        _COMPILED[code] = SceneFunctions(
-            *(
-                cfunc(signature, cache=True)(function)
-                for signature, function in zip(SIGNATURES, _pointer_wrappers(code), strict=True)
-            )
-        )
+        _COMPILED[code] = _cfuncs(code)
     return _COMPILED[code]
 
 
-def _pointer_wrappers(code: int) -> tuple[Any, Any, Any]:
-    """Scene ``code``'s three functions behind the pointer signatures, each named after
-    the scene (``cylinder_rhs_pointer``, ...) so numba caches each in a file of its own."""
+def _kernels(code: int) -> tuple[Any, Any, Any]:
+    """Scene ``code``'s three functions behind the pointer signatures, compiled functions
+    named after the scene (``cylinder_rhs_pointer``, ...): numba caches each in a file of
+    its own, and announces their compilation (:mod:`recipsim.progress`) as this module's."""
     rhs, values, action = (BY_SCENE[kind][code] for kind in ("rhs", "event_values", "event_action"))
 
     def rhs_pointer(
         t, y, n, mode, n_mode, par, n_par, ipar, n_ipar, props, pbuf, n_pbuf, dydt, aux
-    ):
+    ):  # noqa: E501
         return rhs(
             t, carray(y, n), carray(mode, n_mode), carray(par, n_par), carray(ipar, n_ipar),
             props, carray(pbuf, n_pbuf), carray(dydt, n), carray(aux, N_AUX),
         )  # fmt: skip
 
-    def event_values_pointer(y, n, mode, n_mode, par, n_par, ipar, n_ipar, aux, g):
+    def event_values_pointer(y, n, mode, n_mode, par, n_par, ipar, n_ipar, aux, g):  # noqa: E501
         values(
             carray(y, n), carray(mode, n_mode), carray(par, n_par), carray(ipar, n_ipar),
             carray(aux, N_AUX), carray(g, N_EVENTS),
         )  # fmt: skip
 
-    def event_action_pointer(k, y, n, mode, n_mode, par, n_par, ipar, n_ipar, aux):
+    def event_action_pointer(k, y, n, mode, n_mode, par, n_par, ipar, n_ipar, aux):  # noqa: E501
         return action(
             k, carray(y, n), carray(mode, n_mode), carray(par, n_par), carray(ipar, n_ipar),
             carray(aux, N_AUX),
         )  # fmt: skip
 
-    wrappers = (rhs_pointer, event_values_pointer, event_action_pointer)
-    for function in wrappers:
-        function.__name__ = function.__qualname__ = f"{SCENE_NAMES[code]}_{function.__name__}"
-    return wrappers
+    functions = (rhs_pointer, event_values_pointer, event_action_pointer)
+    return tuple(njit(cache=True)(_named(f, code)) for f in functions)  # type: ignore[return-value]
+
+
+def _cfuncs(code: int) -> SceneFunctions:
+    """Scene ``code``'s kernels as cfuncs of :data:`SIGNATURES` (each a call of its
+    kernel, cached by numba in a file of its own)."""
+    rhs, values, action = _kernels(code)
+
+    def rhs_cfunc(t, y, n, mode, n_mode, par, n_par, ipar, n_ipar, props, pbuf, n_pbuf, dydt, aux):  # noqa: E501
+        return rhs(t, y, n, mode, n_mode, par, n_par, ipar, n_ipar, props, pbuf, n_pbuf, dydt, aux)  # noqa: E501
+
+    def event_values_cfunc(y, n, mode, n_mode, par, n_par, ipar, n_ipar, aux, g):  # noqa: E501
+        values(y, n, mode, n_mode, par, n_par, ipar, n_ipar, aux, g)
+
+    def event_action_cfunc(k, y, n, mode, n_mode, par, n_par, ipar, n_ipar, aux):  # noqa: E501
+        return action(k, y, n, mode, n_mode, par, n_par, ipar, n_ipar, aux)
+
+    functions = (rhs_cfunc, event_values_cfunc, event_action_cfunc)
+    return SceneFunctions(
+        *(
+            cfunc(signature, cache=True)(_named(function, code))
+            for signature, function in zip(SIGNATURES, functions, strict=True)
+        )
+    )
+
+
+def _named(function: Any, code: int) -> Any:
+    """``function`` renamed after scene ``code`` (``rhs_pointer`` -> ``cylinder_rhs_pointer``)."""
+    function.__name__ = function.__qualname__ = f"{SCENE_NAMES[code]}_{function.__name__}"
+    return function
 
 
 @intrinsic
 def _data(typingctx, array):  # type: ignore[no-untyped-def]
     """The data pointer of a numba array (``CPointer`` of its dtype)."""
 
-    def codegen(context, builder, signature, args):  # type: ignore[no-untyped-def]
+    def codegen(context, builder, signature, args):
         return context.make_array(signature.args[0])(context, builder, args[0]).data
 
     return types.CPointer(array.dtype)(array), codegen

@@ -117,10 +117,6 @@ SIGNAL_CHECK_STEPS = 2048
 #: accepted steps in a row at one instant (events) before the run stops as chattering
 MAX_EVENTS_AT_ONE_INSTANT = 50
 
-#: ``code`` of :func:`scene_entry` for the entry that takes the scene's functions as
-#: its first argument (every scene of :data:`recipsim.model.scene_functions.POINTER_SCENES`)
-SCENE_AS_ARGUMENT = -1
-
 
 @njit(cache=True, inline="always")
 def _step(w_entry, use_w, code, t, h, y, ynew, scene, tol, work):
@@ -175,27 +171,23 @@ def _write_stats(stats, result, t, h, i_sample, counts) -> None:
     stats[ST_NJAC] = counts[5]
 
 
-def scene_entry(name: str, code: int, w_entry: int) -> Any:
-    """The compiled entry ``name`` that integrates scene ``code`` with the W-step flag
-    ``w_entry``: the loop below, compiled with both as compile-time constants (numba
-    takes a closure's variables as constants; each entry is cached in a file of its own,
-    named after it). A closure rather than one loop inlined into each entry: numba's
-    inlining copies the loop's IR block by block with its whole scope, which every
-    entry's compilation would pay for.
+def scene_entry(name: str, w_entry: int) -> Any:
+    """The compiled entry ``name`` with the W-step flag ``w_entry``: the loop below,
+    compiled with the flag as a compile-time constant (numba takes a closure's variables
+    as constants; each entry is cached in a file of its own, named after it). A closure
+    rather than one loop inlined into each entry: numba's inlining copies the loop's IR
+    block by block with its whole scope, which every entry's compilation would pay for.
 
-    With ``code`` = :data:`SCENE_AS_ARGUMENT` the entry takes the scene's functions as
-    its first argument (:func:`recipsim.model.scene_functions.scene_functions`, called
-    through pointers) and serves every scene of
-    :data:`recipsim.model.scene_functions.POINTER_SCENES`; else the loop is compiled
-    with the scene's code, its functions inlined, under an entry of the arguments below.
+    The scene comes as the entry's first argument: its functions, compiled on their own
+    and called through pointers (:func:`recipsim.model.scene_functions.scene_functions`),
+    so one entry serves every scene; or a scene's code as a compile-time constant (a
+    caller compiled with it, as ``benchmarks/separate_compilation.py`` does to measure
+    the scene inlined into the loop).
 
     Parameters
     ----------
     name : str
-        The entry's name (``integrate_scene``, ...: :mod:`.scene_entries`).
-    code : int
-        The scene (``SCENE_*`` of :mod:`recipsim.model.scenes`), ``ipar[I_SCENE]``, or
-        :data:`SCENE_AS_ARGUMENT`.
+        The entry's name (``integrate_scene``, ``integrate_scene_w``: :mod:`.scene_entries`).
     w_entry : int
         :data:`.w_gate.WITH_W_STEP` for an entry that takes Rosenbrock-W steps,
         :data:`.w_gate.EXPLICIT` for one that runs DOPRI5 only: there
@@ -205,7 +197,7 @@ def scene_entry(name: str, code: int, w_entry: int) -> Any:
     """
 
     @njit(cache=True)
-    @_named(name if code == SCENE_AS_ARGUMENT else name + "_loop")
+    @_named(name)
     def entry(  # type: ignore[no-untyped-def]
         code,
         t0,
@@ -232,9 +224,10 @@ def scene_entry(name: str, code: int, w_entry: int) -> Any:
 
         Parameters
         ----------
-        code : int or tuple
-            The scene: its compile-time code, or its functions
-            (:data:`recipsim.model.scene_functions.SCENE_FUNCTIONS_TYPE`).
+        code : SceneFunctions or int
+            The scene: its functions
+            (:class:`recipsim.model.scene_functions.SceneFunctions`), or its code as a
+            compile-time constant (``SCENE_*`` of :mod:`recipsim.model.scenes`).
         t0, t1 : float
             Start and end time [s].
         y : ndarray
@@ -417,26 +410,6 @@ def scene_entry(name: str, code: int, w_entry: int) -> Any:
                 jac_age = -1
 
         _write_stats(stats, result, t, h, i_sample, counts)
-
-    if code == SCENE_AS_ARGUMENT:
-        return entry
-    return _with_scene(name, code, entry)
-
-
-def _with_scene(name: str, code: int, loop: Any) -> Any:
-    """The entry ``name`` that runs ``loop`` for scene ``code``, a compile-time constant
-    (passed on as numba's literal: every argument spelled out, a ``*args`` would lose it)."""
-
-    @njit(cache=True)
-    @_named(name)
-    def entry(  # type: ignore[no-untyped-def]
-        t0, t1, y, mode, par, ipar, props, pbuf, rtol, atol, scale, n_err, h_init, h_max,
-        sample_times, samples, sample_modes, stats, method,
-    ):  # fmt: skip
-        loop(
-            code, t0, t1, y, mode, par, ipar, props, pbuf, rtol, atol, scale, n_err, h_init,
-            h_max, sample_times, samples, sample_modes, stats, method,
-        )  # fmt: skip
 
     return entry
 

@@ -94,10 +94,10 @@ def test_the_estimate_is_the_duration_measured_last_time(cache, caplog):
 
 def test_a_compilation_is_noted_with_its_last_duration(cache, caplog):
     caplog.set_level(logging.DEBUG, logger="recipsim")
-    solver = "recipsim.solve.integrator.integrate_coupled"
+    solver = "recipsim.solve.integrator.integrate_scene_w"
     progress._note_compilation(solver)
     assert caplog.records[-1].levelno == logging.INFO  # known to be slow: said even unmeasured
-    assert caplog.messages[-1] == "compiling the solver (integrate_coupled; once per installation)"
+    assert caplog.messages[-1] == "compiling the solver (integrate_scene_w; once per installation)"
     progress.record_duration(progress.compile_key(solver), 9.5)
     progress._note_compilation(solver)
     assert caplog.messages[-1].endswith("; 9.5 s last time on this machine)")
