@@ -295,6 +295,7 @@ def scene_entry(name: str, code: int, w_entry: int) -> Any:
         n_stiff = 0  # DOPRI5 steps that looked stiff
         n_nonstiff = 0  # DOPRI5 steps that did not (W: steps DOPRI5 could have taken)
         jac_age = -1  # accepted steps since the Jacobian was built (-1: none for this y)
+        just_rejected = False
         jac_life = 1  # accepted steps a Jacobian is kept
         rho_jac = 0.0
         # An event located in a step is landed on by re-taking the step from its start to
@@ -365,8 +366,9 @@ def scene_entry(name: str, code: int, w_entry: int) -> Any:
             if st != 0 or not (err <= 1.0):  # also catches NaN
                 counts[2] += 1
                 h = rejected_step(h, st, err, use_w)
-                if use_w and jac_age > 0:
-                    jac_age = -1  # a stale Jacobian may be why: refresh it
+                if use_w and jac_age > 0 and just_rejected:
+                    jac_age = -1  # rejected again at a smaller step: the Jacobian is stale
+                just_rejected = True
                 continue
             if method == METHOD_AUTO and not use_w:
                 stiff_step = stiffness_estimate(h, y, ynew, ytmp, k6, k7, tol) > STIFF_LIMIT
@@ -399,7 +401,12 @@ def scene_entry(name: str, code: int, w_entry: int) -> Any:
                 h_accepted = h
                 h = t_event - t
                 continue
+            h_done = h
             h = next_step(h, err, use_w, h_max)
+            if just_rejected:
+                # Hairer & Wanner: no growth right after a rejection (it would be rejected again)
+                h = min(h, h_done)
+                just_rejected = False
             use_w, n_stiff, n_nonstiff, to_w = switch_method(
                 method, use_w, h, rho_jac, n_stiff, n_nonstiff
             )
