@@ -6,12 +6,13 @@ import math
 
 import numpy as np
 import pytest
-from scipy.optimize import brentq
+from scipy.optimize import brentq, fsolve
 
 import recipsim
 from recipsim.errors import CaseError
 from recipsim.physics.thermo.fluid import Fluid
 from recipsim.physics.thermo.shell_network import (
+    DM,
     LINK_NAMES,
     NODES,
     OIL,
@@ -81,6 +82,33 @@ def test_suction_muffler_heated_by_the_shell_against_a_real_gas_root(isobutane):
         return m * (h_in - isobutane.enthalpy_pt(P_SUC, t)[0]) + ua * (T_AMB - t)
 
     assert sol.temperature[SM] == pytest.approx(brentq(balance, t_in, T_AMB), abs=1e-4)
+
+
+def test_discharge_line_heats_the_suction_muffler_against_a_real_gas_root(isobutane):
+    """The discharge muffler joined to the suction muffler alone (the line routed along
+    it), direct suction: ``M (h_in - h_sm) + UA (T_dm - T_sm) = 0`` at the suction
+    pressure and ``M (h_dis - h_dm) + UA (T_sm - T_dm) = 0`` at the discharge pressure,
+    solved independently by fsolve on the HEOS enthalpies. The 1e-9 W/K floor links and
+    Newton's 1e-6 K: 1e-4 K asserted."""
+    m, ua, t_in, t_dis = 4.3e-4, 0.3, 260.0, 360.0
+    par = _parameters({"discharge_muffler_suction_muffler": ua}, 1.5)
+    pressures = NetworkPressures(P_SUC, t_in, PRESSURES.node)
+    h_dis = isobutane.enthalpy_pt(P_DIS, t_dis)[0]
+    sol = solve_network(par, _loads(m=m, h_dis=h_dis), pressures, isobutane.enthalpy_pt)
+    h_in = isobutane.enthalpy_pt(P_SUC, t_in)[0]
+
+    def balances(t: np.ndarray) -> list[float]:
+        t_sm, t_dm = t
+        heat = ua * (t_dm - t_sm)
+        return [
+            m * (h_in - isobutane.enthalpy_pt(P_SUC, t_sm)[0]) + heat,
+            m * (h_dis - isobutane.enthalpy_pt(P_DIS, t_dm)[0]) - heat,
+        ]
+
+    t_sm, t_dm = fsolve(balances, [t_in + 10.0, t_dis - 10.0], xtol=1e-12)
+    assert sol.temperature[SM] == pytest.approx(t_sm, abs=1e-4)
+    assert sol.temperature[DM] == pytest.approx(t_dm, abs=1e-4)
+    assert sol.temperature[SM] > t_in + 1.0  # the link carries heat (not a no-op)
 
 
 def test_no_internal_conductance_is_the_adiabatic_limit(isobutane):

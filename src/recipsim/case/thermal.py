@@ -67,6 +67,15 @@ THERMAL_SPEC: Spec = {
         )
         for name, (value, doc) in DEFAULT_CONDUCTANCES.items()
     },
+    "ua_discharge_muffler_suction_muffler": Field(
+        _UA, 0.0, lo=0.0, hi=1000.0,
+        doc="the discharge muffler or line touching, or routed along, the suction muffler "
+        "(0: apart, the usual layout)",
+        plausible=(0.0, 0.3),
+        plausible_source="a line within a few mm of a plastic muffler over ~0.01 m2 at up to "
+        "30 W/(m2 K) (radiation and gas film): at most 0.3 W/K, an estimate; Ribas et al. "
+        "(2008) name the discharge line among the suction gas's heat sources",
+    ),
     "ua_shell_ambient": Field(
         _UA, DEFAULT_SHELL_AMBIENT, lo=0.0, hi=1000.0, open_lo=True,
         doc="natural convection and radiation in still air, 12 W/(m2 K) x 0.12 m2",

@@ -203,6 +203,11 @@ class WorkingModel(Model):
     """The working copy of a :class:`Model` that one solve moves (module docstring);
     made by :meth:`Model.for_solve`, its arrays writable."""
 
+    #: Whether the last revolution integrated on this copy ended taking Rosenbrock-W
+    #: steps: the next one starts with them
+    #: (:func:`recipsim.solve.revolution.integrate_revolution`).
+    ended_in_w_step: bool = False
+
     def __post_init__(self) -> None:  # a working copy's arrays stay writable
         pass
 

@@ -306,7 +306,7 @@ def test_buffer_sizes_are_unchanged() -> None:
         name = pinned.OUTPUTS.entries[pinned.PIN_BEARING_FORCE + 3 * i + 2].name
         assert name == mlay.OUTPUTS.entries[mlay.A_BEARING_FORCE + 3 * i + 2].name
         assert name == f"bearing_force_{bearing}_z"
-    assert integrator.N_STATS == 10
+    assert integrator.N_STATS == 11
     assert startup.N_TRACE == startup.TR_BEARING_LOAD + mlay.N_BEARINGS
 
 

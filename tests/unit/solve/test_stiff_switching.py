@@ -9,19 +9,20 @@ import math
 import numpy as np
 import pytest
 
-from helpers import REFERENCE
+from helpers import CASES, REFERENCE
 from recipsim.case.load import load_case
 from recipsim.model.build import build_model
 from recipsim.model.scene_functions import scene_functions
 from recipsim.model.scenes import SCENE_CYLINDER
 from recipsim.physics.thermo import cylinder as cyl
 from recipsim.results.tables import cycle_table, summary
-from recipsim.solve import periodic
+from recipsim.solve import periodic, revolution
 from recipsim.solve.integrator import (
     METHOD_AUTO,
     METHOD_DOPRI5,
     METHOD_ROSW,
     N_STATS,
+    ST_IN_W,
     ST_NACCEPT,
     ST_NEVENTS,
     ST_NFEV,
@@ -33,6 +34,8 @@ from recipsim.solve.integrator import (
 )
 from recipsim.solve.scene_entries import integrate, integrate_scene_w
 from recipsim.solve.stiff import _lu_factor, _lu_solve
+
+LUBRICATED = CASES / "reference_r134a_lbp_lubricated.toml"
 
 # The soft discharge reed on its 1.8 mm stop (the reference's before issue 16): wide open,
 # its port relaxes the cylinder pressure faster than DOPRI5's stability allows at rtol
@@ -214,3 +217,24 @@ def test_converged_cycle_closes_and_matches_dopri5(monkeypatch):
         assert row_a[key] == pytest.approx(row_d[key], rel=2e-5)
     assert abs(row_a["mass_balance_residual [-]"]) < 1e-5
     assert abs(row_a["energy_balance_residual [-]"]) < 3e-5
+
+
+def test_a_revolution_continues_with_the_method_its_predecessor_ended_with():
+    """On the lubricated case (the piston's skirt film, a squeeze mode near -1.3e7 1/s
+    that Hairer's test misses where it holds DOPRI5's step below its stability boundary)
+    the first revolution starts with DOPRI5 and switches; the revolutions after it start
+    where it ended, in the W-step, and take no explicit step on this case (restarted in
+    DOPRI5 each revolution, some took 2 000-10 000 before the switch). The working copy
+    records how each revolution ended; forgetting it brings the explicit start back."""
+    model = build_model(load_case(LUBRICATED)).for_solve()
+    y, mode, h = model.y0.copy(), model.mode0.copy(), model.period * 1e-4
+    first, h = revolution.integrate_revolution(model, y, mode, h, 36)
+    explicit = first.stats[ST_NACCEPT] - first.stats[ST_NSTIFF]
+    assert explicit > 0 and first.stats[ST_NSTIFF] > 0
+    assert model.ended_in_w_step == (first.stats[ST_IN_W] == 1.0) and model.ended_in_w_step
+    y, mode = first.y_end.copy(), first.mode_end.copy()
+    second, _ = revolution.integrate_revolution(model, y, mode, h, 36)
+    assert second.stats[ST_NACCEPT] == second.stats[ST_NSTIFF]
+    model.ended_in_w_step = False
+    restarted, _ = revolution.integrate_revolution(model, y, mode, h, 36)
+    assert restarted.stats[ST_NACCEPT] > restarted.stats[ST_NSTIFF]

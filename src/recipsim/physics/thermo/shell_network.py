@@ -65,6 +65,7 @@ LINKS = (
     (MO, OIL),
     (OIL, SH),
     (SG, SH),
+    (DM, SM),
 )
 LINK_NAMES = tuple(f"{NODES[a]}_{NODES[b]}" for a, b in LINKS)
 #: Conductances below this are raised to it, so that a node joined to nothing takes
