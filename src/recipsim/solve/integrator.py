@@ -412,10 +412,10 @@ def scene_entry(name: str, w_entry: int) -> Any:
                 continue
             h_done = h
             h = next_step(h, err, use_w, h_max)
-            if just_rejected:
-                # Hairer & Wanner: no growth right after a rejection (it would be rejected again)
+            if just_rejected and use_w:
+                # no growth right after a rejected W-step (it would be rejected again)
                 h = min(h, h_done)
-                just_rejected = False
+            just_rejected = False
             use_w, n_stiff, n_nonstiff, to_w = switch_method(
                 method, use_w, h, rho_jac, n_stiff, n_nonstiff
             )
