@@ -53,7 +53,7 @@ _COMPILED_MODULES = {
 #: their first measurement; any other once measured above :data:`NOTE_THRESHOLD`).
 _SLOW_TO_COMPILE = (
     "recipsim.solve.integrator.",
-    "recipsim.model.scene_functions.",
+    "recipsim.model.scene_functions.rhs_pointer",
     "recipsim.physics.thermo.table_solves.solve_state",
     "recipsim.physics.thermo.property_table.evaluate_many",
 )

@@ -38,7 +38,6 @@ from numba import carray, cfunc, njit, types
 from numba.core import config
 from numba.extending import intrinsic, overload
 
-from recipsim.model.scenes import _BY_SCENE as BY_SCENE
 from recipsim.model.scenes import (
     N_AUX,
     N_EVENTS,
@@ -90,51 +89,53 @@ def scene_functions(code: int) -> Any:
     return _COMPILED[code]
 
 
-def _kernels(code: int) -> tuple[Any, Any, Any]:
-    """Scene ``code``'s three functions behind the pointer signatures, compiled functions
-    named after the scene (``cylinder_rhs_pointer``, ...): numba caches each in a file of
-    its own, and announces their compilation (:mod:`recipsim.progress`) as this module's."""
-    rhs, values, action = (BY_SCENE[kind][code] for kind in ("rhs", "event_values", "event_action"))
+# The scene's functions behind the pointer signatures, for a scene code that is a
+# compile-time constant (numba's literal, passed on by the cfuncs below): compiled and
+# cached once per scene, and announced as this module's (recipsim.progress).
+@njit(cache=True)
+def rhs_pointer(
+    code, t, y, n, mode, n_mode, par, n_par, ipar, n_ipar, props, pbuf, n_pbuf, dydt, aux
+):  # type: ignore[no-untyped-def]  # noqa: E501
+    return rhs_for(
+        code, t, carray(y, n), carray(mode, n_mode), carray(par, n_par), carray(ipar, n_ipar),
+        props, carray(pbuf, n_pbuf), carray(dydt, n), carray(aux, N_AUX),
+    )  # fmt: skip
 
-    def rhs_pointer(
-        t, y, n, mode, n_mode, par, n_par, ipar, n_ipar, props, pbuf, n_pbuf, dydt, aux
-    ):  # noqa: E501
-        return rhs(
-            t, carray(y, n), carray(mode, n_mode), carray(par, n_par), carray(ipar, n_ipar),
-            props, carray(pbuf, n_pbuf), carray(dydt, n), carray(aux, N_AUX),
-        )  # fmt: skip
 
-    def event_values_pointer(y, n, mode, n_mode, par, n_par, ipar, n_ipar, aux, g):  # noqa: E501
-        values(
-            carray(y, n), carray(mode, n_mode), carray(par, n_par), carray(ipar, n_ipar),
-            carray(aux, N_AUX), carray(g, N_EVENTS),
-        )  # fmt: skip
+@njit(cache=True)
+def event_values_pointer(code, y, n, mode, n_mode, par, n_par, ipar, n_ipar, aux, g):  # type: ignore[no-untyped-def]  # noqa: E501
+    event_values_for(
+        code, carray(y, n), carray(mode, n_mode), carray(par, n_par), carray(ipar, n_ipar),
+        carray(aux, N_AUX), carray(g, N_EVENTS),
+    )  # fmt: skip
 
-    def event_action_pointer(k, y, n, mode, n_mode, par, n_par, ipar, n_ipar, aux):  # noqa: E501
-        return action(
-            k, carray(y, n), carray(mode, n_mode), carray(par, n_par), carray(ipar, n_ipar),
-            carray(aux, N_AUX),
-        )  # fmt: skip
 
-    functions = (rhs_pointer, event_values_pointer, event_action_pointer)
-    return tuple(njit(cache=True)(_named(f, code)) for f in functions)  # type: ignore[return-value]
+@njit(cache=True)
+def event_action_pointer(code, k, y, n, mode, n_mode, par, n_par, ipar, n_ipar, aux):  # type: ignore[no-untyped-def]  # noqa: E501
+    return event_action_for(
+        code, k, carray(y, n), carray(mode, n_mode), carray(par, n_par), carray(ipar, n_ipar),
+        carray(aux, N_AUX),
+    )  # fmt: skip
 
 
 def _cfuncs(code: int) -> SceneFunctions:
-    """Scene ``code``'s kernels as cfuncs of :data:`SIGNATURES` (each a call of its
-    kernel, cached by numba in a file of its own)."""
-    rhs, values, action = _kernels(code)
+    """Scene ``code``'s three functions as cfuncs of :data:`SIGNATURES`, named after the
+    scene (``cylinder_rhs_pointer``, ...): numba caches each in a file of its own. Each
+    closes over the scene's code only: numba keys a cached closure on what it closes
+    over, which must be the same in the next process."""
 
-    def rhs_cfunc(t, y, n, mode, n_mode, par, n_par, ipar, n_ipar, props, pbuf, n_pbuf, dydt, aux):  # noqa: E501
-        return rhs(t, y, n, mode, n_mode, par, n_par, ipar, n_ipar, props, pbuf, n_pbuf, dydt, aux)  # noqa: E501
+    def rhs(t, y, n, mode, n_mode, par, n_par, ipar, n_ipar, props, pbuf, n_pbuf, dydt, aux):  # type: ignore[no-untyped-def]  # noqa: E501
+        return rhs_pointer(
+            code, t, y, n, mode, n_mode, par, n_par, ipar, n_ipar, props, pbuf, n_pbuf, dydt, aux
+        )  # noqa: E501
 
-    def event_values_cfunc(y, n, mode, n_mode, par, n_par, ipar, n_ipar, aux, g):  # noqa: E501
-        values(y, n, mode, n_mode, par, n_par, ipar, n_ipar, aux, g)
+    def event_values(y, n, mode, n_mode, par, n_par, ipar, n_ipar, aux, g):  # type: ignore[no-untyped-def]  # noqa: E501
+        event_values_pointer(code, y, n, mode, n_mode, par, n_par, ipar, n_ipar, aux, g)
 
-    def event_action_cfunc(k, y, n, mode, n_mode, par, n_par, ipar, n_ipar, aux):  # noqa: E501
-        return action(k, y, n, mode, n_mode, par, n_par, ipar, n_ipar, aux)
+    def event_action(k, y, n, mode, n_mode, par, n_par, ipar, n_ipar, aux):  # type: ignore[no-untyped-def]  # noqa: E501
+        return event_action_pointer(code, k, y, n, mode, n_mode, par, n_par, ipar, n_ipar, aux)
 
-    functions = (rhs_cfunc, event_values_cfunc, event_action_cfunc)
+    functions = (rhs, event_values, event_action)
     return SceneFunctions(
         *(
             cfunc(signature, cache=True)(_named(function, code))
@@ -144,8 +145,8 @@ def _cfuncs(code: int) -> SceneFunctions:
 
 
 def _named(function: Any, code: int) -> Any:
-    """``function`` renamed after scene ``code`` (``rhs_pointer`` -> ``cylinder_rhs_pointer``)."""
-    function.__name__ = function.__qualname__ = f"{SCENE_NAMES[code]}_{function.__name__}"
+    """``function`` renamed after scene ``code`` (``rhs`` -> ``cylinder_rhs_cfunc``)."""
+    function.__name__ = function.__qualname__ = f"{SCENE_NAMES[code]}_{function.__name__}_cfunc"
     return function
 
 

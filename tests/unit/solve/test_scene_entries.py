@@ -23,6 +23,7 @@ from recipsim.case.load import load_case
 from recipsim.pipeline import simulate_case
 from recipsim.solve import scene_entries
 from recipsim.model import scenes
+from recipsim.model.scene_functions import scene_functions
 case = load_case("reference_r134a_lbp").with_(
     {"solver.min_revolutions": 1, "solver.max_revolutions": 1})
 simulate_case(case)
@@ -33,6 +34,7 @@ print(json.dumps({
     "misses": sum(entry.stats.cache_misses.values()),
     "compiled": {f.__name__: len(f.signatures) for f in (
         scene_entries.integrate_scene_w, scenes.mechanism_rhs, scenes.coupled_rhs)},
+    "scene_hits": [f.cache_hits for f in scene_functions(scenes.SCENE_CYLINDER)],
 }))
 """
 
@@ -112,8 +114,8 @@ def test_the_w_step_flag_is_chosen_at_compile_time() -> None:
 
 @pytest.mark.slow
 def test_a_pinned_case_compiles_its_scene_only_and_a_second_process_loads_it(tmp_path) -> None:
-    """Fresh numba cache: the first process compiles the cylinder scene (no flexible crank
-    train, no coupled or tabulated-pressure integrator), the second loads it."""
+    """Fresh numba cache: the first process compiles the integrator and the cylinder
+    scene's functions (no flexible crank train, no other scene), the second loads both."""
     import json
 
     env = dict(os.environ, NUMBA_CACHE_DIR=str(tmp_path / "numba"))
@@ -130,8 +132,10 @@ def test_a_pinned_case_compiles_its_scene_only_and_a_second_process_loads_it(tmp
     assert first["misses"] == 1 and first["hits"] == 0
     assert set(first["compiled"].values()) == {0}
     assert second["hits"] == 1 and second["misses"] == 0
+    # and the scene's functions, compiled on their own, are loaded too
+    assert first["scene_hits"] == [0, 0, 0] and second["scene_hits"] == [1, 1, 1]
     names = {p.name.split("-")[0] for p in (tmp_path / "numba").rglob("*.nbi")}
-    assert {"integrator.integrate_scene", "scene_functions.cylinder_rhs_pointer"} <= names
+    assert {"integrator.integrate_scene", "scene_functions.cylinder_rhs_cfunc"} <= names
     assert not {"scenes.mechanism_rhs", "scenes.coupled_rhs"} & names
     other_scenes = ("scene_functions.coupled_", "scene_functions.mechanism_")
     assert not any(name.startswith(other_scenes) for name in names)
