@@ -14,10 +14,14 @@ sources (:func:`numba_cache_path`), by a cache locator that serves recipsim's fi
 (:func:`use_recipsim_numba_cache`): numba invalidates a cached function when its own
 file changes, not when a constant it reads from another module does (a parameter-layout
 index), so one directory per digest of all the compiled sources keeps a stale cache from
-reading the wrong slots. Nothing else is redirected: the process environment and
-numba's configuration stay as the user set them. The locator uses numba's
-extension point for cache locations (a class in ``CacheImpl._locator_classes``); a numba
-without it leaves recipsim's functions to numba's own cache rules.
+reading the wrong slots. The integrator (``solve/``) has a directory of its own, per
+digest of :data:`SOLVER_SOURCES` only: it calls a scene's physics through pointers
+(:mod:`recipsim.model.scene_functions`) and compiles none of it in, so a change to a
+physics module compiles the scenes' functions again, not the integrator. Nothing else
+is redirected: the process environment and numba's configuration stay as the user set
+them. The locator uses numba's extension point for cache locations (a class in
+``CacheImpl._locator_classes``); a numba without it leaves recipsim's functions to
+numba's own cache rules.
 """
 
 from __future__ import annotations
@@ -37,24 +41,47 @@ _warned: set[str] = set()
 #: The package's folder, and those holding compiled code or the constants it reads.
 _PACKAGE = Path(__file__).resolve().parent
 _COMPILED_SOURCES = ("physics", "model", "solve", "studies/bench")
+#: What the integrator's compiled code (the folder ``solve``) is made of: its own sources,
+#: the scene-function calls and the layouts whose sizes it allocates (``model``: the
+#: scenes' layout, :mod:`~recipsim.model.scene_functions`), the tables that fix those
+#: sizes (the cylinder's and the mechanism's layouts, the layout table), the property
+#: callback's signature and status codes. No physics kernel: a scene's physics reaches
+#: the integrator through pointers. ``tests/unit/base/test_cache_dirs.py`` checks that
+#: every recipsim module the compiled ``solve`` modules import is here.
+SOLVER_SOURCES = (
+    "solve",
+    "model",
+    "physics/layout_table.py",
+    "physics/thermo/cylinder.py",
+    "physics/mechanics/layout.py",
+    "physics/thermo/property_slots.py",
+    "physics/thermo/properties.py",
+)
+#: The folder whose functions are cached per digest of :data:`SOLVER_SOURCES`.
+SOLVER_FOLDER = "solve"
 
 
-@lru_cache(maxsize=1)
-def compiled_sources_digest() -> str:
-    """A digest of every source file of the packages holding compiled code (16 hex)."""
+@lru_cache(maxsize=2)
+def compiled_sources_digest(sources: tuple[str, ...] = _COMPILED_SOURCES) -> str:
+    """A digest of every source file of ``sources`` (folders and files of the package;
+    by default every package holding compiled code) (16 hex)."""
     digest = hashlib.blake2b(digest_size=8)
-    for entry in _COMPILED_SOURCES:
-        for file in sorted((_PACKAGE / entry).rglob("*.py")):
+    for entry in sources:
+        path = _PACKAGE / entry
+        for file in sorted(path.rglob("*.py")) if path.is_dir() else [path]:
             digest.update(file.relative_to(_PACKAGE).as_posix().encode())
             digest.update(file.read_bytes())
     return digest.hexdigest()
 
 
-def numba_cache_path() -> Path:
+def numba_cache_path(solver: bool = False) -> Path:
     """Where numba's cache of recipsim's compiled functions is kept:
-    ``<NUMBA_CACHE_DIR or <cache>/numba>/recipsim-<digest of the compiled sources>``."""
-    base = os.environ.get("NUMBA_CACHE_DIR") or str(cache_dir() / "numba")
-    return Path(base) / f"recipsim-{compiled_sources_digest()}"
+    ``<NUMBA_CACHE_DIR or <cache>/numba>/recipsim-<digest of the compiled sources>``;
+    with ``solver``, the integrator's: ``.../recipsim-solver-<digest of SOLVER_SOURCES>``."""
+    base = Path(os.environ.get("NUMBA_CACHE_DIR") or str(cache_dir() / "numba"))
+    if solver:
+        return base / f"recipsim-solver-{compiled_sources_digest(SOLVER_SOURCES)}"
+    return base / f"recipsim-{compiled_sources_digest()}"
 
 
 def use_recipsim_numba_cache() -> None:
@@ -104,7 +131,8 @@ def _RecipsimCacheLocator() -> type:  # noqa: N802 (a class, made once)
             self._py_file = py_file
             self._lineno = py_func.__code__.co_firstlineno
             folder = Path(py_file).resolve().parent.relative_to(_PACKAGE)
-            self._cache_path = str(numba_cache_path() / folder)
+            solver = folder.parts[:1] == (SOLVER_FOLDER,)
+            self._cache_path = str(numba_cache_path(solver) / folder)
 
         def get_cache_path(self) -> str:
             return self._cache_path

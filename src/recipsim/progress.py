@@ -45,6 +45,7 @@ NOTE_THRESHOLD = 1.0
 #: What recipsim's compiled modules hold, for the notes.
 _COMPILED_MODULES = {
     "recipsim.solve.integrator": "the solver",
+    "recipsim.model.scene_functions": "the scene's physics",
     "recipsim.physics.thermo.table_solves": "the property table's solver",
     "recipsim.physics.thermo.property_table": "the property table's interpolation",
 }
@@ -52,6 +53,7 @@ _COMPILED_MODULES = {
 #: their first measurement; any other once measured above :data:`NOTE_THRESHOLD`).
 _SLOW_TO_COMPILE = (
     "recipsim.solve.integrator.",
+    "recipsim.model.scene_functions.rhs_pointer",
     "recipsim.physics.thermo.table_solves.solve_state",
     "recipsim.physics.thermo.property_table.evaluate_many",
 )

@@ -338,10 +338,12 @@ def scene_event_action(k, y, mode, par, ipar, aux) -> bool:
 # ---- one scene at a time ---------------------------------------------------------------
 # ``rhs_for(code, ...)``, ``event_values_for(code, ...)`` and ``event_action_for(code,
 # ...)`` take the scene as a compile-time constant (numba's ``Literal[int]``: a global
-# such as ``SCENE_CYLINDER`` passed down from a compiled entry point) and resolve to that
-# scene's function while numba types the caller, so a compiled integrator contains, and
-# compiles, only its own scene's code (the cylinder scene alone needs about half the
-# functions of all three).
+# such as ``SCENE_CYLINDER`` passed down from a compiled caller) and resolve to that
+# scene's function while numba types the caller, so the caller contains, and compiles,
+# only its own scene's code (the cylinder scene alone needs about half the functions of
+# all three): each scene's functions compiled on their own
+# (:mod:`recipsim.model.scene_functions`, which also overloads these three for the
+# integrator, to call those functions through pointers).
 _BY_SCENE = {
     "rhs": (cylinder_rhs, mechanism_rhs, coupled_rhs),
     "event_values": (_cylinder_event_values, _mechanism_event_values, _coupled_event_values),

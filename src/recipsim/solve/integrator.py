@@ -63,6 +63,7 @@ from typing import Any
 import numpy as np
 from numba import njit
 
+from recipsim.model import scene_functions as scene_functions  # the pointer calls' overloads
 from recipsim.model.scenes import (
     event_action_for,
     event_values_for,
@@ -176,20 +177,23 @@ def _write_stats(stats, result, t, h, i_sample, counts, use_w) -> None:
     stats[ST_IN_W] = 1.0 if use_w else 0.0
 
 
-def scene_entry(name: str, code: int, w_entry: int) -> Any:
-    """The compiled entry ``name`` that integrates scene ``code`` with the W-step flag
-    ``w_entry``: the loop below, compiled with both as compile-time constants (numba
-    takes a closure's variables as constants; each entry is cached in a file of its own,
-    named after it). A closure rather than one loop inlined into each entry: numba's
-    inlining copies the loop's IR block by block with its whole scope, which every
-    entry's compilation would pay for.
+def scene_entry(name: str, w_entry: int) -> Any:
+    """The compiled entry ``name`` with the W-step flag ``w_entry``: the loop below,
+    compiled with the flag as a compile-time constant (numba takes a closure's variables
+    as constants; each entry is cached in a file of its own, named after it). A closure
+    rather than one loop inlined into each entry: numba's inlining copies the loop's IR
+    block by block with its whole scope, which every entry's compilation would pay for.
+
+    The scene comes as the entry's first argument: its functions, compiled on their own
+    and called through pointers (:func:`recipsim.model.scene_functions.scene_functions`),
+    so one entry serves every scene; or a scene's code as a compile-time constant (a
+    caller compiled with it, as ``benchmarks/separate_compilation.py`` does to measure
+    the scene inlined into the loop).
 
     Parameters
     ----------
     name : str
-        The entry's name (``integrate_cylinder``, ...: :mod:`.scene_entries`).
-    code : int
-        The scene (``SCENE_*`` of :mod:`recipsim.model.scenes`), ``ipar[I_SCENE]``.
+        The entry's name (``integrate_scene``, ``integrate_scene_w``: :mod:`.scene_entries`).
     w_entry : int
         :data:`.w_gate.WITH_W_STEP` for an entry that takes Rosenbrock-W steps,
         :data:`.w_gate.EXPLICIT` for one that runs DOPRI5 only: there
@@ -201,6 +205,7 @@ def scene_entry(name: str, code: int, w_entry: int) -> Any:
     @njit(cache=True)
     @_named(name)
     def entry(  # type: ignore[no-untyped-def]
+        code,
         t0,
         t1,
         y,
@@ -225,6 +230,10 @@ def scene_entry(name: str, code: int, w_entry: int) -> Any:
 
         Parameters
         ----------
+        code : SceneFunctions or int
+            The scene: its functions
+            (:class:`recipsim.model.scene_functions.SceneFunctions`), or its code as a
+            compile-time constant (``SCENE_*`` of :mod:`recipsim.model.scenes`).
         t0, t1 : float
             Start and end time [s].
         y : ndarray

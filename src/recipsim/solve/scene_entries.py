@@ -1,15 +1,16 @@
-"""The compiled integrator's entries: one per scene, and one per scene with the
-Rosenbrock-W step, and :func:`integrate`, which picks them.
+"""The compiled integrator's two entries, ``integrate_scene`` and ``integrate_scene_w``
+(the latter with the Rosenbrock-W step), and :func:`integrate`, which picks them.
 
-Each entry is the loop of :func:`recipsim.solve.integrator.scene_entry` compiled with
-its scene and W-step flag as compile-time constants: it compiles (and numba caches, in
-its own file) that scene's code only, and the explicit entry none of the W-method
-(:mod:`.w_gate`). :func:`integrate` runs a scene's explicit entry and hands over to its
-entry with the W-step where the W-step takes over (:data:`METHOD_AUTO` on a stiff
-stretch, :data:`METHOD_ROSW` from the start), so a case that never takes a W-step never
-compiles one. The hand-over repeats what the one loop does at a switch: the same state,
-step and samples, the first stage and the event values evaluated again at the same state
-(one more right-hand side in ``rhs_evaluations``).
+Each entry is the loop of :func:`recipsim.solve.integrator.scene_entry`, compiled once
+for every scene: the scene's right-hand side, event functions and actions come as its
+first argument, compiled on their own (:mod:`recipsim.model.scene_functions`: each
+scene's in files of its own in numba's cache) and called through pointers. The explicit
+entry compiles none of the W-method (:mod:`.w_gate`). :func:`integrate` runs the explicit
+entry and hands over to the entry with the W-step where the W-step takes over
+(:data:`METHOD_AUTO` on a stiff stretch, :data:`METHOD_ROSW` from the start), so a case
+that never takes a W-step never compiles one. The hand-over repeats what the one loop
+does at a switch: the same state, step and samples, the first stage and the event values
+evaluated again at the same state (one more right-hand side in ``rhs_evaluations``).
 """
 
 from __future__ import annotations
@@ -18,7 +19,7 @@ from typing import TYPE_CHECKING, Any
 
 from numba import types
 
-from recipsim.model.scenes import SCENE_COUPLED, SCENE_CYLINDER, SCENE_MECHANISM
+from recipsim.model.scene_functions import SCENE_FUNCTIONS_TYPE, scene_functions
 from recipsim.physics.mechanics.crank_trains import CRANK_TRAINS
 from recipsim.physics.thermo.cylinder import I_SCENE
 from recipsim.physics.thermo.pressure_sources import PRESSURE_SOURCES
@@ -45,17 +46,13 @@ if TYPE_CHECKING:
     from recipsim.case.sections import Options, SolverSettings
 
 
-integrate_cylinder = scene_entry("integrate_cylinder", SCENE_CYLINDER, EXPLICIT)
-integrate_mechanism = scene_entry("integrate_mechanism", SCENE_MECHANISM, EXPLICIT)
-integrate_coupled = scene_entry("integrate_coupled", SCENE_COUPLED, EXPLICIT)
-integrate_cylinder_w = scene_entry("integrate_cylinder_w", SCENE_CYLINDER, WITH_W_STEP)
-integrate_mechanism_w = scene_entry("integrate_mechanism_w", SCENE_MECHANISM, WITH_W_STEP)
-integrate_coupled_w = scene_entry("integrate_coupled_w", SCENE_COUPLED, WITH_W_STEP)
+integrate_scene = scene_entry("integrate_scene", EXPLICIT)
+integrate_scene_w = scene_entry("integrate_scene_w", WITH_W_STEP)
 
 
-#: numba's argument types of every entry, as :func:`integrate` passes them (arrays
-#: C-contiguous; ``ipar``, ``mode`` and ``sample_modes`` int64; ``n_err`` and ``method``
-#: int64): what :func:`compile_entry` compiles without a case (``recipsim warmup``)
+#: numba's argument types of the entries after the scene's functions, as :func:`integrate`
+#: passes them (arrays C-contiguous; ``ipar``, ``mode`` and ``sample_modes`` int64;
+#: ``n_err`` and ``method`` int64)
 _F1, _F2 = types.Array(types.float64, 1, "C"), types.Array(types.float64, 2, "C")
 _I1, _I2 = types.Array(types.int64, 1, "C"), types.Array(types.int64, 2, "C")
 _F, _N = types.float64, types.int64
@@ -67,43 +64,35 @@ ENTRY_SIGNATURE = (
     _F2, _I2, _F1, _N,  # samples, sample_modes, stats, method
 )
 # fmt: on
-
-#: The explicit compiled entry of each scene, indexed by its code.
-SCENE_INTEGRATORS = (integrate_cylinder, integrate_mechanism, integrate_coupled)
-#: The entry of each scene with the Rosenbrock-W step, indexed by its code.
-W_SCENE_INTEGRATORS = (integrate_cylinder_w, integrate_mechanism_w, integrate_coupled_w)
+#: every argument of the entries: what :func:`compile_entry` compiles without a case
+#: (``recipsim warmup``)
+SCENE_ENTRY_SIGNATURE = (SCENE_FUNCTIONS_TYPE, *ENTRY_SIGNATURE)
 #: The counters that add up over a hand-over between the two entries.
 _ADDED_COUNTS = [ST_NFEV, ST_NACCEPT, ST_NREJECT, ST_NEVENTS, ST_NSTIFF, ST_NJAC]
 
 
 def integrate(*args: Any, method: int = METHOD_DOPRI5) -> None:
     """Integrate the scene in ``ipar[I_SCENE]`` in place: the arguments of
-    :func:`recipsim.solve.integrator.scene_entry`'s entries. It runs the scene's
-    explicit entry (the first call for a scene compiles that scene only), and its entry
-    with the Rosenbrock-W step from where the W-step takes over (:data:`METHOD_AUTO`
-    on a stiff stretch, :data:`METHOD_ROSW` from the start): a case that never takes a
-    W-step never compiles one."""
+    :func:`recipsim.solve.integrator.scene_entry`'s entries after the scene's functions,
+    which this adds (their first use compiles that scene's functions only). It runs the
+    explicit entry, and the entry with the Rosenbrock-W step from where the W-step takes
+    over (:data:`METHOD_AUTO` on a stiff stretch, :data:`METHOD_ROSW` from the start): a
+    case that never takes a W-step never compiles one."""
     if len(args) == 18:  # method left out
         args = (*args, method)
-    code = int(args[5][I_SCENE])  # args[5]: ipar
+    scene = scene_functions(int(args[5][I_SCENE]))  # args[5]: ipar
     if args[18] == METHOD_ROSW or args[18] == METHOD_AUTO_IN_W:
-        _w_entry(code)(*args)
+        integrate_scene_w(scene, *args)
         return
-    SCENE_INTEGRATORS[code](*args)
+    integrate_scene(scene, *args)
     stats = args[17]
     if stats[ST_STATUS] != NEEDS_W_STEP:
         return
     counted = stats[_ADDED_COUNTS]
     # t0 and the first step (args[12]) from where the explicit entry stopped
     args = (stats[ST_T], args[1], *args[2:12], stats[ST_H], *args[13:18], METHOD_AUTO_IN_W)
-    _w_entry(code)(*args)
+    integrate_scene_w(scene, *args)
     stats[_ADDED_COUNTS] += counted
-
-
-def _w_entry(code: int) -> Any:
-    """The entry of scene ``code`` with the W-step (its first compilation is announced
-    and timed by :mod:`recipsim.progress`, as every compilation is)."""
-    return W_SCENE_INTEGRATORS[code]
 
 
 def entry_name(options: Options, solver: SolverSettings) -> str | None:
@@ -111,20 +100,16 @@ def entry_name(options: Options, solver: SolverSettings) -> str | None:
     with, by name; None where nothing is integrated (pinned mechanism, tabulated
     pressure). ``"dopri5_stiff"`` starts with the explicit entry (the one with the
     W-step compiles where a stretch turns stiff), ``"ros34pw2"`` with the W-step's."""
-    if not PRESSURE_SOURCES[options.pressure].solves_gas:
-        if not CRANK_TRAINS[options.mechanics].flexible:
-            return None
-        scene = "integrate_mechanism"
-    else:
-        flexible = CRANK_TRAINS[options.mechanics].flexible
-        scene = "integrate_coupled" if flexible else "integrate_cylinder"
-    return scene + "_w" if solver.method == "ros34pw2" else scene
+    solves_gas = PRESSURE_SOURCES[options.pressure].solves_gas
+    if not solves_gas and not CRANK_TRAINS[options.mechanics].flexible:
+        return None
+    return "integrate_scene_w" if solver.method == "ros34pw2" else "integrate_scene"
 
 
 def compile_entry(name: str) -> None:
-    """Compile the entry ``name`` (:func:`entry_name`) for :data:`ENTRY_SIGNATURE` into
-    numba's cache, without running it: no case, no properties needed (nothing under
-    ``NUMBA_DISABLE_JIT=1``)."""
+    """Compile the entry ``name`` (:func:`entry_name`) for :data:`SCENE_ENTRY_SIGNATURE`
+    into numba's cache, without running it: no case, no properties needed (nothing under
+    ``NUMBA_DISABLE_JIT=1``). A scene's functions compile at its first integration."""
     entry = globals()[name]
     if hasattr(entry, "compile"):
-        entry.compile(ENTRY_SIGNATURE)
+        entry.compile(SCENE_ENTRY_SIGNATURE)

@@ -59,7 +59,7 @@ def test_simulate_on_empty_caches_says_what_it_does_before_doing_it(tmp_path):
     assert done.returncode == 0, done.stderr[-3000:]
     lines = [line for line in done.stderr.splitlines() if line.strip()]
     notes = [line for line in lines if line.startswith("recipsim: ")]
-    stop = lines.index("STOPPED BEFORE COMPILING integrate_cylinder")
+    stop = lines.index("STOPPED BEFORE COMPILING integrate_scene")
     table = next(i for i, line in enumerate(lines) if "building the R134a property table" in line)
     solver = next(i for i, line in enumerate(lines) if "compiling the solver" in line)
     assert table < solver < stop
@@ -67,7 +67,7 @@ def test_simulate_on_empty_caches_says_what_it_does_before_doing_it(tmp_path):
     assert not any("last time" in line for line in notes), notes
     durations = json.loads((tmp_path / "cache" / "durations.json").read_text())
     assert durations["property table R134a"] > 0.0
-    solver_key = progress.compile_key("recipsim.solve.integrator.integrate_cylinder")
+    solver_key = progress.compile_key("recipsim.solve.integrator.integrate_scene")
     assert solver_key not in durations  # stopped before it finished: nothing recorded
 
 
@@ -94,10 +94,10 @@ def test_the_estimate_is_the_duration_measured_last_time(cache, caplog):
 
 def test_a_compilation_is_noted_with_its_last_duration(cache, caplog):
     caplog.set_level(logging.DEBUG, logger="recipsim")
-    solver = "recipsim.solve.integrator.integrate_coupled"
+    solver = "recipsim.solve.integrator.integrate_scene_w"
     progress._note_compilation(solver)
     assert caplog.records[-1].levelno == logging.INFO  # known to be slow: said even unmeasured
-    assert caplog.messages[-1] == "compiling the solver (integrate_coupled; once per installation)"
+    assert caplog.messages[-1] == "compiling the solver (integrate_scene_w; once per installation)"
     progress.record_duration(progress.compile_key(solver), 9.5)
     progress._note_compilation(solver)
     assert caplog.messages[-1].endswith("; 9.5 s last time on this machine)")

@@ -3,6 +3,7 @@ DOPRI5 of ``solver.method = "dopri5"`` (recipsim.solve.integrator, METHOD_AUTO).
 
 from __future__ import annotations
 
+import functools
 import math
 
 import numpy as np
@@ -11,6 +12,8 @@ import pytest
 from helpers import CASES, REFERENCE
 from recipsim.case.load import load_case
 from recipsim.model.build import build_model
+from recipsim.model.scene_functions import scene_functions
+from recipsim.model.scenes import SCENE_CYLINDER
 from recipsim.physics.thermo import cylinder as cyl
 from recipsim.results.tables import cycle_table, summary
 from recipsim.solve import periodic, revolution
@@ -29,7 +32,7 @@ from recipsim.solve.integrator import (
     ST_NSTIFF,
     ST_STATUS,
 )
-from recipsim.solve.scene_entries import integrate, integrate_cylinder_w
+from recipsim.solve.scene_entries import integrate, integrate_scene_w
 from recipsim.solve.stiff import _lu_factor, _lu_solve
 
 LUBRICATED = CASES / "reference_r134a_lbp_lubricated.toml"
@@ -177,8 +180,9 @@ def test_the_hand_over_to_the_w_entry_is_the_one_loops_switch(converged):
     stage evaluated again at the same state). The explicit entry never takes a W-step."""
     model, y0, mode0 = converged
     y_split, st_split, s_split = _one_revolution(model, y0, mode0, 1e-6, METHOD_AUTO, n_samples=720)
+    w_entry = functools.partial(integrate_scene_w, scene_functions(SCENE_CYLINDER))
     y_one, st_one, s_one = _one_revolution(
-        model, y0, mode0, 1e-6, METHOD_AUTO, entry=integrate_cylinder_w, n_samples=720
+        model, y0, mode0, 1e-6, METHOD_AUTO, entry=w_entry, n_samples=720
     )
     assert st_one[ST_NSTIFF] > 0
     np.testing.assert_array_equal(y_split, y_one)
