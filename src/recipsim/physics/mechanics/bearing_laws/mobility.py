@@ -93,8 +93,9 @@ def mobility_vector(
     zeta = eps * cos_u
     kappa = -eps * sin_u
     one_minus = 1.0 - zeta
-    m_zeta = one_minus**2.5 / (math.pi * slenderness_squared)
-    m_kappa = -4.0 * kappa * one_minus**1.5 / (math.pi * math.pi * slenderness_squared)
+    root = math.sqrt(one_minus)
+    m_zeta = one_minus * one_minus * root / (math.pi * slenderness_squared)
+    m_kappa = -4.0 * kappa * one_minus * root / (math.pi * math.pi * slenderness_squared)
     return m_zeta * cos_u - m_kappa * sin_u, m_zeta * sin_u + m_kappa * cos_u
 
 
@@ -109,14 +110,13 @@ def _turn(
     zeta = eps * cos_u
     kappa = -eps * sin_u
     one_minus = 1.0 - zeta
+    root = math.sqrt(one_minus)  # the powers as products: no pow() per Newton iteration
     scale = 1.0 / (math.pi * slenderness_squared)
-    m_zeta = one_minus**2.5 * scale
-    m_kappa = -4.0 * kappa * one_minus**1.5 * scale / math.pi
+    m_zeta = one_minus * one_minus * root * scale
+    m_kappa = -4.0 * kappa * one_minus * root * scale / math.pi
     # d zeta/d beta = kappa, d kappa/d beta = -zeta; u turns into u_perp, u_perp into -u
-    dm_zeta = -2.5 * one_minus**1.5 * kappa * scale
-    dm_kappa = (
-        (4.0 * zeta * one_minus**1.5 + 6.0 * kappa * kappa * one_minus**0.5) * scale / math.pi
-    )
+    dm_zeta = -2.5 * one_minus * root * kappa * scale
+    dm_kappa = (4.0 * zeta * one_minus * root + 6.0 * kappa * kappa * root) * scale / math.pi
     mr = m_zeta * cos_u - m_kappa * sin_u
     mt = m_zeta * sin_u + m_kappa * cos_u
     dmr = (dm_zeta - m_kappa) * cos_u - (dm_kappa + m_zeta) * sin_u
