@@ -73,6 +73,7 @@ from recipsim.solve.integrator import (
     ST_H,
     ST_STATUS,
     ST_T,
+    _named,
     scene_entry,
 )
 from recipsim.solve.scene_entries import _ADDED_COUNTS, ENTRY_SIGNATURE, SCENE_ENTRY_SIGNATURE
@@ -170,16 +171,6 @@ def _with_scene(name: str, code: int, w_entry: int) -> Any:
         )  # fmt: skip
 
     return entry
-
-
-def _named(name: str) -> Any:
-    """Name a function ``name`` before numba sees it (its cache files are named so)."""
-
-    def rename(function: Any) -> Any:
-        function.__name__ = function.__qualname__ = name
-        return function
-
-    return rename
 
 
 @cache
