@@ -169,7 +169,7 @@ def test_cache_round_trip_and_tampered_file_rebuilt(tables, caplog):
     ld = 0.3
     path = cache_path(ld, directory)
     assert path.is_file()
-    with caplog.at_level(logging.INFO, logger="recipsim.physics.mechanics.journal_table"):
+    with caplog.at_level(logging.INFO, logger="recipsim"):
         again = finite_journal_table(ld, directory)
     assert np.array_equal(again, built[ld])
     assert not caplog.records
@@ -179,7 +179,7 @@ def test_cache_round_trip_and_tampered_file_rebuilt(tables, caplog):
     content["data"][N_HEADER + 5] += 1e-3
     with open(path, "wb") as handle:
         np.savez(handle, **content)
-    with caplog.at_level(logging.INFO, logger="recipsim.physics.mechanics.journal_table"):
+    with caplog.at_level(logging.INFO, logger="recipsim"):
         with pytest.warns(UserWarning, match="checksum"):
             rebuilt = finite_journal_table(ld, directory)
     assert np.array_equal(rebuilt, built[ld])
