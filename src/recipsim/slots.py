@@ -78,15 +78,6 @@ class ModelChoice:
 
 C = TypeVar("C", bound=ModelChoice)
 
-#: Every slot constructed so far, in order (a slot registers itself when its registry
-#: module is imported; importing :mod:`recipsim.case.case_schema` imports all of them).
-_REGISTERED: list[Slot[Any]] = []
-
-
-def registered() -> tuple[Slot[Any], ...]:
-    """The slots whose registry modules are imported, in the order they were built."""
-    return tuple(_REGISTERED)
-
 
 class Slot(Generic[C]):
     """The registry of one model slot: its choices by name and by code.
@@ -126,7 +117,6 @@ class Slot(Generic[C]):
         if default is not None and default not in self._choices:
             raise ValueError(f"{option}: default {default!r} is not a choice")
         self.default = default
-        _REGISTERED.append(self)
 
     @property
     def names(self) -> tuple[str, ...]:
