@@ -59,7 +59,7 @@ def test_force_follows_the_short_law_within_bookers_approximation(eps, largest):
     assert worst > 0.0 or eps == 0.0  # a different law, not the short one renamed
 
 
-@pytest.mark.parametrize("eps", [0.05, 0.4, 0.8, 0.97])
+@pytest.mark.parametrize("eps", [0.05, 0.4, 0.8, 0.97, 0.999])
 def test_the_force_reproduces_the_velocity_through_the_forward_mobility(eps):
     """Booker's forward method: the load ``W u = -F`` moves the journal, relative to the
     frame at the mean spin, at ``W (c/R)^2/(mu L D) M`` times ``c``."""

@@ -20,8 +20,10 @@ A force law needs the inverse: the film's velocities ``A``, ``B``
 (:func:`recipsim.physics.mechanics.journal.film_kinematics`) give the relative velocity
 ``c (B e_r - A e_t)``; the load direction ``u`` is the one whose ``M`` points along it.
 Since ``M . u = M_zeta > 0``, ``u`` lies within 90 deg of the velocity, and the direction
-of ``M`` turns monotonically with ``u``: one root on that half-circle, found by Newton's
-method kept in a narrowing bracket. ``W`` follows from the lengths; the film force on the
+of ``M`` turns monotonically with ``u``: one root on that half-circle. In the tangent of
+half the angle from the velocity to ``u`` the condition is a quartic, solved by Newton's
+method kept in a narrowing bracket, with no trigonometric call (:func:`load_direction`).
+``W`` follows from the lengths; the film force on the
 journal is ``-W u``. Centred (``e = 0``) this is exactly the short law's squeeze damper
 ``-pi mu R L^3 v/(2 c^3)``; elsewhere Booker's closed forms approximate the short
 bearing: the force is within 1.6 % of :mod:`.short_journal`'s up to ``eps = 0.3``, 3.7 %
@@ -70,8 +72,9 @@ LAW = BearingLaw(
     start_stiffness=film_secant_stiffness,
 )
 
-#: Convergence of the load direction [rad]: 1e-12 rad moves the force by 1e-12 of itself.
-_DIRECTION_TOLERANCE = 1e-12
+#: Newton's step on ``t = tan(delta/2)`` below which the next one is taken as the last:
+#: the error after it is of order the square of this (quadratic convergence).
+_LAST_STEP = 1e-8
 _MAX_ITERATIONS = 60
 
 
@@ -100,54 +103,51 @@ def mobility_vector(
 
 
 @njit(cache=True)
-def _turn(
-    beta: float, eps: float, target: float, slenderness_squared: float
-) -> tuple[float, float]:
-    """The angle from the velocity's direction ``target`` to ``M``'s for load direction
-    ``beta`` [rad], in ``(-pi, pi]``, and its derivative with respect to ``beta`` [-]."""
-    cos_u = math.cos(beta)
-    sin_u = math.sin(beta)
-    zeta = eps * cos_u
-    kappa = -eps * sin_u
-    one_minus = 1.0 - zeta
-    root = math.sqrt(one_minus)  # the powers as products: no pow() per Newton iteration
-    scale = 1.0 / (math.pi * slenderness_squared)
-    m_zeta = one_minus * one_minus * root * scale
-    m_kappa = -4.0 * kappa * one_minus * root * scale / math.pi
-    # d zeta/d beta = kappa, d kappa/d beta = -zeta; u turns into u_perp, u_perp into -u
-    dm_zeta = -2.5 * one_minus * root * kappa * scale
-    dm_kappa = (4.0 * zeta * one_minus * root + 6.0 * kappa * kappa * root) * scale / math.pi
-    mr = m_zeta * cos_u - m_kappa * sin_u
-    mt = m_zeta * sin_u + m_kappa * cos_u
-    dmr = (dm_zeta - m_kappa) * cos_u - (dm_kappa + m_zeta) * sin_u
-    dmt = (dm_zeta - m_kappa) * sin_u + (dm_kappa + m_zeta) * cos_u
-    d = math.atan2(mt, mr) - target
-    d -= 2.0 * math.pi * math.floor((d + math.pi) / (2.0 * math.pi))
-    return d, (mr * dmt - mt * dmr) / (mr * mr + mt * mt)
+def load_direction(eps: float, cos_v: float, sin_v: float) -> tuple[float, float]:
+    """The load direction ``u`` (cosine, sine in the frame ``(e_r, e_t)``) whose mobility
+    points along the unit velocity ``(cos_v, sin_v)``.
 
-
-@njit(cache=True)
-def load_direction(eps: float, target: float, slenderness_squared: float) -> float:
-    """The load direction ``beta`` [rad] (in the frame ``(e_r, e_t)``) whose mobility
-    points along ``target`` [rad]: Newton's method from ``beta = target`` (exact at
-    ``eps = 0``), kept inside ``(target - pi/2, target + pi/2)``, where the turn rises
-    monotonically through its one root, by bisection of the bracket it narrows."""
-    lo = target - 0.5 * math.pi
-    hi = target + 0.5 * math.pi
-    beta = target
+    ``M`` is ``u`` turned by ``phi`` with ``tan(phi) = 4 eps sin(u)/(pi (1 - eps cos(u)))``
+    (the ratio ``M_kappa/M_zeta``), so with ``u`` the velocity turned by ``delta`` the
+    root is ``pi (1 - eps cos u) sin(delta) + 4 eps sin(u) cos(delta) = 0``. In
+    ``t = tan(delta/2)`` that is the quartic ``a0 + a1 t + a2 t^2 + a3 t^3 + a0 t^4`` with
+    one root in ``(-1, 1)`` (``delta`` within 90 deg of the velocity; the quartic is
+    ``-4 pi (1 - eps sin v) < 0`` at ``t = -1`` and ``4 pi (1 + eps sin v) > 0`` at 1):
+    Newton's method from its linear root, kept in the bracket, with no trigonometric
+    call (the direction follows from ``t`` rationally).
+    """
+    a0 = 4.0 * eps * sin_v
+    k = (8.0 - 2.0 * math.pi) * eps * cos_v
+    a1 = 2.0 * math.pi + k
+    a2 = (math.pi - 2.0) * a0
+    a3 = 2.0 * math.pi - k
+    lo = -1.0
+    hi = 1.0
+    t = min(max(-a0 / a1, -0.5), 0.5)
     for _ in range(_MAX_ITERATIONS):
-        f, slope = _turn(beta, eps, target, slenderness_squared)
-        if abs(f) < _DIRECTION_TOLERANCE:
-            return beta
-        if f < 0.0:
-            lo = beta
+        g = a0 + t * (a1 + t * (a2 + t * (a3 + t * a0)))
+        slope = a1 + t * (2.0 * a2 + t * (3.0 * a3 + t * 4.0 * a0))
+        if g < 0.0:
+            lo = t
+        elif g > 0.0:
+            hi = t
         else:
-            hi = beta
-        step = beta - f / slope if slope > 0.0 else lo - 1.0
-        beta = step if lo < step < hi else 0.5 * (lo + hi)
-        if hi - lo < _DIRECTION_TOLERANCE:
-            return beta
-    return beta
+            break
+        step = g / slope if slope > 0.0 else 2.0
+        t_new = t - step
+        if not lo < t_new < hi:
+            t_new = 0.5 * (lo + hi)
+            step = t - t_new
+        t = t_new
+        if abs(step) < _LAST_STEP:
+            g = a0 + t * (a1 + t * (a2 + t * (a3 + t * a0)))
+            slope = a1 + t * (2.0 * a2 + t * (3.0 * a3 + t * 4.0 * a0))
+            t -= g / slope
+            break
+    w = 1.0 / (1.0 + t * t)
+    cos_d = (1.0 - t * t) * w
+    sin_d = 2.0 * t * w
+    return cos_v * cos_d - sin_v * sin_d, sin_v * cos_d + cos_v * sin_d
 
 
 @njit(cache=True)
@@ -173,13 +173,18 @@ def mobility_journal_film(
     if speed == 0.0:
         return 0.0, 0.0, torque
     diameter = 2.0 * radius
-    slenderness_squared = (length / diameter) ** 2
-    beta = load_direction(eps, math.atan2(-a, b), slenderness_squared)
-    cos_u = math.cos(beta)
-    sin_u = math.sin(beta)
-    mr, mt = mobility_vector(eps, cos_u, sin_u, slenderness_squared)
+    cos_u, sin_u = load_direction(eps, b / speed, -a / speed)
+    # |M| = (1 - zeta)^(3/2) sqrt(pi^2 (1 - zeta)^2 + 16 kappa^2) / (pi^2 (L/D)^2)
+    one_minus = 1.0 - eps * cos_u
+    kappa = eps * sin_u
+    mobility = (
+        one_minus
+        * math.sqrt(one_minus * (math.pi**2 * one_minus * one_minus + 16.0 * kappa * kappa))
+        * (diameter / length) ** 2
+        / math.pi**2
+    )
     mobility_scale = (clearance / radius) ** 2 / (viscosity * length * diameter)
-    load = speed / (mobility_scale * math.sqrt(mr * mr + mt * mt))
+    load = speed / (mobility_scale * mobility)
     fr = -load * cos_u
     ft = -load * sin_u
     return fr * ux - ft * uy, fr * uy + ft * ux, torque - 0.5 * e_norm * ft
