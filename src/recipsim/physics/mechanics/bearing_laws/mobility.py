@@ -41,7 +41,7 @@ import math
 import numpy as np
 from numba import njit
 
-from recipsim.physics.mechanics.bearing_laws.law import BearingLaw
+from recipsim.physics.mechanics.bearing_laws.law import FILM_OUTPUTS, BearingLaw
 from recipsim.physics.mechanics.bearing_laws.short_journal import film_secant_stiffness
 from recipsim.physics.mechanics.journal import (
     couette_torque,
@@ -68,6 +68,7 @@ LAW = BearingLaw(
     "Flores, Ambrosio, Claro & Pimenta (2006), Mecanica Experimental 13, 115-127",
     bearings=JOURNAL_NAMES,
     start_stiffness=film_secant_stiffness,
+    outputs=FILM_OUTPUTS,
 )
 
 #: Convergence of the load direction [rad]: 1e-12 rad moves the force by 1e-12 of itself.
