@@ -2,20 +2,28 @@
 the case schema is a registered choice, and a choice's name is spelt out as a string
 literal in at most three modules of the package (its own, and at most two that must
 name it: a shipped default, a study's fixed setting), so that adding a choice touches its
-module and its registry, not a list of places that repeat its name."""
+module and its registry, not a list of places that repeat its name. The report columns a
+choice declares (``outputs``) carry an SI unit and a meaning, and the column docs document
+each of them."""
 
 from __future__ import annotations
 
 import ast
 import importlib
 import pkgutil
+import re
 from collections import defaultdict
+from functools import cache
+from typing import Any
 
 import pytest
 
 import recipsim
 from helpers import ROOT
 from recipsim.case.case_schema import OPTION_SPEC
+from recipsim.physics.mechanics.layout import BEARING_NAMES
+from recipsim.results.column_docs import CYCLE_DOCS, documented
+from recipsim.results.summary_docs import SUMMARY_DOCS
 from recipsim.slots import ModelChoice, Slot
 
 PACKAGE = ROOT / "src" / "recipsim"
@@ -152,3 +160,51 @@ def test_each_choice_says_what_it_models(slot):
     for choice in slot:
         assert choice.summary.strip(), f"{slot.option}: {choice.name} has no summary"
         assert slot.by_code(choice.code) is choice
+
+
+@cache
+def _units() -> Any:
+    import pint
+
+    return pint.UnitRegistry()
+
+
+def _si_unit(unit: str) -> bool:
+    """Whether ``unit``, in the report's notation (``kg/m3``, ``W/(m2 K)``, ``N m``,
+    ``-`` for a ratio), is a coherent SI unit: one of its base units' products, factor 1."""
+    if unit == "-":
+        return True
+    try:
+        quantity = _units().Quantity(1.0, re.sub(r"([A-Za-z])(\d+)", r"\1**\2", unit))
+    except Exception:  # pint raises several types for an unknown unit
+        return False
+    return bool(quantity.to_base_units().magnitude == 1.0)
+
+
+def test_the_unit_check_tells_si_from_other_units():
+    assert all(map(_si_unit, ("-", "m", "N m", "Pa*s", "kg/m3", "W/(m2 K)", "K", "rad/s")))
+    assert not any(map(_si_unit, ("rpm", "deg", "mm", "kJ", "degC", "bar", "furlong")))
+
+
+@pytest.mark.parametrize("slot", _registered_slots(), ids=lambda s: s.option)
+def test_declared_outputs_have_si_units_and_meanings(slot):
+    for choice in slot:
+        for output in choice.outputs:
+            label = f"{slot.option} = {choice.name}: {output.column}"
+            assert re.fullmatch(r"[a-z][a-z0-9_]*(<name>[a-z0-9_]*)?", output.name), label
+            assert _si_unit(output.unit), f"{label}: not an SI unit"
+            assert output.meaning.strip(), f"{label}: no meaning"
+
+
+def test_every_declared_output_is_documented():
+    """The column docs read every registry whose choices add columns."""
+    docs = {"cycle": documented(CYCLE_DOCS), "summary": documented(SUMMARY_DOCS)}
+    missing = [
+        f"{slot.option} = {choice.name}: {column} ({output.table})"
+        for slot in _registered_slots()
+        for choice in slot
+        for output in choice.outputs
+        for column in {output.column_of(bearing) for bearing in BEARING_NAMES}
+        if column not in docs[output.table]
+    ]
+    assert not missing

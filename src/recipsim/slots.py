@@ -26,7 +26,17 @@ What a choice declares
     case-file reference and the validation read them. Keys every choice of a slot
     shares (a journal's film geometry) are the slot's, declared once with the table.
 ``outputs``
-    The output columns it adds (:class:`Output`: name, unit, meaning).
+    The report columns it adds, those a report has with this choice and lacks without
+    it (:class:`Output`: name, SI unit, meaning, and the table, ``cycle.csv`` or
+    ``summary.csv``). The results read them where the columns depend on the choice (the
+    cycle table writes the gas's columns of the case's pressure source; a bearing on an
+    oil film gets its law's cycle and summary columns), the column docs
+    (``reports/README.md``) document every declared column from them, naming the
+    choices that add it, and ``tests/unit/results/test_choice_outputs.py`` holds real
+    runs to them. A capability several choices share declares its tuple once (the film
+    laws' columns, ``bearing_laws.law.FILM_OUTPUTS``) and each of those choices carries
+    it. Columns every choice of a slot writes (NaN where one does not apply) are not
+    outputs of a choice.
 
 A slot's own subclass adds what its model builder and compiled code need: a parameter
 writer with a stated signature, the compiled functions, capability flags.
@@ -34,15 +44,17 @@ writer with a stated signature, the compiled functions, capability flags.
 Adding a choice to a slot (the extension contract)
 --------------------------------------------------
 1. Write its module beside the slot's others (the slot's registry module names the
-   folder): the compiled functions with the slot's signature, its entry object.
+   folder): the compiled functions with the slot's signature, its entry object (with
+   the report columns it adds, if any, as ``outputs``).
 2. Register it: the slot's registry module imports the entry and lists it, and where the
    slot's compiled dispatch is an ``if`` chain on codes, adds one branch.
 3. Test it (against a closed form or another choice's limit) and show it in a shipped
    case or a docs page.
 
 Nothing else changes: the case schema, the model builder, the summary, the bench ladder,
-the CLI's choices and the docs read the registry. ``tests/test_architecture.py`` fails
-if a choice's name appears as a string literal in more than three modules.
+the CLI's choices, the docs and the report's column docs read the registry.
+``tests/test_model_slots.py`` fails if a choice's name appears as a string literal in
+more than three modules.
 """
 
 from __future__ import annotations
@@ -54,14 +66,58 @@ from typing import Any, Generic, TypeVar
 
 from recipsim.schema import Choice
 
+#: The report tables a choice's output goes to: ``cycle.csv`` (a value per crank-angle
+#: sample) and ``summary.csv`` (one row per run).
+OUTPUT_TABLES = ("cycle", "summary")
+#: In an output's name, one column per bearing that runs on the choice: the bearing's name.
+PER_BEARING = "<name>"
+
 
 @dataclass(frozen=True)
 class Output:
-    """An output column a choice adds: ``name``, SI ``unit`` and ``meaning``."""
+    """A report column a choice adds: present with the choice, absent without it.
+
+    Attributes
+    ----------
+    name : str
+        The column's name as written, without its unit; :data:`PER_BEARING` (``<name>``)
+        stands for the bearing's name in a column written once per bearing on the choice
+        (``film_thickness_<name>``).
+    unit : str
+        Its SI unit, as the column writes it (``m``, ``Pa*s``, ``-``).
+    meaning : str
+        What it holds, one line (Markdown) without the choices, which the docs add.
+    table : str
+        The file it goes to, one of :data:`OUTPUT_TABLES`.
+
+    Raises
+    ------
+    ValueError
+        If ``table`` is not a report table.
+    """
 
     name: str
     unit: str
     meaning: str
+    table: str
+
+    def __post_init__(self) -> None:
+        if self.table not in OUTPUT_TABLES:
+            raise ValueError(f"{self.name}: table {self.table!r} is not one of {OUTPUT_TABLES}")
+
+    @property
+    def column(self) -> str:
+        """The column as written: ``"name [unit]"`` (a per-bearing one with ``<name>``)."""
+        return f"{self.name} [{self.unit}]"
+
+    @property
+    def per_bearing(self) -> bool:
+        """Whether it is written once per bearing on the choice."""
+        return PER_BEARING in self.name
+
+    def column_of(self, bearing: str) -> str:
+        """The column of bearing ``bearing`` (a per-bearing output's; others as they are)."""
+        return self.column.replace(PER_BEARING, bearing)
 
 
 @dataclass(frozen=True)

@@ -20,7 +20,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from recipsim.slots import ModelChoice, Slot
+from recipsim.slots import ModelChoice, Output, Slot
 
 
 @dataclass(frozen=True)
@@ -53,6 +53,51 @@ MEAN_FRICTION = FrictionModel(
     summary="Petroff journals, viscous skirt, thrust bearing and oil pump ([friction], "
     "[oil]) on the converged cycle",
     source="Hamrock, Fundamentals of Fluid Film Lubrication, ch. 8; PDSim's skirt loss",
+    outputs=(
+        Output(
+            "friction_power_<name>",
+            "W",
+            "Petroff's 2 pi mu R^3 L w^2 / c of each journal with film data (w: crank speed; "
+            "eccentric: crank minus rod spin; pin: rod spin)",
+            "summary",
+        ),
+        Output(
+            "piston_friction_power",
+            "W",
+            "the concentric skirt's mu pi D L v^2 / delta (L: piston length inside the bore, "
+            "delta: the piston film's or else the leakage radial clearance)",
+            "summary",
+        ),
+        Output(
+            "friction_power_thrust",
+            "W",
+            "the thrust bearing carrying the rotor and crankshaft (`[friction]`): a flat "
+            "collar's viscous torque pi mu w (R_o^4 - R_i^4) / (2 h) times w, or a ball "
+            'bearing\'s mu F d / 2 times w; absent with `thrust_bearing = "none"`',
+            "summary",
+        ),
+        Output(
+            "friction_power_oil_pump",
+            "W",
+            "the power the shaft gives the oil it pumps, rho Q (w^2 r^2 + g H) (Euler's pump "
+            "equation for the centrifugal stage, the helical groove's lift; `[friction]`)",
+            "summary",
+        ),
+        Output(
+            "friction_film_temperature",
+            "K",
+            "the oil temperature the films are taken at, the thermal network's oil node "
+            '(`options.thermal = "network"`) or `oil.film_temperature`',
+            "summary",
+        ),
+        Output(
+            "friction_film_viscosity",
+            "Pa*s",
+            "the oil's dynamic viscosity at that temperature (its Walther or Vogel law), "
+            "diluted by `oil.dissolved_refrigerant_fraction`",
+            "summary",
+        ),
+    ),
     mean_laws=True,
 )
 FILM_FRICTION = FrictionModel(

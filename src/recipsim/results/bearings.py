@@ -6,7 +6,10 @@ displacements are journal minus bushing marker normal to the bearing axis [m] (z
 for the pinned mechanism). Every column name carries its unit; the columns that are
 mechanism outputs take name and unit from the layout's table
 (:data:`recipsim.physics.mechanics.layout.OUTPUTS`), meaning included; the others are
-declared in :mod:`.column_docs`.
+declared in :mod:`.column_docs`. A bearing on an oil film adds the columns its law
+declares (:attr:`~recipsim.slots.ModelChoice.outputs`, per bearing with ``<name>``; a
+law's others, such as the piston film's friction, once): the mechanism's outputs of those
+names, or the orbit's film thickness and eccentricity ratio, and their summaries.
 """
 
 from __future__ import annotations
@@ -17,10 +20,12 @@ from typing import Any
 import numpy as np
 
 from recipsim.physics.mechanics import layout as lay
+from recipsim.physics.mechanics.bearing_laws.law import BearingLaw
 from recipsim.physics.mechanics.bearing_laws.registry import BEARING_LAWS
 from recipsim.physics.mechanics.pinned import N_PIN_OUT, pinned_reactions_array
 from recipsim.physics.mechanics.pinned import OUTPUTS as PIN_OUTPUTS
 from recipsim.results.sampled import CycleColumns, nan_max, nan_min
+from recipsim.slots import PER_BEARING, Output
 
 #: Displacement components reported for every bearing (normal to the Z journal axis;
 #: the piston bearings, axis X, report X as 0).
@@ -33,13 +38,12 @@ _FLEXIBLE_OUTPUTS = (
     "piston_tilt",
     "bearing_power_loss",
 )
-#: Outputs of a bearing on an oil film (the torque on the journal-side body).
-_FILM_OUTPUTS = (
-    "friction_torque_{}",
-    "bearing_power_loss_{}",
-    "contact_force_{}",
-    "film_peak_pressure_{}",
-)
+#: Film outputs computed from the orbit, ``f(radial clearance [m], displacement [m])``;
+#: a film law's other cycle outputs are the mechanism's output slots of their names.
+_FROM_ORBIT = {
+    "film_thickness_<name>": lambda clearance, e: clearance - e,
+    "eccentricity_ratio_<name>": lambda clearance, e: e / clearance,
+}
 
 
 def _column(name: str) -> str:
@@ -113,14 +117,50 @@ def bearing_columns(
     return cols
 
 
-def film_clearances(mech_par: np.ndarray) -> dict[str, float]:
-    """Radial clearance [m] of every bearing that runs on an oil film, by name."""
-    out = {}
+def film_laws(mech_par: np.ndarray) -> dict[str, BearingLaw]:
+    """The law of every bearing that runs on an oil film, by bearing name (in
+    ``layout.BEARING_NAMES`` order), from the mechanism's parameters."""
     par = lay.PAR.bundle(mech_par)
-    for name in lay.BEARING_NAMES:
-        if BEARING_LAWS.by_code(int(getattr(par, f"{name}_law"))).film:
-            out[name] = float(getattr(par, f"{name}_clearance"))
-    return out
+    laws = {
+        name: BEARING_LAWS.by_code(int(getattr(par, f"{name}_law"))) for name in lay.BEARING_NAMES
+    }
+    return {name: law for name, law in laws.items() if law.film}
+
+
+def _outputs(laws: dict[str, BearingLaw], table: str) -> list[tuple[str | None, Output]]:
+    """The outputs the film bearings ``laws`` add to ``table``, as (bearing, output): each
+    bearing's per-bearing ones in bearing order, then each law's others once (bearing
+    None)."""
+    found: list[tuple[str | None, Output]] = [
+        (name, output)
+        for name, law in laws.items()
+        for output in law.outputs
+        if output.table == table and output.per_bearing
+    ]
+    for law in {law.name: law for law in laws.values()}.values():  # once each, in bearing order
+        found += [(None, o) for o in law.outputs if o.table == table and not o.per_bearing]
+    return found
+
+
+def _film_columns(out: Any, mech_par: np.ndarray) -> dict[str, np.ndarray]:
+    """The cycle columns the film bearings' laws declare, from the mechanism's outputs by
+    name ``out`` and its parameters."""
+    cols: dict[str, np.ndarray] = {}
+    par = lay.PAR.bundle(mech_par)
+    for bearing, output in _outputs(film_laws(mech_par), "cycle"):
+        if bearing is None:
+            cols[output.column] = getattr(out, output.name)
+        elif output.name in _FROM_ORBIT:
+            e = np.hypot(
+                getattr(out, f"bearing_displacement_{bearing}_x"),
+                getattr(out, f"bearing_displacement_{bearing}_y"),
+            )
+            clearance = float(getattr(par, f"{bearing}_clearance"))
+            cols[output.column_of(bearing)] = _FROM_ORBIT[output.name](clearance, e)
+        else:
+            slot = output.name.replace(PER_BEARING, bearing)
+            cols[output.column_of(bearing)] = getattr(out, slot)
+    return cols
 
 
 def flexible_columns(
@@ -128,9 +168,9 @@ def flexible_columns(
 ) -> dict[str, np.ndarray]:
     """Columns of the flexible mechanism from its outputs, shape (n, ``layout.N_AUX``)
     (fastest as the transpose of a C-contiguous array: the columns are then its rows),
-    and its parameters (film bearings add film thickness, friction torque, absorbed
-    power, contact force and peak film pressure); ``components`` as in
-    :func:`bearing_columns`."""
+    and its parameters (a bearing on an oil film adds its law's columns: film thickness,
+    friction torque, absorbed power, contact force, peak film pressure, ...);
+    ``components`` as in :func:`bearing_columns`."""
     out = lay.OUTPUTS.bundle(mech_aux)
     cols = bearing_columns(
         _bearing_series(mech_aux, _FORCES),
@@ -139,19 +179,7 @@ def flexible_columns(
     )
     for field in _FLEXIBLE_OUTPUTS:
         cols[_column(field)] = getattr(out, field)
-    films = film_clearances(mech_par)
-    for name, clearance in films.items():
-        e = np.hypot(
-            getattr(out, f"bearing_displacement_{name}_x"),
-            getattr(out, f"bearing_displacement_{name}_y"),
-        )
-        cols[f"film_thickness_{name} [m]"] = clearance - e
-        cols[f"eccentricity_ratio_{name} [-]"] = e / clearance
-        for pattern in _FILM_OUTPUTS:
-            cols[_column(pattern.format(name))] = getattr(out, pattern.format(name))
-    if "piston_skirt" in films:
-        for field in ("piston_friction_force", "piston_friction_power"):
-            cols[_column(field)] = getattr(out, field)
+    cols.update(_film_columns(out, mech_par))
     return cols
 
 
@@ -160,26 +188,42 @@ def _time_mean(values: np.ndarray, speed: np.ndarray) -> float:
     return float(np.sum(values / speed) / np.sum(1.0 / speed))
 
 
-def film_summary(cycle: CycleColumns) -> dict[str, Any]:
-    """Per film bearing: smallest film, largest eccentricity ratio, film pressure and
-    contact force, friction power; the piston film's friction power."""
+#: How a film law's summary output reduces its cycle output: the cycle output's name and
+#: the reduction (the cycle's columns, the crank speed [rad/s]) -> value.
+_SUMMARY_OF: dict[str, tuple[str, Any]] = {
+    "min_film_thickness_<name>": ("film_thickness_<name>", lambda x, _: float(nan_min(x))),
+    "max_eccentricity_ratio_<name>": ("eccentricity_ratio_<name>", lambda x, _: float(nan_max(x))),
+    "max_film_pressure_<name>": ("film_peak_pressure_<name>", lambda x, _: float(nan_max(x))),
+    "max_contact_force_<name>": ("contact_force_<name>", lambda x, _: float(nan_max(x))),
+    "friction_power_<name>": ("bearing_power_loss_<name>", _time_mean),
+    "piston_friction_power": ("piston_friction_power", _time_mean),
+}
+
+
+def film_summary(cycle: CycleColumns, laws: dict[str, BearingLaw]) -> dict[str, Any]:
+    """The summary columns the film bearings' laws declare (per film bearing: smallest
+    film, largest eccentricity ratio, film pressure and contact force, friction power;
+    the piston film's friction power), from their cycle columns.
+
+    Parameters
+    ----------
+    cycle : CycleColumns
+        The cycle table, with the film bearings' columns.
+    laws : dict
+        The law of each bearing on an oil film (:func:`film_laws`; empty for the pinned
+        crank, whose cycle has no film columns).
+    """
     row: dict[str, Any] = {}
     speed = cycle["crank_speed [rad/s]"]
-    for name in lay.BEARING_NAMES:
-        if f"film_thickness_{name} [m]" not in cycle:
-            continue
-        row[f"min_film_thickness_{name} [m]"] = float(nan_min(cycle[f"film_thickness_{name} [m]"]))
-        row[f"max_eccentricity_ratio_{name} [-]"] = float(
-            nan_max(cycle[f"eccentricity_ratio_{name} [-]"])
-        )
-        row[f"max_film_pressure_{name} [Pa]"] = float(
-            nan_max(cycle[f"film_peak_pressure_{name} [Pa]"])
-        )
-        row[f"max_contact_force_{name} [N]"] = float(nan_max(cycle[f"contact_force_{name} [N]"]))
-        loss = cycle[f"bearing_power_loss_{name} [W]"]
-        row[f"friction_power_{name} [W]"] = _time_mean(loss, speed)
-    if "piston_friction_power [W]" in cycle:
-        row["piston_friction_power [W]"] = _time_mean(cycle["piston_friction_power [W]"], speed)
+    by_name = {o.name: o for _, o in _outputs(laws, "cycle")}
+    for bearing, output in _outputs(laws, "summary"):
+        source, reduce = _SUMMARY_OF[output.name]
+        if bearing is None:
+            row[output.column] = reduce(cycle[by_name[source].column], speed)
+        else:
+            row[output.column_of(bearing)] = reduce(
+                cycle[by_name[source].column_of(bearing)], speed
+            )
     return row
 
 

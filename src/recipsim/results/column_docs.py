@@ -5,10 +5,13 @@ table's entry (:class:`~recipsim.physics.layout_table.Entry`): in ``cycle.csv`` 
 cylinder's outputs (:data:`recipsim.physics.thermo.cylinder.OUTPUTS`) and the
 mechanism's (:data:`recipsim.physics.mechanics.layout.OUTPUTS`), in ``startup.csv`` the
 start-up trace (:data:`recipsim.solve.startup.TRACE`). The columns computed from them
-(crank angle in degrees, force magnitudes, film thickness) are declared here, the
-summary's in :mod:`.summary_docs`. ``reports/README.md``'s column tables are generated
-from these tables (:mod:`recipsim.report.column_readme`), and a test checks that every
-column a run writes is in them.
+(crank angle in degrees, force magnitudes) are declared here, the summary's in
+:mod:`.summary_docs`. The columns that only some choices of a model slot add are
+documented from those choices' declarations (:attr:`recipsim.slots.ModelChoice.outputs`,
+:func:`choice_docs`), each line naming the choices that add the column: a new choice's
+columns need no line here. ``reports/README.md``'s column tables are generated from
+these tables (:mod:`recipsim.report.column_readme`), and a test checks that every column
+a run writes is in them.
 
 A name may hold a placeholder standing for one column each: ``<name>`` a bearing
 (:data:`~recipsim.physics.mechanics.layout.BEARING_NAMES`), ``<node>`` a node of the
@@ -20,12 +23,18 @@ from __future__ import annotations
 import re
 from collections.abc import Iterable
 from dataclasses import dataclass
+from typing import Any
 
+from recipsim.physics.friction_models import FRICTION_MODELS
 from recipsim.physics.layout_table import Entry
 from recipsim.physics.mechanics import layout as lay
+from recipsim.physics.mechanics.bearing_laws.registry import BEARING_LAWS
+from recipsim.physics.mechanics.crank_trains import CRANK_TRAINS
 from recipsim.physics.thermo import cylinder as cyl
+from recipsim.physics.thermo.pressure_sources import PRESSURE_SOURCES
 from recipsim.physics.thermo.shell_nodes import NODES
 from recipsim.results.cycle import CYCLE_COLUMNS
+from recipsim.slots import Output, Slot
 from recipsim.solve import startup as su
 
 #: What each placeholder of a column name stands for.
@@ -104,11 +113,64 @@ def documented(docs: Iterable[ColumnDoc]) -> set[str]:
     return {c for doc in docs for c in doc.columns()}
 
 
+#: The model slots whose choices add report columns, in the order the docs list their
+#: columns, each with how a doc line names the case key that picks the choice.
+OUTPUT_SLOTS: tuple[tuple[Slot[Any], str], ...] = (
+    (PRESSURE_SOURCES, "`options.pressure`"),
+    (CRANK_TRAINS, "`options.mechanics`"),
+    (BEARING_LAWS, "the bearing's `law`"),
+    (FRICTION_MODELS, "`options.friction`"),
+)
+
+
+def choice_names(names: list[str]) -> str:
+    """Names in backticks, the last after "or"."""
+    quoted = [f"`{name}`" for name in names]
+    return ", ".join(quoted[:-1]) + " or " + quoted[-1] if len(quoted) > 1 else quoted[0]
+
+
+def choice_docs(
+    table: str, slots: tuple[tuple[Slot[Any], str], ...] = OUTPUT_SLOTS
+) -> dict[str, ColumnDoc]:
+    """The doc of every column the choices of ``slots`` add to ``table`` (``"cycle"`` or
+    ``"summary"``), by column, in the order they are declared.
+
+    Each declaration's meaning is followed by the choices that carry it (``(with
+    `options.friction` = `mean`)``); a column that choices of two slots add, or that two
+    declarations give different meanings, has each in turn, separated by semicolons.
+    """
+    carriers: dict[str, dict[tuple[str, Output], list[str]]] = {}
+    for slot, key in slots:
+        for choice in slot:
+            for output in choice.outputs:
+                if output.table == table:
+                    by_meaning = carriers.setdefault(output.column, {})
+                    by_meaning.setdefault((key, output), []).append(choice.name)
+    docs = {}
+    for column_name, by_meaning in carriers.items():
+        first = next(iter(by_meaning))[1]
+        meaning = "; ".join(
+            f"{output.meaning} (with {key} = {choice_names(names)})"
+            for (key, output), names in by_meaning.items()
+        )
+        docs[column_name] = ColumnDoc(first.name, first.unit, meaning)
+    return docs
+
+
 def _mechanism(first: int, count: int) -> list[Entry]:
     return list(lay.OUTPUTS.entries[first : first + count])
 
 
 _NB = lay.N_BEARINGS
+#: The cycle columns that only some choices add: the pressure source's (the gas's, among
+#: the cylinder's outputs, and the valves' modes after them), then the others' (the film
+#: bearings', after the mechanism's).
+_SOURCE_DOCS = choice_docs("cycle", tuple(s for s in OUTPUT_SLOTS if s[0] is PRESSURE_SOURCES))
+_OTHER_CHOICE_DOCS = choice_docs(
+    "cycle", tuple(s for s in OUTPUT_SLOTS if s[0] is not PRESSURE_SOURCES)
+)
+_CYLINDER_DOCS = [from_entry(cyl.OUTPUTS.entries[i]) for _, i in CYCLE_COLUMNS]
+_CYLINDER_COLUMNS = {doc.column for doc in _CYLINDER_DOCS}
 
 #: ``cycle.csv``, in the order the report writes the columns.
 CYCLE_DOCS: tuple[ColumnDoc, ...] = (
@@ -116,12 +178,8 @@ CYCLE_DOCS: tuple[ColumnDoc, ...] = (
     column(
         "time [s]", "time from top dead centre (integral of 1 / crank speed over the crank angle)"
     ),
-    *(from_entry(cyl.OUTPUTS.entries[i]) for _, i in CYCLE_COLUMNS),
-    column(
-        "suction_valve_state [-]",
-        "mode of the suction valve: reed 0 seated, 1 moving, 2 on the stop; ideal 0 closed, 1 open",
-    ),
-    column("discharge_valve_state [-]", "mode of the discharge valve, as above"),
+    *(_SOURCE_DOCS.get(doc.column, doc) for doc in _CYLINDER_DOCS),
+    *(doc for key, doc in _SOURCE_DOCS.items() if key not in _CYLINDER_COLUMNS),
     *_first_bearing(_mechanism(lay.A_BEARING_FORCE, 3 * _NB)),
     column("bearing_force_<name> [N]", "magnitude of that force"),
     *_first_bearing(_mechanism(lay.A_BEARING_DISPLACEMENT, 3 * _NB)[:2]),
@@ -129,18 +187,7 @@ CYCLE_DOCS: tuple[ColumnDoc, ...] = (
         from_entry(lay.OUTPUTS.entries[i])
         for i in (lay.A_CRANK_SPEED, lay.A_PISTON_LATERAL, lay.A_PISTON_TILT, lay.A_BEARING_POWER)
     ),
-    column(
-        "film_thickness_<name> [m]",
-        "film thickness at the thinnest point of a lubricated bearing, radial clearance - "
-        "displacement",
-    ),
-    column("eccentricity_ratio_<name> [-]", "displacement over the radial clearance"),
-    from_entry(lay.OUTPUTS.entries[lay.A_BEARING_TORQUE]),  # the journal side's
-    *_first_bearing(_mechanism(lay.A_BEARING_DISSIPATION, _NB)),
-    *_first_bearing(_mechanism(lay.A_BEARING_CONTACT, _NB)),
-    *_first_bearing(_mechanism(lay.A_BEARING_PEAK_PRESSURE, _NB)),
-    from_entry(lay.OUTPUTS.entries[lay.A_PISTON_FRICTION]),
-    from_entry(lay.OUTPUTS.entries[lay.A_PISTON_FRICTION_POWER]),
+    *_OTHER_CHOICE_DOCS.values(),
 )
 
 #: ``startup.csv``: the start-up trace's slots, the crank angle in degrees (wrapped) and

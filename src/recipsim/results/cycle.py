@@ -6,6 +6,8 @@ tables are generated from them). :func:`cycle_columns` gives the columns as
 numpy arrays, :func:`cycle_table` the DataFrame of them (the same values);
 :func:`pinned_tabulated_cycle` is the table of the pinned mechanism under a tabulated
 pressure, where nothing is integrated (:func:`pinned_tabulated_columns` its columns).
+The gas's columns are those the case's pressure source declares
+(:attr:`~recipsim.slots.ModelChoice.outputs`).
 """
 
 from __future__ import annotations
@@ -21,6 +23,11 @@ from recipsim.model.build import case_mechanism_parameters, scenes
 from recipsim.physics.kinematics import piston_displacement
 from recipsim.physics.mechanics.tabulated import tabulated_pressure
 from recipsim.physics.thermo import cylinder as cyl
+from recipsim.physics.thermo.pressure_sources import (
+    GAS_OUTPUTS,
+    PRESSURE_SOURCES,
+    VALVE_STATE_OUTPUTS,
+)
 from recipsim.results.bearings import flexible_columns, pinned_columns
 from recipsim.solve.periodic import PeriodicSolution, sample_outputs
 
@@ -30,24 +37,16 @@ def _column(index: int) -> str:
     return cyl.OUTPUTS.column(index)
 
 
-#: Output slots that need the gas state (their columns are absent when the pressure is
-#: tabulated).
-_GAS_OUTPUTS = (
-    cyl.A_TEMPERATURE,
-    cyl.A_DENSITY,
-    cyl.A_MASS,
-    cyl.A_ENTHALPY,
-    cyl.A_QUALITY,
-    cyl.A_LIFT_S,
-    cyl.A_LIFT_D,
-    cyl.A_VEL_S,
-    cyl.A_VEL_D,
-    cyl.A_MDOT_SUC,
-    cyl.A_MDOT_DIS,
-    cyl.A_MDOT_LEAK,
-    cyl.A_LEAK_ECC,
-    cyl.A_QDOT,
-    cyl.A_HTC,
+#: Output slots that need the gas state: those the cylinder pressure source declares
+#: (:data:`~recipsim.physics.thermo.pressure_sources.GAS_OUTPUTS`, in its order).
+_GAS_OUTPUTS = tuple(cyl.OUTPUTS.entry(output.name).index for output in GAS_OUTPUTS)
+#: The cycle columns a pressure source adds (its declared outputs): a case's table has
+#: those of its own source only.
+_SOURCE_COLUMNS = frozenset(
+    output.column
+    for source in PRESSURE_SOURCES
+    for output in source.outputs
+    if output.table == "cycle"
 )
 
 #: Output slots the cycle table writes, in column order; each column's name and unit are
@@ -67,7 +66,8 @@ _CYCLE_OUTPUTS = (
 #: The cycle table's output columns: (``"name [unit]"`` from the layout, output index).
 CYCLE_COLUMNS: list[tuple[str, int]] = [(_column(i), i) for i in _CYCLE_OUTPUTS]
 
-#: Cycle columns that need the gas state (absent when the pressure is tabulated).
+#: Cycle columns of the cylinder's outputs that need the gas state (absent when the
+#: pressure is tabulated).
 GAS_COLUMNS = {_column(i) for i in _GAS_OUTPUTS}
 
 #: The scene outputs the cycle table reads on the rigid crank: the first this many (the
@@ -138,13 +138,14 @@ def cycle_columns(solution: PeriodicSolution, full: bool = True) -> dict[str, np
         rows = np.ascontiguousarray(out[order].T)
         modes = rev.sample_modes[order].T
     data: dict[str, Any] = {"crank_angle [deg]": np.degrees(grid)}
-    has_gas = model.has_gas
+    source = PRESSURE_SOURCES[model.case.options.pressure]
+    added = {output.column for output in source.outputs}
     for name, idx in CYCLE_COLUMNS:
-        if has_gas or name not in GAS_COLUMNS:
+        if name in added or name not in _SOURCE_COLUMNS:
             data[name] = rows[idx]
-    if has_gas:
-        data["suction_valve_state [-]"] = modes[0].astype(np.int64)
-        data["discharge_valve_state [-]"] = modes[1].astype(np.int64)
+    for side, state in enumerate(VALVE_STATE_OUTPUTS):  # suction, discharge
+        if state.column in added:
+            data[state.column] = modes[side].astype(np.int64)
     omega = model.case.operating_point.shaft_speed
     if model.scene == scenes.SCENE_CYLINDER:
         par = case_mechanism_parameters(model.case)

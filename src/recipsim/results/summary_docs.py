@@ -5,6 +5,8 @@ generates its tables from these).
 
 The meanings are Markdown, as the README shows them. The thermal network's node row
 lists the nodes from their table (:data:`recipsim.physics.thermo.shell_nodes.TEMPERATURES`).
+The columns that only some choices of a model slot add are documented from those
+choices' declarations (:func:`recipsim.results.column_docs.choice_docs`).
 
 Size (over the project's 400 lines): one declaration per summary column, a single table
 like a layout's; split, the README's order would live in two places.
@@ -17,7 +19,7 @@ from typing import Any
 from recipsim.physics.friction_models import FRICTION_MODELS
 from recipsim.physics.motor_models import MOTOR_MODELS
 from recipsim.physics.thermo.shell_nodes import TEMPERATURES
-from recipsim.results.column_docs import ColumnDoc
+from recipsim.results.column_docs import ColumnDoc, choice_docs, choice_names
 from recipsim.results.column_docs import column as _c
 from recipsim.results.loss_breakdown import COP_COST_COLUMNS
 from recipsim.slots import Slot
@@ -25,8 +27,7 @@ from recipsim.slots import Slot
 
 def _choices(slot: Slot[Any]) -> str:
     """The slot's choice names in backticks, the last after "or"."""
-    names = [f"`{name}`" for name in slot.names]
-    return ", ".join(names[:-1]) + " or " + names[-1] if len(names) > 1 else names[0]
+    return choice_names(list(slot.names))
 
 
 def _nodes() -> str:
@@ -229,67 +230,9 @@ SUMMARY_DOCS: tuple[ColumnDoc, ...] = (
         "integrates to zero; on an unconverged revolution it also holds the change of spring "
         "energy); 0 for the pinned crank",
     ),
-    _c("mechanical_efficiency [-]", "indicated power / shaft power (flexible scenes)"),
-    _c(
-        "mechanical_balance_residual [-]",
-        "(shaft power - indicated power - bearing dissipation) / shaft power over the "
-        "converged revolution: the closure of the mechanical energy chain (flexible scenes)",
-    ),
-    _c(
-        "min_film_thickness_<name> [m]",
-        "smallest film of a lubricated bearing over the revolution, radial clearance - "
-        "journal displacement (journals: short_journal, finite_journal; the piston film at "
-        "piston_top and piston_skirt)",
-    ),
-    _c(
-        "max_eccentricity_ratio_<name> [-]",
-        "largest journal displacement over the radial clearance",
-    ),
-    _c(
-        "max_film_pressure_<name> [Pa]",
-        "largest film pressure over the revolution (the piston film reports it at piston_skirt)",
-    ),
-    _c(
-        "max_contact_force_<name> [N]",
-        "largest asperity-contact normal force (0: the film carried the load all revolution)",
-    ),
-    _c(
-        "friction_power_<name> [W]",
-        "time mean of the power the bearing dissipates: film shear (Couette and "
-        "pressure-gradient parts), squeeze, contact friction; with `options.friction = "
-        '"mean"`, Petroff\'s 2 pi mu R^3 L w^2 / c of each journal with film data (w: crank '
-        "speed; eccentric: crank minus rod spin; pin: rod spin)",
-    ),
-    _c(
-        "piston_friction_power [W]",
-        "time mean of the power of the piston film's axial friction (lubricated skirt); with "
-        '`options.friction = "mean"`, the concentric skirt\'s mu pi D L v^2 / delta (L: '
-        "piston length inside the bore, delta: the piston film's or else the leakage radial "
-        "clearance)",
-    ),
-    _c(
-        "friction_power_thrust [W]",
-        '`options.friction = "mean"`: the thrust bearing carrying the rotor and crankshaft '
-        "(`[friction]`): a flat collar's viscous torque pi mu w (R_o^4 - R_i^4) / (2 h) "
-        "times w, or a ball bearing's mu F d / 2 times w; absent with `thrust_bearing = "
-        '"none"`',
-    ),
-    _c(
-        "friction_power_oil_pump [W]",
-        '`options.friction = "mean"`: the power the shaft gives the oil it pumps, '
-        "rho Q (w^2 r^2 + g H) (Euler's pump equation for the centrifugal stage, the "
-        "helical groove's lift; `[friction]`)",
-    ),
-    _c(
-        "friction_film_temperature [K]",
-        '`options.friction = "mean"`: the oil temperature the films are taken at, the '
-        'thermal network\'s oil node (`options.thermal = "network"`) or `oil.film_temperature`',
-    ),
-    _c(
-        "friction_film_viscosity [Pa*s]",
-        "the oil's dynamic viscosity at that temperature (its Walther or Vogel law), "
-        "diluted by `oil.dissolved_refrigerant_fraction`",
-    ),
+    # the columns only some choices add (the flexible crank's, the film bearings', the
+    # mean friction's), from their declarations
+    *choice_docs("summary").values(),
     _c(
         "motor_input_power [W]",
         "induction motor drive: air-gap power, synchronous speed x time-mean motor torque "

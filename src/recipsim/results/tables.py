@@ -36,7 +36,7 @@ from recipsim.model.build import scenes
 from recipsim.model.loss_sources import friction_oil_temperature
 from recipsim.model.plenum import isentropic_state
 from recipsim.physics.mechanics.drives import DRIVES
-from recipsim.results.bearings import film_summary, mechanism_summary
+from recipsim.results.bearings import film_laws, film_summary, mechanism_summary
 from recipsim.results.cycle import (  # re-exported (__all__): the cycle table is in .cycle
     CYCLE_COLUMNS,
     GAS_COLUMNS,
@@ -232,8 +232,10 @@ def summary(
     row.update(motor)
     row.update(losses)
     row.update(mech)
-    row.update(film_summary(cycle))
-    if model is not None and model.scene != scenes.SCENE_CYLINDER:
+    flexible = model if model is not None and model.scene != scenes.SCENE_CYLINDER else None
+    # the flexible crank's bearings on oil films: their laws' summary columns
+    row.update(film_summary(cycle, {} if flexible is None else film_laws(flexible.mechanism_par)))
+    if flexible is not None:
         row["mechanical_efficiency [-]"] = _ratio(row["indicated_power [W]"], p_shaft)
         # drive power = indicated power + friction and bearing losses, over the revolution
         row["mechanical_balance_residual [-]"] = _ratio(

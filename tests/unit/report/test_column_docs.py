@@ -19,6 +19,7 @@ from recipsim.results.column_docs import (
     CYCLE_DOCS,
     STARTUP_DOCS,
     ColumnDoc,
+    choice_docs,
     column,
     documented,
     from_entry,
@@ -56,11 +57,18 @@ def test_declarations_are_unique_and_tabulable() -> None:
 
 
 def test_layout_columns_are_the_layouts_entries() -> None:
-    """The cycle table's output columns carry their layout entry's name, unit and meaning."""
+    """The cycle table's output columns carry their layout entry's name, unit and meaning
+    (followed, for those only some choices write, by the choices)."""
     by_column = {d.column: d for d in CYCLE_DOCS}
+    added = choice_docs("cycle")
     for entry in cyl.OUTPUTS.entries:
         if entry.column in by_column:
-            assert by_column[entry.column].meaning == entry.meaning
+            meaning = by_column[entry.column].meaning
+            if entry.column in added:
+                assert meaning == added[entry.column].meaning
+                assert meaning.startswith(f"{entry.meaning} (with `options.pressure` = ")
+            else:
+                assert meaning == entry.meaning
     force_z = mlay.OUTPUTS.entries[mlay.A_BEARING_FORCE + 3 * mlay.B_PIN + 2]
     assert from_entry(force_z) == ColumnDoc("bearing_force_<name>_z", "N", force_z.meaning)
     assert by_column["bearing_force_<name>_z [N]"].meaning == force_z.meaning

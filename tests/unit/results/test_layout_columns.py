@@ -12,7 +12,7 @@ from __future__ import annotations
 import numpy as np
 
 from recipsim.physics.mechanics import layout as mlay
-from recipsim.physics.mechanics.bearing_laws import short_journal
+from recipsim.physics.mechanics.bearing_laws import short_journal, skirt_film
 from recipsim.physics.thermo import cylinder as cyl
 from recipsim.results.bearings import flexible_columns
 from recipsim.results.tables import CYCLE_COLUMNS, GAS_COLUMNS
@@ -33,14 +33,15 @@ def test_mechanism_columns_read_their_own_output_slots() -> None:
     n = 5
     aux = np.arange(n * mlay.N_AUX, dtype=float).reshape(n, mlay.N_AUX)
     par = np.zeros(mlay.N_PAR)
-    for i in range(mlay.N_BEARINGS):  # every bearing on a film: all film columns
+    for i, name in enumerate(mlay.BEARING_NAMES):  # every bearing on a film: all film columns
         row = mlay.P_BEARINGS + i * mlay.N_BEARING_PAR
-        par[row + mlay.BP_LAW] = short_journal.CODE
+        piston = name in mlay.PISTON_STATION_NAMES
+        par[row + mlay.BP_LAW] = skirt_film.CODE if piston else short_journal.CODE
         par[row + mlay.BP_CLEARANCE] = 1e-5
     cols = flexible_columns(aux, par)
     by_column = {e.column: e for e in mlay.OUTPUTS.entries}
     read = [c for c in cols if c in by_column]
-    # forces, x/y displacements, 4 scalars, 4 per-bearing series, the piston's film
+    # forces, x/y displacements, 4 scalars, 4 per-bearing series, the piston film's friction
     assert len(read) == 3 * 6 + 2 * 6 + 4 + 4 * 6 + 2
     for column in read:
         np.testing.assert_array_equal(cols[column], aux[:, by_column[column].index])

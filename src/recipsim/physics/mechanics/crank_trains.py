@@ -18,7 +18,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from recipsim.slots import ModelChoice, Slot
+from recipsim.slots import ModelChoice, Output, Slot
 
 
 @dataclass(frozen=True)
@@ -46,6 +46,16 @@ FLEXIBLE = CrankTrain(
     code=1,
     summary="rotor, connecting rod and piston on their bearings, integrated in time",
     source="Kurka, Paulino & Izuka (ISMA 2010)",
+    outputs=(
+        Output("mechanical_efficiency", "-", "indicated power / shaft power", "summary"),
+        Output(
+            "mechanical_balance_residual",
+            "-",
+            "(shaft power - indicated power - bearing dissipation) / shaft power over the "
+            "converged revolution: the closure of the mechanical energy chain",
+            "summary",
+        ),
+    ),
     flexible=True,
 )
 

@@ -10,7 +10,7 @@ import functools
 import numpy as np
 from numba import njit
 
-from recipsim.physics.mechanics.bearing_laws.law import BearingLaw
+from recipsim.physics.mechanics.bearing_laws.law import FILM_OUTPUTS, BearingLaw
 from recipsim.physics.mechanics.bearing_laws.short_journal import film_secant_stiffness
 from recipsim.physics.mechanics.journal_finite import (
     finite_journal_film,
@@ -49,6 +49,7 @@ LAW = BearingLaw(
     bearings=JOURNAL_NAMES,
     table=impedance_table,
     start_stiffness=film_secant_stiffness,
+    outputs=FILM_OUTPUTS,
 )
 
 

@@ -12,6 +12,9 @@ marker in the plane normal to the bearing axis, the spins about the axis [rad/s]
 returns the film force on the journal [N] and the film torque on the journal [N m]. Its
 peak-pressure function takes the same arguments and returns [Pa]. The registry adds the
 asperity contact, the bushing's torque and the dissipation, the same for every film law.
+
+Every film law's entry carries :data:`FILM_OUTPUTS`, the report columns of a bearing on
+an oil film (:mod:`recipsim.results.bearings` writes them for each such bearing).
 """
 
 from __future__ import annotations
@@ -21,7 +24,66 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from recipsim.slots import ModelChoice
+from recipsim.physics.mechanics import layout as lay
+from recipsim.slots import PER_BEARING, ModelChoice, Output
+
+
+def mechanism_output(name: str, table: str = "cycle") -> Output:
+    """The output ``name`` that is a slot of the mechanism's outputs
+    (:data:`~recipsim.physics.mechanics.layout.OUTPUTS`), with that slot's unit and meaning
+    (a per-bearing one's are its first bearing's, the series')."""
+    entry = lay.OUTPUTS.entry(name.replace(PER_BEARING, lay.BEARING_NAMES[0]))
+    return Output(name, entry.unit, entry.meaning, table)
+
+
+#: The report columns of a bearing on an oil film, per bearing: the cycle's orbit in the
+#: clearance, friction torque, absorbed power, contact force and peak film pressure, and
+#: the summary's extremes and mean friction power over the revolution.
+FILM_OUTPUTS: tuple[Output, ...] = (
+    Output(
+        "film_thickness_<name>",
+        "m",
+        "film thickness at the thinnest point, radial clearance - displacement",
+        "cycle",
+    ),
+    Output("eccentricity_ratio_<name>", "-", "displacement over the radial clearance", "cycle"),
+    mechanism_output("friction_torque_<name>"),
+    mechanism_output("bearing_power_loss_<name>"),
+    mechanism_output("contact_force_<name>"),
+    mechanism_output("film_peak_pressure_<name>"),
+    Output(
+        "min_film_thickness_<name>",
+        "m",
+        "smallest film over the revolution, radial clearance - journal displacement (the "
+        "piston film at piston_top and piston_skirt)",
+        "summary",
+    ),
+    Output(
+        "max_eccentricity_ratio_<name>",
+        "-",
+        "largest journal displacement over the radial clearance",
+        "summary",
+    ),
+    Output(
+        "max_film_pressure_<name>",
+        "Pa",
+        "largest film pressure over the revolution (the piston film reports it at piston_skirt)",
+        "summary",
+    ),
+    Output(
+        "max_contact_force_<name>",
+        "N",
+        "largest asperity-contact normal force (0: the film carried the load all revolution)",
+        "summary",
+    ),
+    Output(
+        "friction_power_<name>",
+        "W",
+        "time mean of the power the bearing dissipates: film shear (Couette and "
+        "pressure-gradient parts), squeeze, contact friction",
+        "summary",
+    ),
+)
 
 
 @dataclass(frozen=True)
@@ -35,7 +97,8 @@ class BearingLaw(ModelChoice):
         The bearings (``layout.BEARING_NAMES``) that may run on it.
     film : bool
         It reads the oil-film keys of ``[bearings.<name>]`` (geometry, clearance, oil,
-        contact) and the model writes them into the bearing's row.
+        contact) and the model writes them into the bearing's row; its ``outputs`` hold
+        :data:`FILM_OUTPUTS`.
     spring : bool
         It reads ``stiffness`` and ``damping`` (required).
     station_pair : bool

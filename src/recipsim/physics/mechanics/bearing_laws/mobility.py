@@ -43,7 +43,7 @@ import math
 import numpy as np
 from numba import njit
 
-from recipsim.physics.mechanics.bearing_laws.law import BearingLaw
+from recipsim.physics.mechanics.bearing_laws.law import FILM_OUTPUTS, BearingLaw
 from recipsim.physics.mechanics.bearing_laws.short_journal import film_secant_stiffness
 from recipsim.physics.mechanics.journal import (
     couette_torque,
@@ -70,6 +70,7 @@ LAW = BearingLaw(
     "Flores, Ambrosio, Claro & Pimenta (2006), Mecanica Experimental 13, 115-127",
     bearings=JOURNAL_NAMES,
     start_stiffness=film_secant_stiffness,
+    outputs=FILM_OUTPUTS,
 )
 
 #: Newton's step on ``t = tan(delta/2)`` below which the next one is taken as the last:

@@ -9,8 +9,9 @@ flexible model calls for one bearing's row.
 Adding a journal law
 --------------------
 1. A module in this folder with its entry ``LAW`` (name, a new ``CODE``, summary, source,
-   the bearings it serves, any keys of its own) and its compiled ``film`` and
-   ``peak_pressure`` functions with the signature of :mod:`.law`.
+   the bearings it serves, any keys of its own, ``outputs=law.FILM_OUTPUTS``: the film
+   bearing's report columns) and its compiled ``film`` and ``peak_pressure`` functions
+   with the signature of :mod:`.law`.
 2. Here: import the module, add ``LAW`` to :data:`BEARING_LAWS`, and one branch in
    :func:`bearing_film` and :func:`bearing_peak_pressure` (numba dispatches statically).
 3. Its tests (the forces against a closed form or another law's limit) and a shipped case

@@ -10,7 +10,7 @@ import math
 import numpy as np
 from numba import njit
 
-from recipsim.physics.mechanics.bearing_laws.law import BearingLaw
+from recipsim.physics.mechanics.bearing_laws.law import FILM_OUTPUTS, BearingLaw
 from recipsim.physics.mechanics.journal import short_journal_film, short_journal_peak_pressure
 from recipsim.physics.mechanics.layout import (
     BP_CLEARANCE,
@@ -44,6 +44,7 @@ LAW = BearingLaw(
     source="Booker (1965), J. Basic Eng. 87, 537-546; Ocvirk (1952), NACA TN 2808",
     bearings=JOURNAL_NAMES,
     start_stiffness=film_secant_stiffness,
+    outputs=FILM_OUTPUTS,
 )
 
 

@@ -5,10 +5,24 @@ itself (:func:`recipsim.physics.mechanics.bearing_forces.piston_skirt_forces`)."
 
 from __future__ import annotations
 
-from recipsim.physics.mechanics.bearing_laws.law import BearingLaw
+from recipsim.physics.mechanics.bearing_laws.law import FILM_OUTPUTS, BearingLaw, mechanism_output
 from recipsim.physics.mechanics.layout import PISTON_STATION_NAMES
+from recipsim.slots import Output
 
 CODE = 3
+
+#: The piston film's own report columns, besides each station's film columns: its axial
+#: friction force and power over the cycle, the power's time mean in the summary.
+PISTON_FILM_OUTPUTS = (
+    mechanism_output("piston_friction_force"),
+    mechanism_output("piston_friction_power"),
+    Output(
+        "piston_friction_power",
+        "W",
+        "time mean of the power of the piston film's axial friction",
+        "summary",
+    ),
+)
 
 LAW = BearingLaw(
     name="skirt_film",
@@ -20,4 +34,5 @@ LAW = BearingLaw(
     "circumferential shape; checked against a 2-D finite-difference Reynolds solution",
     bearings=PISTON_STATION_NAMES,
     station_pair=True,
+    outputs=(*FILM_OUTPUTS, *PISTON_FILM_OUTPUTS),
 )
