@@ -105,6 +105,7 @@ class Residuals:
             ]
         )
         self._cache: dict[tuple[float, ...], np.ndarray] = {}
+        self._failures: dict[tuple[float, ...], list[str]] = {}
 
     @property
     def evaluations(self) -> int:
@@ -115,15 +116,34 @@ class Residuals:
         if key not in self._cache:
             fitted = {p.key: p.from_x(v) for p, v in zip(self.parameters, key, strict=True)}
             out = []
+            failures = []
             for case, point in zip(self.cases, self.points, strict=True):
-                row = _run_point(case, point, fitted, self.simulate)
+                row, why = _run_point(case, point, fitted, self.simulate)
+                if row is None:
+                    failures.append(f"{point.label}: {why}")
                 for t in self.targets:
                     if t in point.targets:
                         predicted = row.get(t, math.nan) if row is not None else math.nan
                         r = predicted / point.targets[t] - 1.0
                         out.append(r if math.isfinite(r) else FAILED_RESIDUAL)
             self._cache[key] = np.array(out)
+            self._failures[key] = failures
         return self._cache[key]
+
+    def failures(self, x: np.ndarray) -> list[str]:
+        """The points that failed at ``x`` (already run), each with its error's message."""
+        return self._failures.get(tuple(float(v) for v in x), [])
+
+    def describe(self, x: np.ndarray) -> str:
+        """``x`` as the parameters' values, and the points that failed there."""
+        values = ", ".join(
+            f"{p.key} = {p.from_x(v):.4g}" for p, v in zip(self.parameters, x, strict=True)
+        )
+        failed = self.failures(x)
+        if not failed:
+            return f"at {values}: no point failed"
+        more = f"; and {len(failed) - 1} more point(s)" if len(failed) > 1 else ""
+        return f"at {values}: {failed[0]}{more}"
 
 
 def _run_point(
@@ -131,21 +151,28 @@ def _run_point(
     point: MeasuredPoint,
     fitted: dict[str, float],
     simulate: Callable[[Case], dict[str, float]],
-) -> dict[str, float] | None:
+) -> tuple[dict[str, float] | None, str]:
+    """The point's summary row, or None and why it failed."""
     try:  # a trial's warnings are not the calibrated case's: kept, then dropped
         with kept_warnings():
-            return simulate(case.with_({**point.overrides, **SOLVER_OVERRIDES, **fitted}))
-    except (RecipsimError, ValueError):  # ValueError: a property flash failed in CoolProp
-        return None
+            return simulate(case.with_({**point.overrides, **SOLVER_OVERRIDES, **fitted})), ""
+    except (RecipsimError, ValueError) as exc:  # ValueError: a property flash in CoolProp
+        return None, str(exc)
 
 
 def forward_jacobian(
-    f: Callable[[np.ndarray], np.ndarray], x: np.ndarray, upper: np.ndarray | None = None
+    f: Callable[[np.ndarray], np.ndarray],
+    x: np.ndarray,
+    upper: np.ndarray | None = None,
+    names: Sequence[str] | None = None,
+    lower: np.ndarray | None = None,
 ) -> np.ndarray:
     """Forward differences with the fixed step :data:`STEP` in the fitted variables
     (the log for logarithmic parameters: a 1 % change; else 1 % of the range); a
     backward step where the forward one would pass ``upper`` (a value the case may
-    refuse, such as a fraction above 1)."""
+    refuse, such as a fraction above 1) or where a point fails the forward step, unless
+    it would pass ``lower``. ``names``: the parameters' keys, for the error (a
+    :class:`Residuals` ``f`` adds where a point failed and why)."""
     f0 = f(x)
     jac = np.empty((f0.size, x.size))
     for j in range(x.size):
@@ -155,12 +182,23 @@ def forward_jacobian(
         moved = f(step)
         failed = (moved == FAILED_RESIDUAL) & (f0 != FAILED_RESIDUAL)
         if np.any(failed):  # a point that fails a step away: the other side, or stop
+            tried = [step.copy()]
             step[j] = x[j] - h
-            moved, h = f(step), -h
-            if np.any((moved == FAILED_RESIDUAL) & (f0 != FAILED_RESIDUAL)):
+            if lower is None or step[j] >= lower[j]:
+                moved, h = f(step), -h
+                failed = (moved == FAILED_RESIDUAL) & (f0 != FAILED_RESIDUAL)
+                tried.append(step.copy())
+            if np.any(failed):
+                name = names[j] if names is not None else f"parameter {j + 1}"
+                where = (
+                    " (" + "; ".join(f.describe(t) for t in tried) + ")"
+                    if isinstance(f, Residuals)
+                    else ""
+                )
+                side = "on either side" if len(tried) == 2 else "and the other side is its bound"
                 raise CalibrationError(
-                    f"parameter {j + 1}: a calibration point fails a {STEP:.0%} step away "
-                    "from the current values on either side; narrow the bounds"
+                    f"{name}: a calibration point fails a {STEP:.0%} step away from the "
+                    f"current values {side}{where}; narrow the bounds"
                 )
         jac[:, j] = (moved - f0) / h
     return jac
@@ -255,17 +293,18 @@ def fit_parameters(
             "fit fewer parameters or use more points"
         )
     f = Residuals(case, points, targets, parameters, simulate, cases)
+    keys = [p.key for p in parameters]
     lower = np.array([p.to_x(p.lower) for p in parameters])
     upper = np.array([p.to_x(p.upper) for p in parameters])
     x0 = np.array([p.to_x(p.initial) for p in parameters])
     x0 = np.clip(x0, lower + 1e-6 * (upper - lower), upper - 1e-6 * (upper - lower))
-    check_identifiable(forward_jacobian(f, x0, upper), parameters)
+    check_identifiable(forward_jacobian(f, x0, upper, keys, lower), parameters)
     from scipy.optimize import least_squares  # a heavy import, needed only to fit
 
     result = least_squares(
         f,
         x0,
-        jac=lambda x: forward_jacobian(f, x, upper),
+        jac=lambda x: forward_jacobian(f, x, upper, keys, lower),
         bounds=(lower, upper),
         method="trf",
         xtol=1e-4,
@@ -274,8 +313,10 @@ def fit_parameters(
     )
     r = f(result.x)
     if np.any(r == FAILED_RESIDUAL):
-        raise CalibrationError("a calibration point does not run at the fitted values")
-    std_by = _confidence(f, result.x, r, upper, parameters)
+        raise CalibrationError(
+            f"a calibration point does not run at the fitted values ({f.describe(result.x)})"
+        )
+    std_by = _confidence(f, result.x, r, (lower, upper), parameters)
     return FitResult(
         parameters=tuple(parameters),
         values=tuple(p.from_x(v) for p, v in zip(parameters, result.x, strict=True)),
@@ -288,7 +329,11 @@ def fit_parameters(
 
 
 def _confidence(
-    f: Residuals, x: np.ndarray, r: np.ndarray, upper: np.ndarray, parameters: Sequence[Parameter]
+    f: Residuals,
+    x: np.ndarray,
+    r: np.ndarray,
+    bounds: tuple[np.ndarray, np.ndarray],
+    parameters: Sequence[Parameter],
 ) -> list[tuple[float, ...]]:
     """The standard deviations (:func:`_std`) at the optimum ``x``, after the checks of
     identifiability and determination there.
@@ -298,7 +343,8 @@ def _confidence(
     interval (infinite standard deviations), not refused after the whole fit: the start
     had its influence.
     """
-    jac = forward_jacobian(f, x, upper)
+    lower, upper = bounds
+    jac = forward_jacobian(f, x, upper, [p.key for p in parameters], lower)
     dead = np.abs(jac).max(axis=0) * STEP <= MIN_INFLUENCE
     live = [p for p, d in zip(parameters, dead, strict=True) if not d]
     if live:  # at the optimum too: effects may align there

@@ -236,3 +236,37 @@ def test_a_point_failing_a_step_away_is_stepped_the_other_way() -> None:
 
     with pytest.raises(CalibrationError, match="fails a 1% step"):
         forward_jacobian(g, np.array([0.5]))
+
+
+def test_a_failing_step_names_the_parameter_the_point_and_the_reason() -> None:
+    """A linear parameter at its lower bound (0) whose forward step fails: the backward
+    step would leave the bounds (a negative volume the case refuses), so it is not tried,
+    and the error names the parameter, the point that failed and the solver's reason."""
+    import numpy as np
+
+    from recipsim.errors import RecipsimError
+    from recipsim.studies.calibrate.data import MeasuredPoint
+    from recipsim.studies.calibrate.fit import Residuals, forward_jacobian
+    from recipsim.studies.calibrate.parameters import CalibrationError, Parameter
+
+    key = "geometry.other_dead_volume"
+    parameter = Parameter(key, 0.0, 1e-7, 0.0)
+    tried: list[float] = []
+
+    def simulate(case: Case) -> dict[str, float]:  # fails above 0.5e-9 m3
+        volume = case.raw["geometry"]["other_dead_volume"]
+        tried.append(volume)
+        if volume > 0.5e-9:
+            raise RecipsimError("not converged after 400 revolutions")
+        return {"cooling_capacity [W]": 100.0}
+
+    point = MeasuredPoint(1, "EN12900 -25degC", targets={"cooling_capacity [W]": 100.0},
+                          resolution={"cooling_capacity [W]": 0.5})  # fmt: skip
+    case = load_case("reference_r134a_lbp")
+    f = Residuals(case, [point], ["cooling_capacity [W]"], [parameter], simulate)
+    with pytest.raises(CalibrationError) as caught:
+        forward_jacobian(f, np.array([0.0]), np.array([1.0]), [key], np.array([0.0]))
+    message = str(caught.value)
+    assert key in message and "EN12900 -25degC" in message
+    assert "not converged after 400 revolutions" in message and "its bound" in message
+    assert min(tried) >= 0.0  # no run below the lower bound
