@@ -84,3 +84,59 @@ def test_summary_reports_the_speed_it_ran_at(tles):
 def test_motor_slip_needs_the_equivalent_circuit():
     with pytest.raises(CaseError, match="options.speed"):
         load_case("reference_r134a_lbp_ideal", {"options.speed": "motor_slip"})
+
+
+def _fake_loop(monkeypatch, circuit_speed):
+    """``solve_at_motor_speed`` with the cycle replaced by ``circuit_speed(omega)``: the
+    circuit's speed [rad/s] at the load of a cycle run at ``omega``; returns the calls."""
+    import recipsim.solve.motor_speed as ms
+
+    class _Solution:
+        revolutions = 1
+
+    calls: list[float] = []
+    monkeypatch.setattr(ms, "build_model_for", lambda case: case)
+    monkeypatch.setattr(ms, "_warm_started", lambda model, old: model)
+    monkeypatch.setattr(ms, "solve_periodic", lambda model: _Solution())
+
+    def at_load(model, solution):
+        omega = model.operating_point.shaft_speed
+        calls.append(omega)
+        return circuit_speed(omega)
+
+    monkeypatch.setattr(ms, "motor_speed_at_load", at_load)
+    return calls
+
+
+def test_a_load_that_jumps_with_speed_is_bracketed_to_the_jump(monkeypatch, tles):
+    """The cycle's load jumps at 300 rad/s (a valve fluttering on two revolutions above
+    it): the circuit's speed is 300.003 rad/s below the jump and 299.997 above, so plain
+    iteration swings between them for ever. The bracket closes on the jump within the
+    tolerance, in fewer solves than the limit."""
+    from recipsim.solve.motor_speed import MAX_SPEED_SOLVES
+
+    jump = 300.0
+
+    def circuit_speed(omega: float) -> float:  # slope -0.03: the steep circuit
+        return jump - 0.03 * (omega - jump) + (0.003 if omega < jump else -0.003)
+
+    case = tles.with_({"operating_point.shaft_speed": 2900 / RPM, "solver.cycle_tolerance": 1e-6})
+    calls = _fake_loop(monkeypatch, circuit_speed)
+    found = solve_at_motor_speed(case)
+    speed = found.case.operating_point.shaft_speed
+    assert abs(speed - jump) / jump < 2e-6  # within the tolerance (and the last half-step)
+    assert len(calls) < MAX_SPEED_SOLVES
+
+
+def test_a_smooth_load_still_takes_the_plain_steps(monkeypatch, tles):
+    """Without a jump the iteration is the plain one, contracting by the slope 0.03 a
+    solve: from 2900 rpm to 1e-6 in four solves, not slowed by the bracket."""
+
+    def circuit_speed(omega: float) -> float:
+        return 305.0 - 0.03 * (omega - 305.0)
+
+    case = tles.with_({"operating_point.shaft_speed": 2900 / RPM, "solver.cycle_tolerance": 1e-6})
+    calls = _fake_loop(monkeypatch, circuit_speed)
+    found = solve_at_motor_speed(case)
+    assert abs(found.case.operating_point.shaft_speed - 305.0) / 305.0 < 1e-6
+    assert len(calls) <= 4

@@ -12,6 +12,14 @@ The load torque rises slowly with speed while the circuit's speed falls steeply 
 torque near synchronism, so the plain iteration contracts by about
 ``|dT/domega| / |dT_motor/domega|`` (a few per cent on a household RSIR motor): two or
 three solves, each after the first started from the previous periodic state.
+
+Where the cycle's response jumps with speed (a valve that flutters on a period of two
+revolutions above a speed and not below it), the load torque jumps too and the iteration
+would swing between the two sides for ever. The speeds solved at bracket the balance
+(those whose load asks for more speed below it, the others above); a step that reverses
+the last one without halving it is itself halved from then on, and the speed is settled
+once the bracket is narrower than the tolerance: the torques balance at the jump, within
+that bracket.
 """
 
 from __future__ import annotations
@@ -33,7 +41,7 @@ from recipsim.solve.drive import build_model_for
 from recipsim.solve.periodic import PeriodicSolution, solve_periodic
 
 #: Solves of the cycle before the speed iteration gives up.
-MAX_SPEED_SOLVES = 8
+MAX_SPEED_SOLVES = 16
 
 
 @dataclass(frozen=True)
@@ -125,6 +133,9 @@ def solve_at_motor_speed(case: Case) -> MotorSpeedSolution:
     speeds: list[float] = []
     revolutions = 0
     previous: PeriodicSolution | None = None
+    below, above = 0.0, math.inf  # the speeds known to be below and above the balance
+    relaxation = 1.0
+    last_step = 0.0
     for _ in range(MAX_SPEED_SOLVES):
         current = case.with_({"operating_point.shaft_speed": speed})
         model: Model = build_model_for(current)
@@ -135,10 +146,20 @@ def solve_at_motor_speed(case: Case) -> MotorSpeedSolution:
         speeds.append(speed)
         following = motor_speed_at_load(model, solution)
         residual = abs(following - speed) / speed
-        if residual < tolerance:
+        if following > speed:
+            below = max(below, speed)
+        else:
+            above = min(above, speed)
+        if residual < tolerance or (above - below) / speed < tolerance:
             return MotorSpeedSolution(current, solution, tuple(speeds), residual, revolutions)
+        step = following - speed
+        if step * last_step < 0.0 and abs(step) > 0.5 * abs(last_step):
+            relaxation *= 0.5  # reversed without shrinking: a jump between the two
+        last_step = step
         previous = solution
-        speed = following
+        speed = speed + relaxation * step
+        if not below < speed < above:  # outside the bracket: its middle
+            speed = 0.5 * (below + above)
     raise SolverError(
         f"options.speed = 'motor_slip': the speed did not settle in {MAX_SPEED_SOLVES} solves "
         f"(last {speeds[-1] * 30.0 / math.pi:.2f} rpm, relative change {residual:.2e})"

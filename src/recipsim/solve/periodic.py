@@ -45,7 +45,12 @@ from recipsim.errors import SolverError
 from recipsim.model.build import Model, WorkingModel
 from recipsim.model.scenes import SCENE_CYLINDER
 from recipsim.solve.acceleration import AndersonMixing
-from recipsim.solve.residual import cycle_residual, residual_reference, state_change
+from recipsim.solve.residual import (
+    cycle_residual,
+    residual_reference,
+    stalled,
+    state_change,
+)
 from recipsim.solve.revolution import (
     INTEGRATOR_METHODS,
     PeriodicSolution,
@@ -98,17 +103,6 @@ __all__ = [
 _RATE_WINDOW = 2
 _SHOOTING_OVERHEAD = 4
 _AUTO_MIN_REVOLUTIONS = 4
-#: The residual has stalled when its best over the last ``STALL_WINDOW`` revolutions is
-#: no better than ``STALL_GAIN`` times its best before them.
-STALL_WINDOW = 8
-STALL_GAIN = 0.5
-
-
-def stalled(history: list[float]) -> bool:
-    """Whether the cycle residual stopped decaying (see :data:`STALL_WINDOW`)."""
-    if len(history) <= STALL_WINDOW:
-        return False
-    return min(history[-STALL_WINDOW:]) >= STALL_GAIN * min(history[:-STALL_WINDOW])
 
 
 def predicted_revolutions(history: list[float], tolerance: float) -> float:

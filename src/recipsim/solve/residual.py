@@ -70,6 +70,19 @@ CLOSURE_ALLOWANCE = 10.0
 CLOSURE_FLOOR = 1e-2
 
 
+#: The residual has stalled when its best over the last ``STALL_WINDOW`` revolutions is
+#: no better than ``STALL_GAIN`` times its best before them.
+STALL_WINDOW = 8
+STALL_GAIN = 0.5
+
+
+def stalled(history: list[float]) -> bool:
+    """Whether the cycle residual stopped decaying (see :data:`STALL_WINDOW`)."""
+    if len(history) <= STALL_WINDOW:
+        return False
+    return min(history[-STALL_WINDOW:]) >= STALL_GAIN * min(history[:-STALL_WINDOW])
+
+
 def residual_reference(model: Model, rev: Revolution) -> np.ndarray:
     """Size against which each error-controlled state's change over ``rev`` is judged.
 

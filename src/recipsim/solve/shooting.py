@@ -50,8 +50,11 @@ revolution; every map evaluation starts from them. Steps of 1e-3 of T and rho mo
 valve events continuously and do not flip the modes at the section (both valves are
 shut at 270 deg); a difference revolution that ends in other modes than the base is
 retried with a step ten times smaller and kept if it still does. When Newton stalls
-(no step reduces the residual with a fresh Jacobian) or a difference revolution
-fails, the solver falls back to revolution iteration for the remaining revolutions.
+(no step reduces the residual with a fresh Jacobian), a difference revolution fails or
+the cycle residual stops decaying (:func:`.residual.stalled`: the iterates have left for
+an orbit of several revolutions, which the one-revolution map does not have), the solver
+falls back to revolution iteration for the remaining revolutions, which ends on a period
+of n revolutions as revolution iteration does (:func:`.subharmonic.subharmonic_period`).
 
 Limits: the map is only as smooth as the integrator makes it. Undamped bearings ring
 at up to 6.6 kHz, over a hundred periods per revolution, and at ``rtol = 1e-6`` the
@@ -75,7 +78,7 @@ import numpy as np
 
 from recipsim.model.build import Model, WorkingModel
 from recipsim.solve.newton import newton_fixed_point
-from recipsim.solve.residual import cycle_residual, state_change
+from recipsim.solve.residual import cycle_residual, residual_reference, stalled, state_change
 from recipsim.solve.revolution import (
     PeriodicSolution,
     Revolution,
@@ -88,6 +91,7 @@ from recipsim.solve.shooting_map import (  # noqa: F401  (shooting_unknowns re-e
     shooting_cost,
     shooting_unknowns,
 )
+from recipsim.solve.subharmonic import SUBHARMONIC_PERIODS, period_average, subharmonic_period
 
 #: Plain revolutions before the first Jacobian when shooting starts from the initial
 #: state (the first sets the discharge enthalpy, both damp the fast gas modes).
@@ -193,6 +197,7 @@ class _Shooting:
         self.jacobian_revolutions = 0
         self.map_jacobian: np.ndarray | None = None  # the last scaled dG/dz - I
         self.method = "shooting"
+        self.chain: list[Revolution] = []  # the last plain revolutions run end to end
 
     def _plain(self, y: np.ndarray, mode: np.ndarray) -> Revolution:
         """A revolution of revolution iteration: from ``y`` with the discharge enthalpy
@@ -206,8 +211,27 @@ class _Shooting:
         self.chained = self.previous is not None and np.array_equal(
             rev.y_start, self.previous.y_end
         )
+        keep = 2 * SUBHARMONIC_PERIODS[-1]
+        self.chain = [*self.chain[-keep:], rev] if self.chained else [rev]
         self.previous = rev
         return rev
+
+    def _subharmonic(self, rev: Revolution) -> PeriodicSolution | None:
+        """Where the residual stalled and the chained plain revolutions repeat after n
+        revolutions (:func:`.subharmonic.subharmonic_period`), the solution of period n
+        (quadratures averaged over it), as revolution iteration ends such a run; else
+        None."""
+        model = self.model
+        if not stalled(self.history):
+            return None
+        ref = residual_reference(model, rev) * (model.scale[: model.n_err] > 0.0)
+        ends = [r.y_end[: model.n_err] for r in self.chain]
+        period = subharmonic_period(ends, ref, self.s.cycle_tolerance)
+        if period == 1:
+            return None
+        solution = self._solution(period_average(self.chain[-period:], model.n_err), True)
+        solution.period_revolutions = period
+        return solution
 
     def _follow_enthalpy(self, rev: Revolution) -> float:
         """The discharge plenum takes the enthalpy ``rev`` delivered (the source of
@@ -292,6 +316,15 @@ class _Shooting:
             z = fmap.pack(rev.y_end)
             rev = self._plain(rev.y_end.copy(), rev.mode_end.copy())
             g = fmap.pack(rev.y_end)
+            if not newton_failed and stalled(self.history):
+                # Newton gains nothing (the orbit may have a period of n revolutions,
+                # which the one-revolution map does not have): revolutions settle it
+                self.method = "shooting, fell back to revolutions"
+                newton_failed = True
+            if newton_failed:
+                periodic = self._subharmonic(rev)
+                if periodic is not None:
+                    return periodic
             if newton_failed or self._done(rev) or self._budget() <= 0:
                 continue  # revolution iteration settles the rest
             change = state_change(model, rev)

@@ -222,3 +222,42 @@ def test_a_tolerance_below_the_noise_is_not_taken_for_a_subharmonic() -> None:
     row = simulate_row(case)
     assert row["status"] == "not_converged" and not row["converged [-]"]
     assert row["periodic_method"] == "revolutions" and "stalled" in row["status_message"]
+
+
+#: A TLES10KK.3 point (a trial of a family calibration) whose thermally coupled cycle at
+#: 2918.945 rpm settles on a period of several revolutions: the residual falls to 4e-6,
+#: then one-revolution shooting lands on an orbit whose states alternate by about 4e-4.
+SHELL_PERIOD_TWO = {
+    "operating_point.standard": "EN12900",
+    "operating_point.evaporating_temperature": "-15 degC",
+    "operating_point.condensing_temperature": "55 degC",
+    "operating_point.suction_temperature": "32 degC",
+    "operating_point.liquid_temperature": "55 degC",
+    "operating_point.ambient_temperature": "32 degC",
+    "geometry.other_dead_volume": "4.53e-8 m^3",
+    "leakage.radial_clearance": "1.15e-5 m",
+    "solver.cycle_tolerance": 1e-6,
+    "solver.max_revolutions": 400,
+    "options.speed": "case",
+    "operating_point.shaft_speed": "2918.945272 rpm",
+}
+
+
+def test_shooting_that_lands_on_a_period_two_orbit_ends_as_revolution_iteration_does():
+    """Revolution iteration alone settles this case on a period of n > 1 revolutions (the
+    premise, checked first). With ``auto`` the hand-over to one-revolution shooting used to
+    chord-step for its whole budget (400 revolutions, unconverged at 4.5e-4): Newton now
+    gives up when the residual stalls, and the revolutions that follow end on a period of
+    n > 1 revolutions, converged, in a fifth of the budget."""
+    from recipsim.solve.drive import build_model_for
+    from recipsim.solve.periodic import solve_periodic
+
+    plain = load_case("tles10kk3_r600a", {**SHELL_PERIOD_TWO, "solver.periodic": "revolutions"})
+    premise = solve_periodic(build_model_for(plain))
+    assert premise.converged and premise.period_revolutions > 1
+
+    auto = load_case("tles10kk3_r600a", {**SHELL_PERIOD_TWO, "solver.periodic": "auto"})
+    solution = solve_periodic(build_model_for(auto))
+    assert solution.converged and solution.period_revolutions > 1
+    assert solution.revolutions < 40 * 2  # 46 here; the budget is 400
+    assert "fell back to revolutions" in solution.method
