@@ -69,9 +69,15 @@ class Calibration:
 def _summary_row(case: Case) -> dict[str, Any]:
 
     run = simulate_case(case)
-    if not run.row.get("converged [-]", True):
-        raise RecipsimError(f"{case.name}: not converged")
-    return dict(run.row)
+    row = run.row
+    if not row.get("converged [-]", True):
+        residual = row.get("cycle_residual [-]", math.nan)
+        raise RecipsimError(
+            f"{case.name}: not converged: cycle residual {residual:.2g} after "
+            f"{row.get('revolutions [-]', '?')} revolutions ({row.get('periodic_method', '?')}; "
+            f"tolerance {case.solver.cycle_tolerance:.2g})"
+        )
+    return dict(row)
 
 
 def calibrate_case(

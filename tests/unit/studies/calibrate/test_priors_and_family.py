@@ -270,3 +270,16 @@ def test_a_failing_step_names_the_parameter_the_point_and_the_reason() -> None:
     assert key in message and "EN12900 -25degC" in message
     assert "not converged after 400 revolutions" in message and "its bound" in message
     assert min(tried) >= 0.0  # no run below the lower bound
+
+
+def test_an_unconverged_point_says_how_far_it_got() -> None:
+    """A calibration run that ends unconverged (here: one revolution allowed) is refused
+    with its residual, its revolutions and the tolerance, not a bare "not converged"."""
+    from recipsim.errors import RecipsimError
+    from recipsim.studies.calibrate.run import _summary_row
+
+    case = load_case(
+        "reference_r134a_lbp", {"solver.max_revolutions": 1, "solver.min_revolutions": 1}
+    )
+    with pytest.raises(RecipsimError, match=r"cycle residual .* after 1 revolutions .*tolerance"):
+        _summary_row(case)
