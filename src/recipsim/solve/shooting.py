@@ -188,6 +188,7 @@ class _Shooting:
         self.s = model.case.solver
         self.t0 = time.perf_counter() if t0 is None else t0
         self.history = [] if history is None else history
+        self.first = len(self.history)  # the residuals before are the hand-over's
         self.tally = _Tally() if tally is None else tally
         self.previous: Revolution | None = start[0] if start is not None else None
         self.h = model.period * 1e-4 if start is None else start[1]
@@ -316,7 +317,7 @@ class _Shooting:
             z = fmap.pack(rev.y_end)
             rev = self._plain(rev.y_end.copy(), rev.mode_end.copy())
             g = fmap.pack(rev.y_end)
-            if not newton_failed and stalled(self.history):
+            if not newton_failed and stalled(self.history[self.first :]):
                 # Newton gains nothing (the orbit may have a period of n revolutions,
                 # which the one-revolution map does not have): revolutions settle it
                 self.method = "shooting, fell back to revolutions"
