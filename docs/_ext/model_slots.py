@@ -2,9 +2,10 @@
 
 ``.. model-slot:: recipsim.physics.thermo.valve_models:VALVE_MODELS`` (or
 ``...valve_models.VALVE_MODELS``) writes the slot's
-case key, what it models, and one row per choice (name, what it models, source), read
-from the :class:`recipsim.slots.Slot` object named: a choice added to the registry
-appears without editing the documentation.
+case key, what it models, one row per choice (name, what it models, source) and the
+report columns each choice adds (its ``outputs``), read from the
+:class:`recipsim.slots.Slot` object named: a choice added to the registry appears
+without editing the documentation.
 """
 
 from __future__ import annotations
@@ -31,7 +32,17 @@ def slot_lines(slot: Any) -> list[str]:
     for choice, summary, source in rows:
         first = choice if choice == "choice" else f"``{choice}``"
         lines += [f"   * - {first}", f"     - {_cell(summary)}", f"     - {_cell(source)}"]
-    return [*lines, ""]
+    lines.append("")
+    adding = [choice for choice in slot if choice.outputs]
+    if adding:
+        lines += ["Report columns a choice adds (absent without it):", ""]
+        for choice in adding:
+            for table in ("cycle", "summary"):
+                columns = [f"``{o.column}``" for o in choice.outputs if o.table == table]
+                if columns:
+                    lines.append(f"- ``{choice.name}``, ``{table}.csv``: {', '.join(columns)}")
+        lines.append("")
+    return lines
 
 
 def slot_rst(target: str) -> list[str]:

@@ -142,3 +142,30 @@ def test_the_example_notebooks_are_pages_with_their_outputs(site):
         assert "cell_output" in html, notebook.name  # executed: every page shows results
     plots = (site / "examples" / "03_pv_and_bearing_plots.html").read_text()
     assert len(_images(plots)) >= 3
+
+
+def test_model_slot_pages_name_every_column_a_choice_adds(site):
+    """The model-slot directive lists each choice's declared report columns (``outputs``)
+    on the page that shows its slot: every declared column of every registered slot is on
+    the model-slots page or the valves page."""
+    import html as html_lib
+
+    from recipsim.physics.friction_models import FRICTION_MODELS
+    from recipsim.physics.mechanics.bearing_laws.registry import BEARING_LAWS
+    from recipsim.physics.mechanics.crank_trains import CRANK_TRAINS
+    from recipsim.physics.thermo.pressure_sources import PRESSURE_SOURCES
+
+    # the words of a literal are spans of their own: the tags out, then the entities
+    text = "".join(
+        html_lib.unescape(re.sub(r"<[^>]+>", "", (site / f"{page}.html").read_text()))
+        for page in ("model-slots", "valves")
+    )
+    declared = [
+        (choice.name, output.column)
+        for slot in (BEARING_LAWS, CRANK_TRAINS, FRICTION_MODELS, PRESSURE_SOURCES)
+        for choice in slot
+        for output in choice.outputs
+    ]
+    assert declared  # the film laws, the skirt, the flexible crank, the mean friction
+    missing = [(name, column) for name, column in declared if column not in text]
+    assert not missing, missing
