@@ -126,6 +126,21 @@ def _calibrate(args: argparse.Namespace) -> int:
     if not args.member:
         columns.remove("member")
     print(result.points[columns].to_string(index=False, float_format=lambda v: f"{v:+.3f}"))
+    _print_volumetric(result.volumetric)
     worst = max((abs(v) for c in errors for v in result.points[c] if math.isfinite(v)), default=0.0)
     print(f"\nlargest error {worst:.1%}; {result.fit.evaluations} parameter sets run -> {where}")
     return 0
+
+
+def _print_volumetric(table: Any) -> None:
+    """The volumetric decomposition, catalogue against model (none without capacities)."""
+    if table.empty:
+        return
+    print("\nvolumetric decomposition (eta_v = 1 - x - V_d/V R; docs/calibration.md):")
+    for row in table.itertuples(index=False):
+        member, source, dead, low, high, losses, loss_low, loss_high, rms, _ = row
+        print(
+            f"  {member} {source:>9}: effective dead volume {dead * 1e6:.4f} cm3 "
+            f"({low * 1e6:.4f}..{high * 1e6:.4f}), other losses {losses:.3f} "
+            f"({loss_low:.3f}..{loss_high:.3f}), rms {rms:.4f}"
+        )

@@ -1,6 +1,6 @@
-"""Write a calibration: ``parameters.csv``, ``points.csv``, ``calibration.json`` and the
-calibrated case (``case.toml``, fully resolved, with its refrigerant file), into one
-directory replaced atomically."""
+"""Write a calibration: ``parameters.csv``, ``points.csv``, ``volumetric.csv`` (where the
+capacity was a target), ``calibration.json`` and the calibrated case (``case.toml``, fully
+resolved, with its refrigerant file), into one directory replaced atomically."""
 
 from __future__ import annotations
 
@@ -57,6 +57,8 @@ def write_calibration(calibration: Calibration, out_dir: str | Path) -> Path:
     with atomic_directory(target) as tmp:
         calibration.parameters.to_csv(tmp / "parameters.csv", index=False)
         calibration.points.to_csv(tmp / "points.csv", index=False)
+        if not calibration.volumetric.empty:
+            calibration.volumetric.to_csv(tmp / "volumetric.csv", index=False)
         (tmp / "calibration.json").write_text(json.dumps(meta, indent=2) + "\n")
         (tmp / "case.toml").write_text("\n".join(header) + "\n" + text)
         for relative, content in files.items():

@@ -6,7 +6,7 @@ from __future__ import annotations
 import difflib
 import math
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
@@ -22,6 +22,7 @@ from recipsim.studies.calibrate.family import Member, as_members, member_case
 from recipsim.studies.calibrate.fit import FitResult, fit_parameters
 from recipsim.studies.calibrate.parameters import CalibrationError, Parameter, parse_parameter
 from recipsim.studies.calibrate.priors import prior_of, verdict
+from recipsim.studies.calibrate.volumetric import CAPACITY, volumetric_rows
 from recipsim.studies.point_warnings import kept_warnings
 
 #: A fitted value this close (relative) to a bound ended on it: the fit's ``xtol``.
@@ -55,6 +56,11 @@ class Calibration:
         The family case's data file.
     members : tuple of (str, Case, str)
         Every member as (name, calibrated case, data file), the family case's first.
+    volumetric : pandas.DataFrame
+        Where the capacity is a target: per member, the volumetric decomposition
+        (:mod:`.volumetric`) of the catalogue's capacities and of the calibrated model's,
+        one row each (``member``, ``source``, the effective dead volume and the other
+        losses with their 95 % intervals, ``rms [-]``, ``points [-]``).
     """
 
     case: Case
@@ -64,6 +70,7 @@ class Calibration:
     points: pd.DataFrame
     data: str
     members: tuple[tuple[str, Case, str], ...] = ()
+    volumetric: pd.DataFrame = field(default_factory=pd.DataFrame)
 
 
 def _summary_row(case: Case) -> dict[str, Any]:
@@ -140,13 +147,14 @@ def calibrate_case(
         case, [p for _, p in fitting], chosen, specs, simulate, cases=[c for c, _ in fitting]
     )
     fitted = {p.key: v for p, v in zip(specs, fit.values, strict=True)}
-    tables, calibrated = [], []
+    tables, calibrated, volumetric = [], [], []
     for member, member_base, measured, used in groups:
         own = member_base.with_(fitted)
         calibrated.append((member.name, own, str(find_data_file(member.data))))
         table = _point_table(own, measured, used, chosen, simulate)
         table.insert(0, "member", member.name)
         tables.append(table)
+        volumetric += _volumetric(member.name, own, measured, table)
     return Calibration(
         case,
         calibrated[0][1],
@@ -155,7 +163,25 @@ def calibrate_case(
         pd.concat(tables, ignore_index=True),
         calibrated[0][2],
         tuple(calibrated),
+        pd.DataFrame(volumetric),
     )
+
+
+def _volumetric(
+    name: str, case: Case, measured: Sequence[MeasuredPoint], table: pd.DataFrame
+) -> list[dict[str, Any]]:
+    """The volumetric decomposition rows of one member (:mod:`.volumetric`): its
+    catalogue's capacities and the calibrated model's, at every data row (none where the
+    capacity is not a target)."""
+    predicted = f"predicted {CAPACITY}"
+    if predicted not in table:
+        return []
+    cases = [case.with_(p.overrides) for p in measured]
+    sources = {
+        "catalogue": [p.targets.get(CAPACITY, math.nan) for p in measured],
+        "model": [float(v) for v in table[predicted]],
+    }
+    return volumetric_rows(name, cases, sources)
 
 
 _Group = tuple[Member, Case, list[MeasuredPoint], set[int]]
