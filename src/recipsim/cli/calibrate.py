@@ -137,10 +137,13 @@ def _print_volumetric(table: Any) -> None:
     if table.empty:
         return
     print("\nvolumetric decomposition (eta_v = 1 - x - V_d/V R; docs/calibration.md):")
-    for row in table.itertuples(index=False):
-        member, source, dead, low, high, losses, loss_low, loss_high, rms, _ = row
+    for row in table.to_dict("records"):
+        dead = row["effective_dead_volume [m3]"] * 1e6
+        low = row["effective_dead_volume_ci95_low [m3]"] * 1e6
+        high = row["effective_dead_volume_ci95_high [m3]"] * 1e6
         print(
-            f"  {member} {source:>9}: effective dead volume {dead * 1e6:.4f} cm3 "
-            f"({low * 1e6:.4f}..{high * 1e6:.4f}), other losses {losses:.3f} "
-            f"({loss_low:.3f}..{loss_high:.3f}), rms {rms:.4f}"
+            f"  {row['member']} {row['source']:>9}: effective dead volume {dead:.4f} cm3 "
+            f"({low:.4f}..{high:.4f}), other losses {row['other_losses [-]']:.3f} "
+            f"({row['other_losses_ci95_low [-]']:.3f}..{row['other_losses_ci95_high [-]']:.3f}), "
+            f"rms {row['rms [-]']:.4f}"
         )

@@ -18,6 +18,7 @@ from pathlib import Path
 
 import CoolProp.CoolProp as CP
 import numpy as np
+import pandas as pd
 import pytest
 
 from recipsim.case.case import Case
@@ -119,3 +120,21 @@ def test_decompose_skips_points_without_a_capacity() -> None:
     partial = decompose(cases, [*capacities[:3], math.nan])
     assert partial.points == 3
     assert partial.dead_volume == pytest.approx(full.dead_volume, rel=1e-9)
+
+
+def test_the_console_prints_each_decomposition_in_cm3(capsys) -> None:
+    from recipsim.cli.calibrate import _print_volumetric
+    from recipsim.studies.calibrate.volumetric import volumetric_rows
+
+    case = load_case("tles5.7kk3_r600a")
+    cases = [
+        case.with_({"operating_point.evaporating_temperature": f"{te} degC"})
+        for te in (-35, -25, -15, -10)
+    ]
+    capacities = [_efficiency_model(c)["cooling_capacity [W]"] for c in cases]
+    rows = volumetric_rows("tles", cases, {"catalogue": capacities})
+    _print_volumetric(pd.DataFrame(rows))
+    out = capsys.readouterr().out
+    # the case's suction flow coefficient 0.8 scales eta_v: V_d 0.8 x 0.1 cm3, x 1 - 0.8 x 0.85
+    assert "tles catalogue: effective dead volume 0.0800 cm3" in out
+    assert "other losses 0.320" in out
