@@ -354,7 +354,8 @@ def calibrate(
         Target columns; default ``cooling_capacity [W]`` and ``COP [-]``.
     directory : str or Path, optional
         Write the result there (replaced whole): ``parameters.csv``, ``points.csv``,
-        ``calibration.json``, the calibrated ``case.toml``.
+        ``volumetric.csv`` (where the capacity is a target), ``calibration.json``, the
+        calibrated ``case.toml``.
     members : sequence of str or Member
         The family's other compressors, fitted with ``case`` (shared parameters, one fit):
         ``Member(data, bore="26.49 mm")`` (``case`` with another bore), ``Member(data,
@@ -364,8 +365,10 @@ def calibrate(
     -------
     Calibration
         ``.calibrated`` (the case with the fitted values), ``.parameters`` (fitted
-        values, 95 % intervals, plausible ranges, verdicts) and ``.points`` (member,
-        measured, predicted and error per point) as DataFrames.
+        values, 95 % intervals, plausible ranges, verdicts), ``.points`` (member,
+        measured, predicted and error per point) and ``.volumetric`` (each member's
+        effective dead volume and other losses, catalogue and model:
+        ``docs/calibration.md``) as DataFrames.
 
     Raises
     ------
