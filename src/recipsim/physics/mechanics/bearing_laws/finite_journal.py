@@ -10,7 +10,11 @@ import functools
 import numpy as np
 from numba import njit
 
-from recipsim.physics.mechanics.bearing_laws.law import FILM_OUTPUTS, BearingLaw
+from recipsim.physics.mechanics.bearing_laws.law import (
+    FILM_OUTPUTS,
+    BearingLaw,
+    journal_film_geometry,
+)
 from recipsim.physics.mechanics.bearing_laws.short_journal import film_secant_stiffness
 from recipsim.physics.mechanics.journal_finite import (
     finite_journal_film,
@@ -18,11 +22,7 @@ from recipsim.physics.mechanics.journal_finite import (
 )
 from recipsim.physics.mechanics.journal_table import finite_journal_table
 from recipsim.physics.mechanics.layout import (
-    BP_CLEARANCE,
-    BP_DIAMETER,
-    BP_LENGTH,
     BP_TABLE,
-    BP_VISCOSITY,
     JOURNAL_NAMES,
 )
 
@@ -66,9 +66,9 @@ def finite_film(
     spin_bushing: float,
 ) -> tuple[float, float, float]:
     """Film force [N] and journal torque [N m] (signature: :mod:`.law`)."""
+    radius, length, clearance, viscosity = journal_film_geometry(par, row)
     return finite_journal_film(
-        ex, ey, vx, vy, spin_journal, spin_bushing, 0.5 * par[row + BP_DIAMETER],
-        par[row + BP_LENGTH], par[row + BP_CLEARANCE], par[row + BP_VISCOSITY],
+        ex, ey, vx, vy, spin_journal, spin_bushing, radius, length, clearance, viscosity,
         tables, int(par[row + BP_TABLE]),
     )  # fmt: skip
 
@@ -86,8 +86,8 @@ def finite_peak_pressure(
     spin_bushing: float,
 ) -> float:
     """Largest film pressure [Pa] (signature: :mod:`.law`)."""
+    radius, length, clearance, viscosity = journal_film_geometry(par, row)
     return finite_journal_peak_pressure(
-        ex, ey, vx, vy, spin_journal, spin_bushing, 0.5 * par[row + BP_DIAMETER],
-        par[row + BP_LENGTH], par[row + BP_CLEARANCE], par[row + BP_VISCOSITY],
+        ex, ey, vx, vy, spin_journal, spin_bushing, radius, length, clearance, viscosity,
         tables, int(par[row + BP_TABLE]),
     )  # fmt: skip

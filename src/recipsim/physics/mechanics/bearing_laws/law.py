@@ -23,9 +23,23 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
+from numba import njit
 
 from recipsim.physics.mechanics import layout as lay
+from recipsim.physics.mechanics.layout import BP_CLEARANCE, BP_DIAMETER, BP_LENGTH, BP_VISCOSITY
 from recipsim.slots import PER_BEARING, ModelChoice, Output
+
+
+@njit(cache=True)
+def journal_film_geometry(par: np.ndarray, row: int) -> tuple[float, float, float, float]:
+    """A journal film's radius, length and radial clearance [m] and its oil's viscosity
+    [Pa s], from the bearing's parameter row starting at ``row`` of ``par``."""
+    return (
+        0.5 * par[row + BP_DIAMETER],
+        par[row + BP_LENGTH],
+        par[row + BP_CLEARANCE],
+        par[row + BP_VISCOSITY],
+    )
 
 
 def mechanism_output(name: str, table: str = "cycle") -> Output:

@@ -43,7 +43,11 @@ import math
 import numpy as np
 from numba import njit
 
-from recipsim.physics.mechanics.bearing_laws.law import FILM_OUTPUTS, BearingLaw
+from recipsim.physics.mechanics.bearing_laws.law import (
+    FILM_OUTPUTS,
+    BearingLaw,
+    journal_film_geometry,
+)
 from recipsim.physics.mechanics.bearing_laws.short_journal import film_secant_stiffness
 from recipsim.physics.mechanics.journal import (
     couette_torque,
@@ -52,10 +56,6 @@ from recipsim.physics.mechanics.journal import (
     short_journal_peak_pressure,
 )
 from recipsim.physics.mechanics.layout import (
-    BP_CLEARANCE,
-    BP_DIAMETER,
-    BP_LENGTH,
-    BP_VISCOSITY,
     JOURNAL_NAMES,
 )
 
@@ -204,10 +204,10 @@ def mobility_film(
     spin_bushing: float,
 ) -> tuple[float, float, float]:
     """Film force [N] and journal torque [N m] (signature: :mod:`.law`)."""
+    radius, length, clearance, viscosity = journal_film_geometry(par, row)
     return mobility_journal_film(
-        ex, ey, vx, vy, spin_journal, spin_bushing, 0.5 * par[row + BP_DIAMETER],
-        par[row + BP_LENGTH], par[row + BP_CLEARANCE], par[row + BP_VISCOSITY],
-    )  # fmt: skip
+        ex, ey, vx, vy, spin_journal, spin_bushing, radius, length, clearance, viscosity
+    )
 
 
 @njit(cache=True)
@@ -225,10 +225,7 @@ def mobility_peak_pressure(
     """Largest film pressure [Pa] (signature: :mod:`.law`): the mobility method gives no
     pressure field, so the short bearing's peak at the same state, scaled by the ratio of
     the mobility's load to the short bearing's (the same film shape)."""
-    radius = 0.5 * par[row + BP_DIAMETER]
-    length = par[row + BP_LENGTH]
-    clearance = par[row + BP_CLEARANCE]
-    mu = par[row + BP_VISCOSITY]
+    radius, length, clearance, mu = journal_film_geometry(par, row)
     fx, fy, _ = mobility_journal_film(ex, ey, vx, vy, spin_journal, spin_bushing, radius,
                                       length, clearance, mu)  # fmt: skip
     sx, sy, _ = short_journal_film(ex, ey, vx, vy, spin_journal, spin_bushing, radius, length,

@@ -10,13 +10,13 @@ import math
 import numpy as np
 from numba import njit
 
-from recipsim.physics.mechanics.bearing_laws.law import FILM_OUTPUTS, BearingLaw
+from recipsim.physics.mechanics.bearing_laws.law import (
+    FILM_OUTPUTS,
+    BearingLaw,
+    journal_film_geometry,
+)
 from recipsim.physics.mechanics.journal import short_journal_film, short_journal_peak_pressure
 from recipsim.physics.mechanics.layout import (
-    BP_CLEARANCE,
-    BP_DIAMETER,
-    BP_LENGTH,
-    BP_VISCOSITY,
     JOURNAL_NAMES,
 )
 
@@ -26,13 +26,11 @@ CODE = 1
 def film_secant_stiffness(par: np.ndarray, row: int, speed: float) -> float:
     """Secant stiffness of a short-bearing film at eccentricity ratio 0.5 [N/m]: the
     steady load at ``speed`` [rad/s] (fixed bushing) over the displacement ``c/2``."""
-    c = par[row + BP_CLEARANCE]
-    radius = 0.5 * par[row + BP_DIAMETER]
-    length = par[row + BP_LENGTH]
+    radius, length, c, mu = journal_film_geometry(par, row)
     omega = max(abs(speed), 1.0)
     eps = 0.5
     shape = eps * math.sqrt(math.pi**2 * (1 - eps**2) + 16 * eps**2) / (1 - eps**2) ** 2
-    load = par[row + BP_VISCOSITY] * omega * radius * length**3 / (4 * c * c) * shape
+    load = mu * omega * radius * length**3 / (4 * c * c) * shape
     return float(load / (eps * c))
 
 
@@ -61,10 +59,10 @@ def short_film(
     spin_bushing: float,
 ) -> tuple[float, float, float]:
     """Film force [N] and journal torque [N m] (signature: :mod:`.law`)."""
+    radius, length, clearance, viscosity = journal_film_geometry(par, row)
     return short_journal_film(
-        ex, ey, vx, vy, spin_journal, spin_bushing, 0.5 * par[row + BP_DIAMETER],
-        par[row + BP_LENGTH], par[row + BP_CLEARANCE], par[row + BP_VISCOSITY],
-    )  # fmt: skip
+        ex, ey, vx, vy, spin_journal, spin_bushing, radius, length, clearance, viscosity
+    )
 
 
 @njit(cache=True)
@@ -80,7 +78,7 @@ def short_peak_pressure(
     spin_bushing: float,
 ) -> float:
     """Largest film pressure [Pa] (signature: :mod:`.law`)."""
+    radius, length, clearance, viscosity = journal_film_geometry(par, row)
     return short_journal_peak_pressure(
-        ex, ey, vx, vy, spin_journal, spin_bushing, 0.5 * par[row + BP_DIAMETER],
-        par[row + BP_LENGTH], par[row + BP_CLEARANCE], par[row + BP_VISCOSITY],
-    )  # fmt: skip
+        ex, ey, vx, vy, spin_journal, spin_bushing, radius, length, clearance, viscosity
+    )
