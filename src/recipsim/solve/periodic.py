@@ -68,7 +68,7 @@ from recipsim.solve.subharmonic import (
     SUBHARMONIC_PERIODS,
     RevolutionIntegrator,
     candidate_period,
-    period_average,
+    settled_period,
     shoot_subharmonic,
     subharmonic_period,
 )
@@ -245,12 +245,9 @@ def _iterate(
             break
         if stalled(history):
             mixing = None
-            ref = residual_reference(model, rev) * (model.scale[: model.n_err] > 0.0)
-            ends = [r.y_end[: model.n_err] for r in recent]
-            period = subharmonic_period(ends, ref, s.cycle_tolerance)
-            if period > 1:  # a period of n revolutions: report its average
-                rev = period_average(recent[-period:], model.n_err)
-                converged = True
+            period, average = settled_period(model, recent, s.cycle_tolerance)
+            if average is not None:  # a period of n revolutions: report its average
+                rev, converged = average, True
                 break
         if hand_over and count >= _AUTO_MIN_REVOLUTIONS and not warming_up(mixing):
             handed = _hand_over(model, recent, (rev, h), history, tally, start, integrate, tried)

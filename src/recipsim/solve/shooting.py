@@ -78,7 +78,7 @@ import numpy as np
 
 from recipsim.model.build import Model, WorkingModel
 from recipsim.solve.newton import newton_fixed_point
-from recipsim.solve.residual import cycle_residual, residual_reference, stalled, state_change
+from recipsim.solve.residual import cycle_residual, stalled, state_change
 from recipsim.solve.revolution import (
     PeriodicSolution,
     Revolution,
@@ -91,7 +91,7 @@ from recipsim.solve.shooting_map import (  # noqa: F401  (shooting_unknowns re-e
     shooting_cost,
     shooting_unknowns,
 )
-from recipsim.solve.subharmonic import SUBHARMONIC_PERIODS, period_average, subharmonic_period
+from recipsim.solve.subharmonic import SUBHARMONIC_PERIODS, settled_period
 
 #: Plain revolutions before the first Jacobian when shooting starts from the initial
 #: state (the first sets the discharge enthalpy, both damp the fast gas modes).
@@ -217,20 +217,17 @@ class _Shooting:
         self.previous = rev
         return rev
 
-    def _subharmonic(self, rev: Revolution) -> PeriodicSolution | None:
+    def _subharmonic(self) -> PeriodicSolution | None:
         """Where the residual stalled and the chained plain revolutions repeat after n
-        revolutions (:func:`.subharmonic.subharmonic_period`), the solution of period n
+        revolutions (:func:`.subharmonic.settled_period`), the solution of period n
         (quadratures averaged over it), as revolution iteration ends such a run; else
         None."""
-        model = self.model
         if not stalled(self.history):
             return None
-        ref = residual_reference(model, rev) * (model.scale[: model.n_err] > 0.0)
-        ends = [r.y_end[: model.n_err] for r in self.chain]
-        period = subharmonic_period(ends, ref, self.s.cycle_tolerance)
-        if period == 1:
+        period, average = settled_period(self.model, self.chain, self.s.cycle_tolerance)
+        if average is None:
             return None
-        solution = self._solution(period_average(self.chain[-period:], model.n_err), True)
+        solution = self._solution(average, True)
         solution.period_revolutions = period
         return solution
 
@@ -323,7 +320,7 @@ class _Shooting:
                 self.method = "shooting, fell back to revolutions"
                 newton_failed = True
             if newton_failed:
-                periodic = self._subharmonic(rev)
+                periodic = self._subharmonic()
                 if periodic is not None:
                     return periodic
             if newton_failed or self._done(rev) or self._budget() <= 0:

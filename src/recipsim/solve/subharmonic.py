@@ -152,6 +152,19 @@ def period_average(revs: list[Revolution], n_err: int) -> Revolution:
     return rev
 
 
+def settled_period(
+    model: Model, revs: list[Revolution], tolerance: float
+) -> tuple[int, Revolution | None]:
+    """The period n > 1 on which the revolutions ``revs`` (run end to end, oldest first)
+    repeat (:func:`subharmonic_period`, judged against the last one's scale) and the last
+    period's average (:func:`period_average`); ``(1, None)`` where they do not."""
+    ref = residual_reference(model, revs[-1]) * (model.scale[: model.n_err] > 0.0)
+    period = subharmonic_period([r.y_end[: model.n_err] for r in revs], ref, tolerance)
+    if period == 1:
+        return 1, None
+    return period, period_average(revs[-period:], model.n_err)
+
+
 def period_change(model: Model, revs: list[Revolution]) -> float:
     """Change of the error-controlled states from the start of ``revs[0]`` to the end of
     ``revs[-1]`` relative to :func:`.residual.residual_reference`; at least 1 if the
