@@ -125,9 +125,13 @@ def load_direction(eps: float, cos_v: float, sin_v: float) -> tuple[float, float
     lo = -1.0
     hi = 1.0
     t = min(max(-a0 / a1, -0.5), 0.5)
+    last = False
     for _ in range(_MAX_ITERATIONS):
         g = a0 + t * (a1 + t * (a2 + t * (a3 + t * a0)))
         slope = a1 + t * (2.0 * a2 + t * (3.0 * a3 + t * 4.0 * a0))
+        if last:  # the step after a small one, unbracketed: its error is of order its square
+            t -= g / slope
+            break
         if g < 0.0:
             lo = t
         elif g > 0.0:
@@ -140,11 +144,7 @@ def load_direction(eps: float, cos_v: float, sin_v: float) -> tuple[float, float
             t_new = 0.5 * (lo + hi)
             step = t - t_new
         t = t_new
-        if abs(step) < _LAST_STEP:
-            g = a0 + t * (a1 + t * (a2 + t * (a3 + t * a0)))
-            slope = a1 + t * (2.0 * a2 + t * (3.0 * a3 + t * 4.0 * a0))
-            t -= g / slope
-            break
+        last = abs(step) < _LAST_STEP
     w = 1.0 / (1.0 + t * t)
     cos_d = (1.0 - t * t) * w
     sin_d = 2.0 * t * w
