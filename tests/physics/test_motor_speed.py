@@ -79,6 +79,12 @@ def test_summary_reports_the_speed_it_ran_at(tles):
         row["shaft_speed [rpm]"], rel=3.0 * tles.solver.cycle_tolerance
     )
     assert row["shaft_speed [rpm]"] != pytest.approx(2900.0, abs=1.0)  # not the first guess
+    # the slip it runs at, against the two-pole 50 Hz synchronous 3000 rpm (the speed's
+    # relative tolerance is the slip's absolute one)
+    assert row["motor_slip [-]"] == pytest.approx(
+        1.0 - row["shaft_speed [rpm]"] / 3000.0, abs=3.0 * tles.solver.cycle_tolerance
+    )
+    assert 0.005 < row["motor_slip [-]"] < 0.08  # a loaded small induction motor
 
 
 def test_motor_slip_needs_the_equivalent_circuit():

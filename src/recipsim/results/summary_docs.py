@@ -246,7 +246,10 @@ SUMMARY_DOCS: tuple[ColumnDoc, ...] = (
     ),
     _c(
         "motor_slip [-]",
-        "induction motor drive: 1 - mean crank speed / synchronous speed; NaN for other drives",
+        "induction motor drive: 1 - mean crank speed / synchronous speed; with the "
+        "equivalent-circuit motor under another drive, the circuit's slip at the cycle's "
+        "load (1 - motor_speed_at_load / synchronous speed, the slip the cycle runs at with "
+        'options.speed = "motor_slip"); NaN otherwise',
     ),
     _c("isentropic_power [W]", "discharge mass flow times (h(p_d, s_suction) - h_suction)"),
     _c(

@@ -231,6 +231,7 @@ def summary(
     row["bearing_dissipation_power [W]"] = bearing_loss * freq
     row.update(motor)
     row.update(losses)
+    row["motor_slip [-]"] = _slip_at_load(case, row["motor_slip [-]"], row)
     row.update(mech)
     flexible = model if model is not None and model.scene != scenes.SCENE_CYLINDER else None
     # the flexible crank's bearings on oil films: their laws' summary columns
@@ -344,6 +345,16 @@ def _motor_metrics(case: Case, cycle: CycleColumns, freq: float, p_shaft: float)
         "motor_rotor_loss_power [W]": p_in - p_shaft,
         "motor_slip [-]": 1.0 - 2.0 * math.pi * freq / sync,
     }
+
+
+def _slip_at_load(case: Case, drive_slip: float, row: dict[str, Any]) -> float:
+    """The motor's slip: the induction-motor drive's (``drive_slip``), else the equivalent
+    circuit's at the cycle's load, ``1 - motor_speed_at_load / synchronous speed`` (NaN
+    without a circuit)."""
+    at_load = row.get("motor_speed_at_load [rpm]", math.nan)
+    if not math.isnan(drive_slip) or case.motor_circuit is None or math.isnan(at_load):
+        return drive_slip
+    return 1.0 - at_load * math.pi / 30.0 / case.motor_circuit.synchronous_speed
 
 
 def _solver_metrics(solution: PeriodicSolution | None) -> dict[str, Any]:
