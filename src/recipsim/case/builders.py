@@ -13,11 +13,12 @@ from typing import Any
 
 from recipsim.atomic import checked_name, name_from_stem
 from recipsim.case.case_schema import (
-    ALTERNATIVE_KEYS,
+    CLEARANCE_KEYS,
     GEOMETRY_SPEC,
     HEADER_SPEC,
     HEAT_TRANSFER_SPEC,
     PRESSURE_CURVE_SPEC,
+    SIZE_KEYS,
     SOLVER_SPEC,
     VALVE_SPEC,
     VALVES_TOP_SPEC,
@@ -39,7 +40,7 @@ from recipsim.physics.thermo.heat_transfer import HEAT_TRANSFER
 from recipsim.physics.thermo.pressure_sources import PRESSURE_SOURCES
 from recipsim.physics.thermo.thermal_models import THERMAL_MODELS
 from recipsim.physics.thermo.valve_models import VALVE_MODELS
-from recipsim.schema import check_keys, read_table
+from recipsim.schema import Field, check_keys, read_table
 
 
 @lru_cache(maxsize=64)
@@ -128,9 +129,10 @@ def geometry(raw: dict[str, Any] | None, file: str, discharge_port_diameter: flo
     the clearance ratio.
     """
     g = read_table(raw, GEOMETRY_SPEC, file, "geometry")
+    g["bore"] = _bore(g, file)
     area = math.pi * g["bore"] ** 2 / 4.0
     swept = area * g["stroke"]
-    given = [key for key in ALTERNATIVE_KEYS["geometry"] if g[key] is not None]
+    given = [key for key in CLEARANCE_KEYS if g[key] is not None]
     if len(given) != 1:
         raise CaseError(
             file,
@@ -158,6 +160,29 @@ def geometry(raw: dict[str, Any] | None, file: str, discharge_port_diameter: flo
         clearance_volume=vc,
         liner_length=g["liner_length"],  # None: set from the piston length by the caller
     )
+
+
+def _bore(g: dict[str, Any], file: str) -> float:
+    """The bore [m]: as given, or from ``displacement`` at the stroke (the bore's range
+    holds for it too)."""
+    given = [key for key in SIZE_KEYS if g[key] is not None]
+    if not given:
+        raise CaseError(file, "geometry.bore", "missing required key (or give displacement)")
+    if len(given) > 1:
+        raise CaseError(file, "geometry.bore", "give exactly one of bore and displacement")
+    if g["bore"] is not None:
+        return float(g["bore"])
+    bore = math.sqrt(4.0 * g["displacement"] / (math.pi * g["stroke"]))
+    field = GEOMETRY_SPEC["bore"]
+    assert isinstance(field, Field)
+    if not field.lo <= bore <= field.hi:
+        raise CaseError(
+            file,
+            "geometry.displacement",
+            f"{g['displacement']:.4g} m3 at the stroke {g['stroke']:.4g} m needs a bore of "
+            f"{bore:.4g} m, outside the bore's {field.lo:g} to {field.hi:g} m",
+        )
+    return bore
 
 
 def valves(raw: dict[str, Any] | None, options: Options, file: str) -> Valves:

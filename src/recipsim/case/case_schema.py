@@ -59,7 +59,15 @@ OPERATING_POINT_SPEC: Spec = {
 }
 
 GEOMETRY_SPEC: Spec = {
-    "bore": Field("m", lo=1e-3, hi=0.5),
+    "bore": Field("m", None, lo=1e-3, hi=0.5, doc="cylinder bore (or give displacement)"),
+    "displacement": Field(
+        "m^3",
+        None,
+        lo=1e-9,
+        hi=0.05,
+        doc="swept volume pi bore^2 stroke / 4, given instead of bore: the bore follows at "
+        "the case's stroke (a member of a family named by its displacement)",
+    ),
     "stroke": Field("m", lo=1e-3, hi=0.5),
     "connecting_rod_length": Field("m", lo=1e-3, hi=2.0),
     "clearance_ratio": Field("dimensionless", None, lo=0.0, hi=1.0, open_lo=True),
@@ -101,10 +109,15 @@ GEOMETRY_SPEC: Spec = {
     "liner_length": Field("m", None, lo=1e-3, hi=1.0, doc="head to open end of the bore"),
 }
 
-#: Keys of which a case gives exactly one: a case (or an override) that sets one of a group
-#: replaces whichever the case it extends gave (``{table: (key, ...)}``).
-ALTERNATIVE_KEYS: dict[str, tuple[str, ...]] = {
-    "geometry": ("clearance_ratio", "clearance_volume", "top_clearance"),
+#: The dead volume's keys, of which a case gives exactly one.
+CLEARANCE_KEYS = ("clearance_ratio", "clearance_volume", "top_clearance")
+#: The cylinder's size: its bore, or its displacement at the case's stroke.
+SIZE_KEYS = ("bore", "displacement")
+
+#: Groups of keys of which a case gives exactly one: a case (or an override) that sets one
+#: of a group replaces whichever the case it extends gave (``{table: (group, ...)}``).
+ALTERNATIVE_KEYS: dict[str, tuple[tuple[str, ...], ...]] = {
+    "geometry": (CLEARANCE_KEYS, SIZE_KEYS),
 }
 
 
@@ -112,13 +125,15 @@ def drop_replaced_alternatives(merged: dict[str, Any], chosen: dict[str, Any]) -
     """Remove from ``merged`` (a case's raw data, modified in place) the keys of each
     :data:`ALTERNATIVE_KEYS` group that ``chosen`` (the extending case, or an override as
     a nested table) does not give, where ``chosen`` gives one of the group."""
-    for table, group in ALTERNATIVE_KEYS.items():
+    for table, groups in ALTERNATIVE_KEYS.items():
         mine = chosen.get(table)
-        if not isinstance(mine, dict) or not any(key in mine for key in group):
-            continue
         target = merged.get(table)
-        if isinstance(target, dict):
-            merged[table] = {k: v for k, v in target.items() if k in mine or k not in group}
+        if not isinstance(mine, dict) or not isinstance(target, dict):
+            continue
+        for group in groups:
+            if any(key in mine for key in group):
+                target = {k: v for k, v in target.items() if k in mine or k not in group}
+        merged[table] = target
 
 
 VALVE_SPEC: Spec = {

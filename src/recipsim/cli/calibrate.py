@@ -84,9 +84,10 @@ def add_calibrate_parser(sub: Any) -> None:
         "--member",
         action="append",
         default=[],
-        metavar="DATA[:bore=BORE|:case=CASE][:points=ROWS]",
+        metavar="DATA[:bore=BORE|:displacement=VOLUME|:case=CASE][:points=ROWS]",
         help="another compressor of the family, fitted together with CASE (the parameters "
-        "shared): its data file, and its bore on CASE's geometry or its own case; repeatable",
+        "shared): its data file, and its bore or displacement on CASE's geometry or its own "
+        "case; repeatable",
     )
     add_common_options(
         p,

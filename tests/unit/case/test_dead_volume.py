@@ -88,3 +88,35 @@ def test_a_motor_matched_to_a_displacement_scales_with_the_bore():
         {"geometry.bore": "26.49 mm", "motor.rated_displacement": large.geometry.swept_volume},
     )
     assert own.motor.rated_torque == pytest.approx(small.motor.rated_torque, rel=1e-6)
+
+
+def test_a_displacement_gives_the_bore_at_the_cases_stroke():
+    """``geometry.displacement`` instead of ``bore``: pi bore^2 stroke / 4 is the
+    displacement to round-off, and the case is the one the bore itself gives (a member of
+    the family named by its displacement)."""
+    by_volume = load_case("tles5.7kk3_r600a", {"geometry.displacement": "10 cm^3"})
+    g = by_volume.geometry
+    assert g.swept_volume == pytest.approx(10e-6, rel=1e-14)
+    assert g.stroke == pytest.approx(18.14e-3, rel=1e-14)  # the stroke is kept
+    by_bore = load_case("tles5.7kk3_r600a", {"geometry.bore": g.bore})
+    assert by_bore.geometry == g
+    assert by_bore.motor.rated_torque == by_volume.motor.rated_torque
+    # a bore given afterwards replaces the displacement, as in the case it extends
+    again = load_case(
+        "tles5.7kk3_r600a", {"geometry.displacement": "10 cm^3", "geometry.bore": 0.02}
+    )
+    assert again.geometry.bore == 0.02
+
+
+def test_bore_and_displacement_in_one_file_are_refused(tmp_path):
+    path = tmp_path / "both.toml"
+    path.write_text(
+        'extends = "tles5.7kk3_r600a"\n[geometry]\nbore = "20 mm"\ndisplacement = "5 cm^3"\n'
+    )
+    with pytest.raises(CaseError, match="geometry.bore.*exactly one of bore and displacement"):
+        load_case(str(path))
+
+
+def test_a_displacement_whose_bore_is_out_of_range_names_the_key():
+    with pytest.raises(CaseError, match=r"geometry.displacement.*bore of 1\.6.*outside"):
+        load_case("tles5.7kk3_r600a", {"geometry.displacement": "0.04 m^3"})

@@ -2,8 +2,9 @@
 catalogue) with its own case, or the family's case with another bore; the fitted
 parameters are shared by all of them.
 
-A member is written ``DATA[:case=CASE][:bore=BORE][:points=ROWS]`` on the command line
-(``--member danfoss_tles10kk.3_r600a.csv:bore=26.49mm``) or given as a :class:`Member`.
+A member is written ``DATA[:case=CASE][:bore=BORE|:displacement=VOLUME][:points=ROWS]`` on
+the command line (``--member danfoss_tles10kk.3_r600a.csv:bore=26.49mm``, or
+``...:displacement=10cm^3`` at the family's stroke) or given as a :class:`Member`.
 """
 
 from __future__ import annotations
@@ -18,7 +19,7 @@ from recipsim.errors import CaseError
 from recipsim.studies.calibrate.data import find_data_file
 
 #: The options of a member after its data file.
-MEMBER_OPTIONS = ("case", "bore", "points")
+MEMBER_OPTIONS = ("case", "bore", "displacement", "points")
 
 
 @dataclass(frozen=True)
@@ -37,12 +38,16 @@ class Member:
         family's geometry with another displacement.
     points : sequence of int, optional
         Its data rows to fit on. Default: the family's ``points``.
+    displacement : str or float, optional
+        ``geometry.displacement`` of the member (``"10 cm^3"``, or SI) instead of its
+        bore: the bore follows at its case's stroke.
     """
 
     data: str | Path
     case: str | Path | None = None
     bore: str | float | None = None
     points: tuple[int, ...] | None = None
+    displacement: str | float | None = None
 
     @property
     def name(self) -> str:
@@ -51,13 +56,14 @@ class Member:
 
 
 def parse_member(text: str) -> Member:
-    """``DATA[:case=CASE][:bore=BORE][:points=ROWS]`` as a :class:`Member`.
+    """``DATA[:case=CASE][:bore=BORE|:displacement=VOLUME][:points=ROWS]`` as a
+    :class:`Member`.
 
     Raises
     ------
     CaseError
-        An option that is not one of :data:`MEMBER_OPTIONS`, or rows that are not
-        whole numbers.
+        An option that is not one of :data:`MEMBER_OPTIONS`, both a bore and a
+        displacement, or rows that are not whole numbers.
     """
     data, *options = text.split(":")
     found: dict[str, str] = {}
@@ -77,17 +83,23 @@ def parse_member(text: str) -> Member:
             rows = tuple(int(v) for v in found["points"].split(",") if v.strip())
         except ValueError:
             raise CaseError(text, "--member", "points: expected row numbers like 3,7") from None
-    return Member(data.strip(), found.get("case"), found.get("bore"), rows)
+    if "bore" in found and "displacement" in found:
+        raise CaseError(text, "--member", "give bore or displacement, not both")
+    return Member(
+        data.strip(), found.get("case"), found.get("bore"), rows, found.get("displacement")
+    )
 
 
 def member_case(family: Case, member: Member) -> Case:
     """The case of ``member``: its own (with the family case's overrides) or the
-    family's, with its bore where it gives one."""
+    family's, with its bore or displacement where it gives one."""
     case = family
     if member.case is not None:
         case = load_case(member.case, list(family.overrides))
     if member.bore is not None:
         case = case.with_({"geometry.bore": member.bore})
+    if member.displacement is not None:
+        case = case.with_({"geometry.displacement": member.displacement})
     return case
 
 

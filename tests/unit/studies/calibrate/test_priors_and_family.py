@@ -125,12 +125,26 @@ def test_a_family_shares_its_parameters_across_members(tmp_path: Path) -> None:
         case, small, parameters, members=[Member(large, case=large_case)], simulate=_sized
     )
     assert by_case.parameters["fitted"].tolist() == pytest.approx(fitted.tolist(), rel=1e-6)
+    # the member named by its displacement at the family's stroke: the same bore
+    stroke = case.geometry.stroke
+    volume = math.pi / 4.0 * 0.02649**2 * stroke
+    by_volume = calibrate_case(
+        case,
+        small,
+        parameters,
+        members=[f"{large}:displacement={volume * 1e6!r}cm^3"],
+        simulate=_sized,
+    )
+    assert by_volume.parameters["fitted"].tolist() == pytest.approx(fitted.tolist(), rel=1e-9)
 
 
 def test_member_options_are_checked() -> None:
     assert parse_member("a.csv:bore=26.49mm:points=3,7") == Member("a.csv", None, "26.49mm", (3, 7))
-    with pytest.raises(CaseError, match="expected one of case, bore, points"):
+    assert parse_member("a.csv:displacement=10cm^3") == Member("a.csv", displacement="10cm^3")
+    with pytest.raises(CaseError, match="expected one of case, bore, displacement, points"):
         parse_member("a.csv:bore26")
+    with pytest.raises(CaseError, match="bore or displacement, not both"):
+        parse_member("a.csv:bore=26mm:displacement=10cm^3")
     with pytest.raises(CaseError, match="row numbers"):
         parse_member("a.csv:points=three")
 
