@@ -41,6 +41,11 @@ class Member:
     displacement : str or float, optional
         ``geometry.displacement`` of the member (``"10 cm^3"``, or SI) instead of its
         bore: the bore follows at its case's stroke.
+
+    Raises
+    ------
+    CaseError
+        Both a bore and a displacement.
     """
 
     data: str | Path
@@ -48,6 +53,10 @@ class Member:
     bore: str | float | None = None
     points: tuple[int, ...] | None = None
     displacement: str | float | None = None
+
+    def __post_init__(self) -> None:
+        if self.bore is not None and self.displacement is not None:
+            raise CaseError(str(self.data), "--member", "give bore or displacement, not both")
 
     @property
     def name(self) -> str:
@@ -83,8 +92,6 @@ def parse_member(text: str) -> Member:
             rows = tuple(int(v) for v in found["points"].split(",") if v.strip())
         except ValueError:
             raise CaseError(text, "--member", "points: expected row numbers like 3,7") from None
-    if "bore" in found and "displacement" in found:
-        raise CaseError(text, "--member", "give bore or displacement, not both")
     return Member(
         data.strip(), found.get("case"), found.get("bore"), rows, found.get("displacement")
     )

@@ -145,6 +145,8 @@ def test_member_options_are_checked() -> None:
         parse_member("a.csv:bore26")
     with pytest.raises(CaseError, match="bore or displacement, not both"):
         parse_member("a.csv:bore=26mm:displacement=10cm^3")
+    with pytest.raises(CaseError, match="bore or displacement, not both"):
+        Member("a.csv", bore="26mm", displacement="10cm^3")  # from Python too
     with pytest.raises(CaseError, match="row numbers"):
         parse_member("a.csv:points=three")
 
